@@ -27,6 +27,11 @@ if(LUXEL_SANITIZE)
     target_compile_options(luxel_sanitize INTERFACE
         $<$<CXX_COMPILER_ID:GNU>:-Wno-maybe-uninitialized>)
 endif()
+if(LUXEL_FUZZ AND CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+    # Coverage instrumentation for libFuzzer in everything we compile, so the fuzzer sees the
+    # branches of the code under test; only the fuzz targets link libFuzzer itself.
+    target_compile_options(luxel_sanitize INTERFACE -fsanitize=fuzzer-no-link)
+endif()
 
 # Applies warnings-as-errors and the sanitizer flags to one of our own targets.
 function(luxel_target_defaults target)
