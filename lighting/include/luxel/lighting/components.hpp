@@ -1,0 +1,94 @@
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "luxel/runtime/scene/lightmap_layout.hpp"
+#include "luxel/runtime/scene/scene.hpp"
+
+/// The public lighting components: plain data a game attaches to entities, changes and removes
+/// at run time. Lights shine down their entity's -z axis (the glTF convention) and are placed by
+/// its WorldTransform. Units: metres, watts, linear RGB.
+///
+/// Change a component through Registry::patch/replace (or mark_updated after writing through a
+/// reference) so the lighting system sees the change in the ECS change lists.
+namespace luxel::lighting {
+
+/// An isotropic point light emitting `power` watts per RGB channel.
+struct PointLight {
+    glm::vec3 power{100.0f};
+    float range = 0.0f;  ///< metres beyond which it may be ignored; 0 = unbounded
+    bool enabled = true;
+};
+
+/// A spot light: radiant intensity power / (2 pi (1 - cos outer)) inside the outer cone, with a
+/// smooth falloff from the inner to the outer cone angle (radians, half angles).
+struct SpotLight {
+    glm::vec3 power{100.0f};
+    float inner_cone = 0.3f;
+    float outer_cone = 0.5f;
+    float range = 0.0f;
+    bool enabled = true;
+};
+
+/// Parallel light from a distant source: `irradiance` W/m^2 on a surface facing it.
+struct DirectionalLight {
+    glm::vec3 irradiance{3.0f};
+    bool enabled = true;
+};
+
+/// Makes the emissive primitives of the entity's MeshInstance emit: each triangle emits its
+/// material's emitted radiance (W/(m^2 sr)) times `scale`, cosine-distributed.
+struct AreaLight {
+    float scale = 1.0f;
+    bool enabled = true;
+};
+
+/// Marks an entity whose specular surfaces (reflective or refractive) focus light into
+/// caustics. Caustic photons are emitted only toward entities with this component.
+struct CausticGenerator {
+    float ior = 1.5f;           ///< index of refraction of the refracting medium
+    float transmission = 1.0f;  ///< 0: a mirror (reflection only), 1: clear dielectric
+    glm::vec3 tint{1.0f};       ///< specular colour: the mirror's reflectance or glass tint
+};
+
+/// The light-mapped surfaces of an entity's MeshInstance, from luxel-prep's layout: each
+/// surface is one primitive of the mesh with TEXCOORD_1 light-map UVs, and owns a photon map,
+/// an AIM and an IIM (see scene/lightmap_layout.hpp for the fields).
+struct LightmappedSurface {
+    scene::LightmapLayout layout;
+};
+
+/// The geometry an entity draws and traces: one mesh of a loaded scene, which also supplies the
+/// materials. Shared, immutable: many entities may instance the same mesh.
+struct MeshInstance {
+    std::shared_ptr<const scene::Scene> source;
+    int mesh = -1;
+
+    [[nodiscard]] const scene::Mesh& geometry() const {
+        return source->meshes.at(static_cast<std::size_t>(mesh));
+    }
+};
+
+/// Tag: the entity moves (animated, or flagged dynamic). Static geometry goes into one BVH
+/// built once; dynamic entities are instanced so motion only updates a transform.
+struct Dynamic {};
+
+/// A camera from the scene file (looks down its entity's -z).
+struct CameraComponent {
+    scene::Camera camera;
+};
+
+/// A readable name, from the glTF node.
+struct Name {
+    std::string value;
+};
+
+/// Where an entity came from: its node index in the source scene.
+struct SceneNode {
+    int index = -1;
+};
+
+}  // namespace luxel::lighting

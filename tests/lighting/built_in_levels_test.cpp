@@ -1,0 +1,177 @@
+// The committed built-in levels: each is what the generator builds today, passes the Khronos
+// validator, loads, and instantiates the entities and components its description promises.
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <memory>
+#include <tuple>
+
+#include <gtest/gtest.h>
+
+#include "levels.hpp"
+#include "luxel/ecs/hierarchy.hpp"
+#include "luxel/ecs/transform.hpp"
+#include "luxel/lighting/components.hpp"
+#include "luxel/lighting/core/animation_system.hpp"
+#include "luxel/lighting/core/scene_instance.hpp"
+#include "luxel/runtime/scene/gltf.hpp"
+#include "validator.hpp"
+
+namespace {
+
+using namespace luxel;
+
+const std::filesystem::path kLevels =
+    std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" / "levels";
+
+std::vector<std::uint8_t> read_bytes(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+template <class Component>
+std::size_t count(ecs::Registry& registry) {
+    std::size_t n = 0;
+    registry.view<Component>().each([&](const Component&) { ++n; });
+    return n;
+}
+
+struct Loaded {
+    ecs::Registry registry;
+    std::shared_ptr<const scene::Scene> scene;
+    lighting::SceneInstance instance;
+
+    explicit Loaded(const std::string& name)
+        : scene(std::make_shared<scene::Scene>(scene::load_gltf(kLevels / (name + ".glb")))),
+          instance(lighting::instantiate(registry, scene)) {}
+    ecs::Entity operator[](const std::string& node) const {
+        const ecs::Entity e = instance.find(node);
+        EXPECT_FALSE(e.is_null()) << "no node named " << node;
+        return e;
+    }
+};
+
+TEST(BuiltInLevels, CommittedFilesAreWhatTheGeneratorBuilds) {
+    const auto recipes = levels::built_in_levels();
+    ASSERT_EQ(recipes.size(), 6u);
+    for (const auto& recipe : recipes) {
+        const auto committed = read_bytes(kLevels / (recipe.name + ".glb"));
+        ASSERT_FALSE(committed.empty()) << recipe.name << ".glb is missing";
+        const auto rebuilt =
+            scene::save_gltf_to_memory(recipe.build(), scene::GltfContainer::Binary);
+        EXPECT_TRUE(committed == rebuilt)
+            << recipe.name << ".glb differs from the generator's output; rebuild with "
+            << "build/bin/luxel-make-levels --out assets/levels";
+    }
+}
+
+TEST(BuiltInLevels, PassTheKhronosValidator) {
+    std::vector<std::filesystem::path> files;
+    for (const auto& recipe : levels::built_in_levels()) {
+        files.push_back(kLevels / (recipe.name + ".glb"));
+    }
+    const auto result = luxel::testing::run_gltf_validator(files);
+    EXPECT_EQ(result.exit_code, 0) << result.output;
+    EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'),
+              static_cast<std::ptrdiff_t>(files.size()))
+        << "one summary line per file, no error lines:\n"
+        << result.output;
+}
+
+TEST(BuiltInLevels, CornellAtThreeTessellations) {
+    const std::pair<const char*, std::size_t> variants[] = {
+        {"cornell", 8'000}, {"cornell-13k", 13'000}, {"cornell-133k", 133'000}};
+    for (const auto& [name, triangles] : variants) {
+        Loaded level(name);
+        const double ratio =
+            static_cast<double>(level.scene->triangle_count()) / static_cast<double>(triangles);
+        EXPECT_GT(ratio, 0.95) << name;
+        EXPECT_LT(ratio, 1.15) << name;
+        EXPECT_EQ(count<lighting::PointLight>(level.registry), 1u);
+        EXPECT_EQ(count<lighting::CausticGenerator>(level.registry), 1u);
+        EXPECT_EQ(count<lighting::AnimationPlayer>(level.registry), 2u);
+        const auto& glass = level.registry.get<lighting::CausticGenerator>(level["glass sphere"]);
+        EXPECT_FLOAT_EQ(glass.ior, 1.5f);
+        EXPECT_TRUE(level.registry.has<lighting::Dynamic>(level["glass sphere"]));
+        EXPECT_TRUE(level.registry.has<lighting::Dynamic>(level["moving cube"]));
+        EXPECT_FALSE(level.registry.has<lighting::Dynamic>(level["floor"]));
+        EXPECT_FALSE(level.registry.has<lighting::Dynamic>(level["left wall"]));
+        // 40 W of warm white under the ceiling.
+        const auto& light = level.registry.get<lighting::PointLight>(level["ceiling light"]);
+        EXPECT_NEAR(light.power.r, 40.0f, 1e-3f);
+        EXPECT_NEAR(light.power.b, 32.0f, 1e-3f);
+    }
+}
+
+TEST(BuiltInLevels, TwoRoomsHasASwingingDoorAndSwitchedLights) {
+    Loaded level("two-rooms");
+    EXPECT_EQ(count<lighting::PointLight>(level.registry), 3u);
+    EXPECT_EQ(count<lighting::SpotLight>(level.registry), 1u);
+    EXPECT_EQ(count<lighting::LightSwitch>(level.registry), 2u);
+    EXPECT_EQ(count<lighting::CausticGenerator>(level.registry), 0u);
+    const ecs::Entity hinge = level["door hinge"];
+    const ecs::Entity door = level["door"];
+    EXPECT_EQ(ecs::parent_of(level.registry, door), hinge);
+    EXPECT_TRUE(level.registry.has<lighting::Dynamic>(door));  // moved by its ancestor
+    // Half way through the opening (t = 3 s) the hinge has turned by 50 degrees.
+    lighting::update_animations(level.registry, 3.0);
+    const glm::quat rotation = level.registry.get<ecs::Transform>(hinge).rotation;
+    EXPECT_NEAR(glm::degrees(glm::angle(rotation)), 50.0f, 0.01f);
+}
+
+TEST(BuiltInLevels, CausticsHasThreeGeneratorsAndEveryLightKind) {
+    Loaded level("caustics");
+    EXPECT_EQ(count<lighting::CausticGenerator>(level.registry), 3u);
+    const auto& ring = level.registry.get<lighting::CausticGenerator>(level["brass ring"]);
+    EXPECT_FLOAT_EQ(ring.transmission, 0.0f);  // a mirror
+    EXPECT_FLOAT_EQ(level.registry.get<lighting::CausticGenerator>(level["water surface"]).ior,
+                    1.33f);
+    EXPECT_FLOAT_EQ(level.registry.get<lighting::CausticGenerator>(level["glass sphere"]).ior,
+                    1.5f);
+    EXPECT_EQ(count<lighting::SpotLight>(level.registry), 1u);
+    EXPECT_EQ(count<lighting::PointLight>(level.registry), 1u);
+    EXPECT_EQ(count<lighting::DirectionalLight>(level.registry), 1u);
+    EXPECT_TRUE(level.registry.has<lighting::Dynamic>(level["water surface"]));
+    const auto& wave = level.scene->nodes.at(static_cast<std::size_t>(
+        level.registry.get<lighting::SceneNode>(level["water surface"]).index));
+    EXPECT_TRUE(wave.flags.raw.contains("wave"));
+}
+
+TEST(BuiltInLevels, FurnaceIsAClosedEmissiveSphere) {
+    Loaded level("furnace");
+    EXPECT_EQ(count<lighting::AreaLight>(level.registry), 1u);
+    EXPECT_EQ(count<lighting::PointLight>(level.registry) +
+                  count<lighting::SpotLight>(level.registry) +
+                  count<lighting::DirectionalLight>(level.registry),
+              0u);
+    const auto& material = level.scene->materials.at(0);
+    EXPECT_FLOAT_EQ(material.base_color.r, 0.5f);
+    EXPECT_FLOAT_EQ(material.emitted_radiance().g, 1.0f);
+    // Closed: every edge of the sphere is shared by exactly two triangles.
+    const auto& primitive = level.scene->meshes.at(0).primitives.at(0);
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+    // Welded positions: the UV seam duplicates vertices, so key edges by position.
+    std::map<std::tuple<float, float, float>, std::uint32_t> welded;
+    auto weld = [&](std::uint32_t i) {
+        const glm::vec3 p = primitive.positions[i];
+        const auto key =
+            std::make_tuple(std::round(p.x * 1e4f), std::round(p.y * 1e4f), std::round(p.z * 1e4f));
+        return welded.emplace(key, static_cast<std::uint32_t>(welded.size())).first->second;
+    };
+    for (std::size_t t = 0; t + 2 < primitive.indices.size(); t += 3) {
+        for (int e = 0; e < 3; ++e) {
+            std::uint32_t a = weld(primitive.indices[t + static_cast<std::size_t>(e)]);
+            std::uint32_t b = weld(primitive.indices[t + static_cast<std::size_t>((e + 1) % 3)]);
+            edges[{std::min(a, b), std::max(a, b)}] += 1;
+        }
+    }
+    for (const auto& [edge, uses] : edges) {
+        ASSERT_EQ(uses, 2) << "open edge " << edge.first << "-" << edge.second;
+    }
+}
+
+}  // namespace

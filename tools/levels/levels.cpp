@@ -1,0 +1,290 @@
+#include "levels.hpp"
+
+#include <cmath>
+
+#include <glm/gtc/constants.hpp>
+
+#include "level_builder.hpp"
+#include "mesh_builders.hpp"
+
+namespace luxel::levels {
+namespace {
+
+using scene::AnimatedProperty;
+using scene::Interpolation;
+
+constexpr float kPi = glm::pi<float>();
+
+glm::quat yaw(float radians) {
+    return glm::angleAxis(radians, glm::vec3(0.0f, 1.0f, 0.0f));
+}
+
+/// Rotation that points a light's -z axis along `direction`.
+glm::quat aim(glm::vec3 direction) {
+    const glm::vec3 forward = glm::normalize(direction);
+    const glm::vec3 from(0.0f, 0.0f, -1.0f);
+    const float cos_angle = glm::dot(from, forward);
+    if (cos_angle < -0.9999f) {
+        return glm::angleAxis(kPi, glm::vec3(0.0f, 1.0f, 0.0f));
+    }
+    return glm::normalize(glm::quat(1.0f + cos_angle, glm::cross(from, forward)));
+}
+
+scene::Material glass(const std::string& name, float ior, glm::vec3 tint = glm::vec3(1.0f)) {
+    scene::Material material;
+    material.name = name;
+    material.base_color = glm::vec4(tint, 1.0f);
+    material.metallic = 0.0f;
+    material.roughness = 0.0f;
+    material.transmission = 1.0f;
+    material.ior = ior;
+    material.double_sided = true;
+    return material;
+}
+
+scene::Light point_light(const std::string& name, float watts, glm::vec3 colour = glm::vec3(1.0f)) {
+    scene::Light light = scene::Light::point_from_power(watts * colour);
+    light.name = name;
+    return light;
+}
+
+/// Marks a light node as switched by the level's light-switch system: on for `on_seconds`
+/// of every `period_seconds`, starting at `phase_seconds` (see docs/LEVELS.md).
+void add_switch(scene::Node& node, float period_seconds, float on_seconds, float phase_seconds) {
+    node.flags.raw["switch"] = {
+        {"period", period_seconds}, {"on", on_seconds}, {"phase", phase_seconds}};
+}
+
+}  // namespace
+
+scene::Scene make_cornell(const std::string& name, int floor_cells) {
+    LevelBuilder level(name);
+    // A 2 m box open towards +z, reflectances after the classic Cornell box measurements.
+    constexpr float w = 1.0f;  // half width
+    constexpr float height = 2.0f;
+    const int white = level.add_diffuse("white", glm::vec3(0.73f));
+    const int red = level.add_diffuse("red", glm::vec3(0.63f, 0.065f, 0.05f));
+    const int green = level.add_diffuse("green", glm::vec3(0.14f, 0.45f, 0.091f));
+    const int box_white = level.add_diffuse("cube", glm::vec3(0.70f, 0.70f, 0.66f));
+    const int sphere_glass = level.add_material(glass("glass", 1.5f));
+
+    // The bumpy floor: gentle bumps 1.5 cm high, 40 cm apart, with analytic normals.
+    constexpr float amplitude = 0.015f;
+    const float frequency = 2.0f * kPi / 0.4f;
+    auto bump = [=](float x, float z) {
+        return amplitude * std::sin(frequency * x) * std::sin(frequency * z);
+    };
+    auto bump_slope = [=](float x, float z) {
+        return glm::vec2(amplitude * frequency * std::cos(frequency * x) * std::sin(frequency * z),
+                         amplitude * frequency * std::sin(frequency * x) * std::cos(frequency * z));
+    };
+    level.add_mesh_node(
+        "floor", make_height_field(-w, w, -w, w, 0.0f, floor_cells, floor_cells, bump, bump_slope),
+        white);
+    level.add_mesh_node("ceiling", make_quad({-w, height, -w}, {2 * w, 0, 0}, {0, 0, 2 * w}, 4, 4),
+                        white);
+    level.add_mesh_node("back wall", make_quad({-w, 0, -w}, {2 * w, 0, 0}, {0, height, 0}, 4, 4),
+                        white);
+    level.add_mesh_node("left wall", make_quad({-w, 0, w}, {0, 0, -2 * w}, {0, height, 0}, 4, 4),
+                        red);
+    level.add_mesh_node("right wall", make_quad({w, 0, -w}, {0, 0, 2 * w}, {0, height, 0}, 4, 4),
+                        green);
+
+    // A diffuse cube sliding left and right, and a glass sphere circling above the floor.
+    const int cube = level.add_mesh_node("moving cube", make_box(glm::vec3(0.5f)), box_white, -1,
+                                         {-0.4f, 0.25f, -0.3f});
+    level.node(cube).rotation = yaw(0.3f);
+    level.animate("cube slide", cube, AnimatedProperty::Translation, Interpolation::Linear,
+                  {0.0f, 3.0f, 6.0f},
+                  {as_key(glm::vec3(-0.4f, 0.25f, -0.3f)), as_key(glm::vec3(0.3f, 0.25f, -0.3f)),
+                   as_key(glm::vec3(-0.4f, 0.25f, -0.3f))});
+    const int sphere = level.add_mesh_node("glass sphere", make_sphere(0.25f, 32, 16), sphere_glass,
+                                           -1, {0.35f, 0.45f, 0.35f});
+    std::vector<float> times;
+    std::vector<glm::vec4> path;
+    for (int k = 0; k <= 8; ++k) {
+        const float angle = 2.0f * kPi * static_cast<float>(k) / 8.0f;
+        times.push_back(static_cast<float>(k));
+        path.push_back(as_key(glm::vec3(0.35f * std::cos(angle), 0.45f + 0.1f * std::sin(2 * angle),
+                                        0.35f * std::sin(angle))));
+    }
+    level.animate("sphere orbit", sphere, AnimatedProperty::Translation, Interpolation::Linear,
+                  times, path);
+
+    level.add_light(point_light("ceiling light", 40.0f, glm::vec3(1.0f, 0.92f, 0.8f)),
+                    {0.0f, height - 0.1f, 0.0f});
+    level.add_camera("camera", {0.0f, 1.0f, 3.4f}, {0.0f, 0.9f, 0.0f}, glm::radians(40.0f));
+    return level.finish();
+}
+
+scene::Scene make_two_rooms() {
+    LevelBuilder level("two-rooms");
+    // Two 4 x 3 x 4 m rooms side by side along x, sharing the wall x = 0 with a doorway
+    // 1 m wide and 2.1 m high at z in [-0.5, 0.5].
+    constexpr float depth = 2.0f;  // half depth (z)
+    constexpr float room = 4.0f;   // width of each room (x)
+    constexpr float height = 3.0f;
+    constexpr float door_half = 0.5f;
+    constexpr float door_height = 2.1f;
+    const int plaster = level.add_diffuse("plaster", glm::vec3(0.78f, 0.76f, 0.72f));
+    const int blue = level.add_diffuse("blue plaster", glm::vec3(0.35f, 0.45f, 0.70f));
+    const int floor_wood = level.add_diffuse("wood floor", glm::vec3(0.55f, 0.38f, 0.22f));
+    const int door_paint = level.add_diffuse("door", glm::vec3(0.65f, 0.15f, 0.12f));
+
+    for (int side = 0; side < 2; ++side) {
+        const float x0 = side == 0 ? -room : 0.0f;
+        const float x1 = x0 + room;
+        const std::string prefix = side == 0 ? "west " : "east ";
+        const int walls = side == 0 ? plaster : blue;
+        level.add_mesh_node(prefix + "floor",
+                            make_quad({x0, 0, depth}, {room, 0, 0}, {0, 0, -2 * depth}, 8, 8),
+                            floor_wood);
+        level.add_mesh_node(prefix + "ceiling",
+                            make_quad({x0, height, -depth}, {room, 0, 0}, {0, 0, 2 * depth}, 8, 8),
+                            plaster);
+        level.add_mesh_node(prefix + "north wall",
+                            make_quad({x0, 0, -depth}, {room, 0, 0}, {0, height, 0}, 8, 6), walls);
+        level.add_mesh_node(prefix + "south wall",
+                            make_quad({x1, 0, depth}, {-room, 0, 0}, {0, height, 0}, 8, 6), walls);
+        // The outer end wall, facing into the room.
+        if (side == 0) {
+            level.add_mesh_node(prefix + "end wall",
+                                make_quad({x0, 0, depth}, {0, 0, -2 * depth}, {0, height, 0}, 8, 6),
+                                walls);
+        } else {
+            level.add_mesh_node(prefix + "end wall",
+                                make_quad({x1, 0, -depth}, {0, 0, 2 * depth}, {0, height, 0}, 8, 6),
+                                walls);
+        }
+        // This room's face of the shared wall, in three pieces around the doorway; it faces -x
+        // in the west room and +x in the east room.
+        scene::Primitive shared;
+        auto face = [&](float z_low, float z_high, float y_low, float y_high) {
+            const glm::vec3 up(0.0f, y_high - y_low, 0.0f);
+            return side == 0 ? make_quad({0, y_low, z_low}, {0, 0, z_high - z_low}, up, 4, 4)
+                             : make_quad({0, y_low, z_high}, {0, 0, z_low - z_high}, up, 4, 4);
+        };
+        append(shared, face(door_half, depth, 0.0f, height));
+        append(shared, face(-depth, -door_half, 0.0f, height));
+        append(shared, face(-door_half, door_half, door_height, height));
+        level.add_mesh_node(prefix + "shared wall", std::move(shared), walls);
+    }
+
+    // The door hangs on a hinge at (0, 0, -0.5) and swings open by 100 degrees and back.
+    const int hinge = level.add_node("door hinge", -1, {0.0f, 0.0f, -door_half});
+    scene::Primitive leaf = make_box({0.04f, door_height - 0.02f, 2 * door_half - 0.02f});
+    level.add_mesh_node("door", std::move(leaf), door_paint, hinge,
+                        {0.0f, door_height / 2, door_half});
+    const glm::quat closed = yaw(0.0f);
+    const glm::quat open = yaw(glm::radians(100.0f));
+    level.animate("door swing", hinge, AnimatedProperty::Rotation, Interpolation::Linear,
+                  {0.0f, 2.0f, 4.0f, 6.0f, 8.0f},
+                  {as_key(closed), as_key(closed), as_key(open), as_key(open), as_key(closed)});
+
+    // Two lights per room; one in each switches on and off.
+    level.add_light(point_light("west lamp", 60.0f, {1.0f, 0.85f, 0.7f}), {-2.5f, 2.6f, -1.0f});
+    const int west_switched = level.add_light(
+        point_light("west switched lamp", 30.0f, {1.0f, 0.95f, 0.9f}), {-1.2f, 2.6f, 1.2f});
+    add_switch(level.node(west_switched), 6.0f, 3.5f, 0.0f);
+    scene::Light spot =
+        scene::Light::spot_from_power(glm::vec3(50.0f), glm::radians(20.0f), glm::radians(35.0f));
+    spot.name = "east spot";
+    level.add_light(spot, {2.0f, 2.9f, 0.0f}, aim({0.0f, -1.0f, 0.0f}));
+    const int east_switched = level.add_light(
+        point_light("east switched lamp", 40.0f, {0.8f, 0.9f, 1.0f}), {3.2f, 2.4f, -1.4f});
+    add_switch(level.node(east_switched), 5.0f, 2.5f, 1.0f);
+    level.add_camera("camera", {-3.5f, 1.7f, 1.7f}, {0.5f, 1.2f, -0.3f}, glm::radians(60.0f));
+    return level.finish();
+}
+
+scene::Scene make_caustics() {
+    LevelBuilder level("caustics");
+    const int floor_white = level.add_diffuse("floor", glm::vec3(0.8f));
+    const int box_white = level.add_diffuse("box", glm::vec3(0.75f));
+    const int pool_tiles = level.add_diffuse("pool tiles", glm::vec3(0.55f, 0.75f, 0.8f));
+    scene::Material brass;
+    brass.name = "brass";
+    brass.base_color = glm::vec4(0.91f, 0.78f, 0.42f, 1.0f);
+    brass.metallic = 1.0f;
+    brass.roughness = 0.05f;
+    brass.double_sided = true;  // the ring's inside is the mirror that focuses the cardioid
+    const int brass_material = level.add_material(brass);
+    const int sphere_glass = level.add_material(glass("glass", 1.5f));
+    const int water = level.add_material(glass("water", 1.33f, {0.9f, 0.97f, 1.0f}));
+
+    level.add_mesh_node("floor", make_quad({-3, 0, 3}, {6, 0, 0}, {0, 0, -6}, 12, 12), floor_white);
+    // The brass ring: an open cylinder 1 m across on the floor.
+    level.add_mesh_node("brass ring", make_open_cylinder(0.5f, 0.3f, 96), brass_material, -1,
+                        {-1.5f, 0.0f, -0.5f});
+    // A 1.2 m box open to the front and top, with a glass sphere inside.
+    scene::Primitive box;
+    append(box, make_quad({-0.6f, 0, -0.6f}, {1.2f, 0, 0}, {0, 1.2f, 0}, 4, 4));  // back
+    append(box, make_quad({-0.6f, 0, 0.6f}, {0, 0, -1.2f}, {0, 1.2f, 0}, 4, 4));  // left
+    append(box, make_quad({0.6f, 0, -0.6f}, {0, 0, 1.2f}, {0, 1.2f, 0}, 4, 4));   // right
+    level.add_mesh_node("box", std::move(box), box_white, -1, {1.5f, 0.0f, -1.0f});
+    level.add_mesh_node("glass sphere", make_sphere(0.3f, 48, 24), sphere_glass, -1,
+                        {1.5f, 0.3f, -1.0f});
+    // A pool: a tiled floor patch 40 cm below a 2 x 2 m water surface whose waves are driven
+    // by the wave system from the node's extras (docs/LEVELS.md).
+    level.add_mesh_node("pool floor", make_quad({-1.0f, -0.4f, 2.5f}, {2, 0, 0}, {0, 0, -2}, 8, 8),
+                        pool_tiles, -1, {0.0f, 0.0f, 0.0f});
+    const int surface = level.add_mesh_node(
+        "water surface", make_quad({-1.0f, 0, 2.5f}, {2, 0, 0}, {0, 0, -2}, 48, 48), water);
+    level.node(surface).flags.dynamic = true;
+    level.node(surface).flags.raw["wave"] = {
+        {"amplitude", 0.02}, {"wavelength", 0.5}, {"speed", 0.4}, {"direction", {1.0, 0.3}}};
+    level.animate("water bob", surface, AnimatedProperty::Translation, Interpolation::CubicSpline,
+                  {0.0f, 2.0f, 4.0f},
+                  {as_key(glm::vec3(0)), as_key(glm::vec3(0.0f, -0.02f, 0.0f)),
+                   as_key(glm::vec3(0.0f, 0.01f, 0.0f)), as_key(glm::vec3(0)),
+                   as_key(glm::vec3(0.0f, 0.02f, 0.0f)), as_key(glm::vec3(0)),
+                   as_key(glm::vec3(0.0f, 0.01f, 0.0f)), as_key(glm::vec3(0.0f, -0.02f, 0.0f)),
+                   as_key(glm::vec3(0))});
+
+    scene::Light spot =
+        scene::Light::spot_from_power(glm::vec3(120.0f), glm::radians(25.0f), glm::radians(40.0f));
+    spot.name = "ring spot";
+    level.add_light(spot, {-2.6f, 2.2f, -0.5f}, aim({1.1f, -2.2f, 0.0f}));
+    level.add_light(point_light("box light", 30.0f), {1.5f, 2.2f, -0.3f});
+    scene::Light sun = scene::Light::directional_from_irradiance(glm::vec3(3.0f));
+    sun.name = "sun";
+    level.add_light(sun, {0.0f, 5.0f, 0.0f}, aim({0.3f, -1.0f, -0.2f}));
+    level.add_camera("camera", {0.0f, 2.6f, 5.2f}, {0.0f, 0.2f, 0.0f}, glm::radians(55.0f));
+    return level.finish();
+}
+
+scene::Scene make_furnace(float albedo, float emitted_radiance) {
+    LevelBuilder level("furnace");
+    scene::Material inside;
+    inside.name = "furnace wall";
+    inside.base_color = glm::vec4(glm::vec3(albedo), 1.0f);
+    inside.metallic = 0.0f;
+    inside.roughness = 1.0f;
+    inside.emissive = glm::vec3(1.0f);
+    inside.emissive_strength = emitted_radiance;
+    const int material = level.add_material(inside);
+    const int sphere =
+        level.add_mesh_node("furnace", make_sphere(1.0f, 64, 32, /*inside=*/true), material);
+    level.node(sphere).flags.raw["furnace"] = true;
+    level.add_camera("camera", {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -1.0f}, glm::radians(70.0f));
+    return level.finish();
+}
+
+std::vector<LevelRecipe> built_in_levels() {
+    return {
+        {"cornell", "Cornell box, bumpy floor ~8k triangles, moving cube and glass sphere",
+         [] { return make_cornell("cornell", 62); }},
+        {"cornell-13k", "the Cornell box with a ~13k-triangle floor",
+         [] { return make_cornell("cornell-13k", 80); }},
+        {"cornell-133k", "the Cornell box with a ~133k-triangle floor",
+         [] { return make_cornell("cornell-133k", 257); }},
+        {"two-rooms", "two rooms, a swinging door, four lights of which two switch",
+         [] { return make_two_rooms(); }},
+        {"caustics", "brass ring, glass sphere in a box, water surface over a pool",
+         [] { return make_caustics(); }},
+        {"furnace", "closed sphere, uniform albedo 0.5 and emission 1 W/(m^2 sr)",
+         [] { return make_furnace(); }},
+    };
+}
+
+}  // namespace luxel::levels
