@@ -78,6 +78,9 @@ fi
 
 if [ "$do_build" -eq 1 ]; then
     jobs=$(nproc)
+    # ccache hits across checkouts at different paths (CI clones afresh each time): hash
+    # paths relative to the repository and ignore the working directory.
+    export CCACHE_BASEDIR="$repo" CCACHE_NOHASHDIR=1
     say "configuring $build_dir (LUXEL_SANITIZE=$sanitize)"
     mkdir -p "$build_dir"
     cmake -S "$repo" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
