@@ -1,0 +1,224 @@
+#include "luxel/lighting/core/caustic_emitter.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "luxel/lighting/core/ray_scene.hpp"
+
+namespace luxel::lighting {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846264338327950288;
+constexpr double kTwoPi = 2.0 * kPi;
+constexpr double kFourPi = 4.0 * kPi;
+
+float smoothstep(float edge0, float edge1, float x) {
+    if (!(edge1 > edge0)) {
+        return x >= edge1 ? 1.0f : 0.0f;
+    }
+    const float t = std::clamp((x - edge0) / (edge1 - edge0), 0.0f, 1.0f);
+    return t * t * (3.0f - 2.0f * t);
+}
+
+/// Half angle of a cone in radians (pi for the full sphere of directions).
+double half_angle(const DirectionCone& cone) {
+    return std::acos(std::clamp(cone.cos_half_angle, -1.0, 1.0));
+}
+
+bool has_power(const glm::vec3& power) {
+    return power.r > 0.0f || power.g > 0.0f || power.b > 0.0f;
+}
+
+}  // namespace
+
+double DirectionCone::solid_angle() const {
+    return kTwoPi * (1.0 - std::clamp(cos_half_angle, -1.0, 1.0));
+}
+
+DirectionCone cone_toward(const glm::vec3& apex, const BoundingSphere& sphere) {
+    const glm::dvec3 to_centre = glm::dvec3(sphere.centre) - glm::dvec3(apex);
+    const double distance = glm::length(to_centre);
+    const auto radius = static_cast<double>(sphere.radius);
+    DirectionCone cone;
+    if (distance <= radius || !(distance > 0.0)) {
+        // The apex is inside the sphere: every direction can reach it.
+        cone.axis = distance > 0.0 ? glm::vec3(to_centre / distance) : glm::vec3(0, 0, -1);
+        cone.cos_half_angle = -1.0;
+        return cone;
+    }
+    cone.axis = glm::vec3(to_centre / distance);
+    // cos = sqrt(d^2 - r^2) / d, written as a product so that a sphere nearly touching the
+    // apex keeps its precision.
+    cone.cos_half_angle = std::sqrt((distance - radius) * (distance + radius)) / distance;
+    return cone;
+}
+
+glm::vec3 direction_in_cone(const DirectionCone& cone, const glm::dvec2& u) {
+    const double cos_max = std::clamp(cone.cos_half_angle, -1.0, 1.0);
+    const double cos_theta = 1.0 - u.x * (1.0 - cos_max);
+    const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+    const double phi = kTwoPi * u.y;
+    glm::vec3 tangent;
+    glm::vec3 bitangent;
+    orthonormal_basis(cone.axis, tangent, bitangent);
+    return glm::normalize(static_cast<float>(sin_theta * std::cos(phi)) * tangent +
+                          static_cast<float>(sin_theta * std::sin(phi)) * bitangent +
+                          static_cast<float>(cos_theta) * cone.axis);
+}
+
+CausticEmitter::CausticEmitter(const LightSource& light, const BoundingSphere& generator,
+                               const BoundingSphere& scene)
+    : kind_(light.kind), generator_(generator) {
+    if (!has_power(light.power) || !(generator.radius > 0.0f)) {
+        return;
+    }
+    switch (light.kind) {
+        case LightKind::Point: {
+            origin_ = light.position;
+            cone_ = cone_toward(light.position, generator);
+            const double intensity_scale = cone_.solid_angle() / kFourPi;
+            power_scale_ = light.power * static_cast<float>(intensity_scale);
+            reaches_ = true;
+            break;
+        }
+        case LightKind::Spot: {
+            origin_ = light.position;
+            spot_axis_ = glm::normalize(light.direction);
+            const double outer = std::clamp(static_cast<double>(light.outer_cone), 1e-6, kPi);
+            cos_outer_ = static_cast<float>(std::cos(outer));
+            cos_inner_ = std::cos(std::clamp(light.inner_cone, 0.0f, light.outer_cone));
+            const DirectionCone toward = cone_toward(light.position, generator);
+            const double toward_angle = half_angle(toward);
+            const double between = std::acos(
+                std::clamp(static_cast<double>(glm::dot(toward.axis, spot_axis_)), -1.0, 1.0));
+            if (between >= toward_angle + outer) {
+                return;  // the generator lies outside the spot's cone
+            }
+            // Sample whichever cone is smaller when one holds the other; otherwise the
+            // generator's cone, and the falloff zeroes the directions outside the spot.
+            if (between + outer <= toward_angle) {
+                cone_ = {spot_axis_, std::cos(outer)};
+            } else {
+                cone_ = toward;
+            }
+            const double spot_solid_angle = kTwoPi * (1.0 - std::cos(outer));
+            power_scale_ = light.power * static_cast<float>(cone_.solid_angle() / spot_solid_angle);
+            reaches_ = true;
+            break;
+        }
+        case LightKind::Directional: {
+            beam_direction_ = glm::normalize(light.direction);
+            beam_radius_ = generator.radius;
+            // Start the beam behind everything in the scene (as PhotonEmitter does for its
+            // scene disc), so occluders between the sun and the generator cast their shadow.
+            const float behind_scene =
+                glm::dot(generator.centre - scene.centre, beam_direction_) + scene.radius;
+            const float back = std::max(behind_scene, generator.radius) + generator.radius;
+            beam_centre_ = generator.centre - back * beam_direction_;
+            const double disc_area =
+                kPi * static_cast<double>(generator.radius) * static_cast<double>(generator.radius);
+            power_scale_ = light.power * static_cast<float>(disc_area);
+            reaches_ = true;
+            break;
+        }
+        case LightKind::Area: {
+            double area = 0.0;
+            for (std::size_t t = 0; t + 2 < light.triangles.size(); t += 3) {
+                const glm::vec3& a = light.triangles[t];
+                const glm::vec3& b = light.triangles[t + 1];
+                const glm::vec3& c = light.triangles[t + 2];
+                const glm::vec3 cross = glm::cross(b - a, c - a);
+                const float length = glm::length(cross);
+                area += 0.5 * static_cast<double>(length);
+                triangles_.insert(triangles_.end(), {a, b, c});
+                normals_.push_back(length > 0.0f ? cross / length : glm::vec3(0.0f));
+                triangle_cdf_.push_back(area);
+                // The light reaches the generator if the sphere is not wholly behind some
+                // triangle's emitting side.
+                if (length > 0.0f &&
+                    glm::dot(generator.centre - a, cross / length) > -generator.radius) {
+                    reaches_ = true;
+                }
+            }
+            if (!(area > 0.0)) {
+                reaches_ = false;
+                return;
+            }
+            for (double& c : triangle_cdf_) {
+                c /= area;
+            }
+            power_scale_ = light.power * static_cast<float>(area);
+            break;
+        }
+    }
+}
+
+EmittedPhoton CausticEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
+                                   std::uint64_t photon_count) const {
+    EmittedPhoton photon;
+    photon.power = glm::vec3(0.0f);
+    if (!reaches_) {
+        return photon;
+    }
+    const double share = 1.0 / static_cast<double>(std::max<std::uint64_t>(photon_count, 1));
+    switch (kind_) {
+        case LightKind::Point:
+            photon.origin = origin_;
+            photon.direction = direction_in_cone(cone_, d);
+            photon.power = power_scale_ * static_cast<float>(share);
+            break;
+        case LightKind::Spot: {
+            photon.origin = origin_;
+            photon.direction = direction_in_cone(cone_, d);
+            const float falloff =
+                smoothstep(cos_outer_, cos_inner_, glm::dot(photon.direction, spot_axis_));
+            photon.power = power_scale_ * static_cast<float>(share) * falloff;
+            break;
+        }
+        case LightKind::Directional: {
+            glm::vec3 tangent;
+            glm::vec3 bitangent;
+            orthonormal_basis(beam_direction_, tangent, bitangent);
+            const double r = static_cast<double>(beam_radius_) * std::sqrt(p.x);
+            const double phi = kTwoPi * p.y;
+            photon.origin = beam_centre_ + static_cast<float>(r * std::cos(phi)) * tangent +
+                            static_cast<float>(r * std::sin(phi)) * bitangent;
+            photon.direction = beam_direction_;
+            photon.power = power_scale_ * static_cast<float>(share);
+            break;
+        }
+        case LightKind::Area: {
+            // Triangle by area with p.x, its remainder and p.y for the point (folded into the
+            // triangle), as PhotonEmitter does.
+            const auto found = std::upper_bound(triangle_cdf_.begin(), triangle_cdf_.end(), p.x);
+            const std::size_t t = std::min<std::size_t>(
+                static_cast<std::size_t>(found - triangle_cdf_.begin()), triangle_cdf_.size() - 1);
+            const double low = t == 0 ? 0.0 : triangle_cdf_[t - 1];
+            const double width = triangle_cdf_[t] - low;
+            double s = width > 0.0 ? std::clamp((p.x - low) / width, 0.0, 1.0) : 0.0;
+            double q = p.y;
+            if (s + q > 1.0) {
+                s = 1.0 - s;
+                q = 1.0 - q;
+            }
+            const glm::vec3& a = triangles_[3 * t];
+            const glm::vec3& b = triangles_[3 * t + 1];
+            const glm::vec3& c = triangles_[3 * t + 2];
+            const glm::vec3 point =
+                a + static_cast<float>(s) * (b - a) + static_cast<float>(q) * (c - a);
+            const glm::vec3& normal = normals_[t];
+            const DirectionCone toward = cone_toward(point, generator_);
+            photon.direction = direction_in_cone(toward, d);
+            photon.origin = offset_ray_origin(point, normal);
+            const float cosine = glm::dot(normal, photon.direction);
+            if (cosine > 0.0f) {
+                photon.power = power_scale_ * static_cast<float>(static_cast<double>(cosine) *
+                                                                 toward.solid_angle() * share);
+            }
+            break;
+        }
+    }
+    return photon;
+}
+
+}  // namespace luxel::lighting

@@ -1,0 +1,319 @@
+#include "luxel/lighting/core/caustic_photons.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "luxel/lighting/core/optics.hpp"
+#include "luxel/runtime/error.hpp"
+
+namespace luxel::lighting {
+namespace {
+
+/// Photons per parallel work item. Fixed (not derived from the thread count) so that the
+/// per-chunk counters add up in the same order on any machine.
+constexpr std::size_t kPhotonsPerChunk = 64;
+
+float sign_not_zero(float value) {
+    return value >= 0.0f ? 1.0f : -1.0f;
+}
+
+std::uint32_t quantize_snorm16(float value) {
+    const float clamped = std::clamp(value, -1.0f, 1.0f);
+    const auto fixed = static_cast<std::int32_t>(std::lround(clamped * 32767.0f));
+    return static_cast<std::uint32_t>(fixed) & 0xFFFFu;
+}
+
+float dequantize_snorm16(std::uint32_t bits) {
+    const auto fixed = static_cast<std::int16_t>(static_cast<std::uint16_t>(bits & 0xFFFFu));
+    return std::max(static_cast<float>(fixed) / 32767.0f, -1.0f);
+}
+
+bool has_power(const glm::vec3& power) {
+    return power.r > 0.0f || power.g > 0.0f || power.b > 0.0f;
+}
+
+}  // namespace
+
+std::uint32_t encode_direction(const glm::vec3& unit) {
+    const float norm = std::abs(unit.x) + std::abs(unit.y) + std::abs(unit.z);
+    if (!(norm > 0.0f)) {
+        return encode_direction(glm::vec3(0.0f, 0.0f, 1.0f));
+    }
+    glm::vec2 folded(unit.x / norm, unit.y / norm);
+    if (unit.z < 0.0f) {
+        // The lower hemisphere folds over the diagonals of the square.
+        folded = glm::vec2((1.0f - std::abs(folded.y)) * sign_not_zero(folded.x),
+                           (1.0f - std::abs(folded.x)) * sign_not_zero(folded.y));
+    }
+    return quantize_snorm16(folded.x) | (quantize_snorm16(folded.y) << 16);
+}
+
+glm::vec3 decode_direction(std::uint32_t bits) {
+    const float x = dequantize_snorm16(bits);
+    const float y = dequantize_snorm16(bits >> 16);
+    glm::vec3 v(x, y, 1.0f - std::abs(x) - std::abs(y));
+    if (v.z < 0.0f) {
+        v = glm::vec3((1.0f - std::abs(y)) * sign_not_zero(x),
+                      (1.0f - std::abs(x)) * sign_not_zero(y), v.z);
+    }
+    return glm::normalize(v);
+}
+
+glm::vec3 CausticPhoton::incident_direction() const {
+    return decode_direction(direction_bits);
+}
+
+CausticTraceCounters& CausticTraceCounters::operator+=(const CausticTraceCounters& other) {
+    photons += other.photons;
+    traced += other.traced;
+    segments += other.segments;
+    stored += other.stored;
+    direct_diffuse += other.direct_diffuse;
+    escaped += other.escaped;
+    absorbed += other.absorbed;
+    truncated += other.truncated;
+    return *this;
+}
+
+std::optional<CausticPhoton> trace_caustic_photon(const RayScene& scene,
+                                                  std::span<const TraceMaterial> materials,
+                                                  const EmittedPhoton& photon,
+                                                  std::uint64_t sample_index, std::uint32_t seed,
+                                                  std::uint32_t max_specular_interactions,
+                                                  CausticTraceCounters& counters) {
+    glm::vec3 origin = photon.origin;
+    glm::vec3 direction = photon.direction;
+    glm::vec3 power = photon.power;
+    std::uint32_t specular = 0;
+    std::uint32_t dim = 4;  // 0-3 chose the emission
+    const TraceMaterial fallback{};
+    for (;;) {
+        ++counters.segments;
+        const auto hit = scene.intersect(origin, direction);
+        if (!hit) {
+            ++counters.escaped;
+            return std::nullopt;
+        }
+        const TraceMaterial& material =
+            hit->material < materials.size() ? materials[hit->material] : fallback;
+        const bool front = glm::dot(hit->geometric_normal, direction) < 0.0f;
+
+        if (material.scattering == Scattering::Diffuse) {
+            if (specular == 0) {
+                ++counters.direct_diffuse;
+                return std::nullopt;
+            }
+            if (!front) {
+                // As for global photons: a one-sided surface has no light map behind it.
+                ++counters.absorbed;
+                return std::nullopt;
+            }
+            ++counters.stored;
+            return CausticPhoton{hit->position, hit->surface, power, encode_direction(direction)};
+        }
+
+        if (specular >= max_specular_interactions) {
+            ++counters.truncated;
+            return std::nullopt;
+        }
+        ++specular;
+        const glm::vec3 facing_geometric = front ? hit->geometric_normal : -hit->geometric_normal;
+        glm::vec3 facing_shading = front ? hit->shading_normal : -hit->shading_normal;
+        if (glm::dot(facing_shading, facing_geometric) <= 0.0f) {
+            facing_shading = facing_geometric;  // interpolated normal bent past the face
+        }
+        const float cos_incident = std::clamp(-glm::dot(direction, facing_shading), 0.0f, 1.0f);
+        if (material.scattering == Scattering::Mirror) {
+            power *= optics::fresnel_conductor(cos_incident, material.tint);
+            direction = optics::reflect(direction, facing_shading);
+            origin = offset_ray_origin(hit->position, facing_geometric);
+        } else {
+            // Entering through the front face means going from air into the medium.
+            const float eta_from = front ? 1.0f : material.ior;
+            const float eta_to = front ? material.ior : 1.0f;
+            const float reflectance = optics::fresnel_dielectric(cos_incident, eta_from, eta_to);
+            const double xi = photon_sample(sample_index, dim++, seed);
+            const auto refracted = optics::refract(direction, facing_shading, eta_from, eta_to);
+            if (!refracted || xi < static_cast<double>(reflectance)) {
+                // Total internal reflection, or the Fresnel-weighted choice of reflection: the
+                // choice keeps the photon's power, so the expected power splits as R : 1 - R.
+                direction = optics::reflect(direction, facing_shading);
+                origin = offset_ray_origin(hit->position, facing_geometric);
+            } else {
+                direction = *refracted;
+                power *= material.tint;
+                origin = offset_ray_origin(hit->position, facing_geometric, -1.0f);
+            }
+        }
+        // A black mirror or a black tint leaves nothing to carry.
+        if (!has_power(power)) {
+            ++counters.absorbed;
+            return std::nullopt;
+        }
+    }
+}
+
+CausticPhotonList::CausticPhotonList(std::uint32_t photon_count, std::uint32_t slices,
+                                     std::uint32_t seed)
+    : photon_count_(photon_count),
+      seed_(seed),
+      slice_stride_(slices == 0 ? 0 : (photon_count + slices - 1) / slices),
+      slices_(slices),
+      dirty_(slices, 1),
+      slice_retraces_(slices, 0),
+      dirty_count_(slices) {
+    if (slices == 0) {
+        throw Error("CausticPhotonList: need at least one slice");
+    }
+}
+
+void CausticPhotonList::set_emitter(CausticEmitter emitter) {
+    emitter_ = std::move(emitter);
+    invalidate();
+}
+
+void CausticPhotonList::invalidate() {
+    std::fill(dirty_.begin(), dirty_.end(), std::uint8_t{1});
+    dirty_count_ = slice_count();
+}
+
+std::optional<std::uint32_t> CausticPhotonList::slice_for_frame(std::uint64_t frame) const {
+    if (dirty_count_ == 0) {
+        return std::nullopt;
+    }
+    const std::uint32_t count = slice_count();
+    const auto start = static_cast<std::uint32_t>(frame % count);
+    for (std::uint32_t offset = 0; offset < count; ++offset) {
+        const std::uint32_t slice = (start + offset) % count;
+        if (dirty_[slice] != 0) {
+            return slice;
+        }
+    }
+    return std::nullopt;
+}
+
+std::uint32_t CausticPhotonList::slice_size(std::uint32_t slice) const {
+    const std::uint32_t count = slice_count();
+    return slice < photon_count_ ? (photon_count_ - slice + count - 1) / count : 0;
+}
+
+std::uint64_t CausticPhotonList::sample_index(std::uint32_t photon) const {
+    const std::uint32_t count = slice_count();
+    return 1 + static_cast<std::uint64_t>(photon % count) * slice_stride_ + photon / count;
+}
+
+void CausticPhotonList::store_slice(std::uint32_t slice,
+                                    std::span<const std::optional<CausticPhoton>> traced) {
+    std::vector<CausticPhoton>& photons = slices_.at(slice);
+    // A photon stores at most one hit, so the slice's size bounds its photons: reserving it
+    // once means retracing every frame never reallocates, and no growth slack is held.
+    photons.clear();
+    photons.reserve(traced.size());
+    for (const auto& photon : traced) {
+        if (photon) {
+            photons.push_back(*photon);
+        }
+    }
+    if (dirty_[slice] != 0) {
+        dirty_[slice] = 0;
+        --dirty_count_;
+    }
+    ++slice_retraces_[slice];
+}
+
+CausticTraceCounters CausticPhotonList::retrace_slice(const RayScene& scene,
+                                                      std::span<const TraceMaterial> materials,
+                                                      std::uint32_t slice,
+                                                      std::uint32_t max_specular_interactions,
+                                                      JobSystem& jobs) {
+    const SliceWork work[] = {{this, slice}};
+    return retrace(scene, materials, work, max_specular_interactions, jobs);
+}
+
+CausticTraceCounters CausticPhotonList::retrace(const RayScene& scene,
+                                                std::span<const TraceMaterial> materials,
+                                                std::span<const SliceWork> work,
+                                                std::uint32_t max_specular_interactions,
+                                                JobSystem& jobs) {
+    // All photons of all slices in one index space: work item w owns [first[w], first[w + 1]).
+    std::vector<std::size_t> first(work.size() + 1, 0);
+    for (std::size_t w = 0; w < work.size(); ++w) {
+        if (work[w].list == nullptr || work[w].slice >= work[w].list->slice_count()) {
+            throw Error("CausticPhotonList::retrace: no such list or slice");
+        }
+        first[w + 1] = first[w] + work[w].list->slice_size(work[w].slice);
+    }
+    const std::size_t total = first.back();
+    std::vector<std::optional<CausticPhoton>> traced(total);
+    const std::size_t chunks = (total + kPhotonsPerChunk - 1) / kPhotonsPerChunk;
+    std::vector<CausticTraceCounters> chunk_counters(chunks);
+    jobs.parallel_for(0, chunks, [&](std::size_t chunk) {
+        CausticTraceCounters& counters = chunk_counters[chunk];
+        const std::size_t begin = chunk * kPhotonsPerChunk;
+        const std::size_t end = std::min(total, begin + kPhotonsPerChunk);
+        auto w = static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), begin) -
+                                          first.begin()) -
+                 1;
+        for (std::size_t i = begin; i < end; ++i) {
+            while (i >= first[w + 1]) {
+                ++w;
+            }
+            const CausticPhotonList& list = *work[w].list;
+            const std::uint32_t count = list.slice_count();
+            const auto photon = static_cast<std::uint32_t>(work[w].slice + (i - first[w]) * count);
+            const std::uint64_t index = list.sample_index(photon);
+            const std::uint32_t seed = list.seed_;
+            const EmittedPhoton emitted = list.emitter_.emit(
+                {photon_sample(index, 0, seed), photon_sample(index, 1, seed)},
+                {photon_sample(index, 2, seed), photon_sample(index, 3, seed)}, list.photon_count_);
+            ++counters.photons;
+            if (!has_power(emitted.power)) {
+                continue;  // outside the spot's cone or behind the area light
+            }
+            ++counters.traced;
+            traced[i] = trace_caustic_photon(scene, materials, emitted, index, seed,
+                                             max_specular_interactions, counters);
+        }
+    });
+    CausticTraceCounters sum;
+    for (const CausticTraceCounters& counters : chunk_counters) {
+        sum += counters;
+    }
+    for (std::size_t w = 0; w < work.size(); ++w) {
+        work[w].list->store_slice(
+            work[w].slice, std::span<const std::optional<CausticPhoton>>(traced.data() + first[w],
+                                                                         first[w + 1] - first[w]));
+    }
+    return sum;
+}
+
+std::size_t CausticPhotonList::stored_count() const {
+    std::size_t count = 0;
+    for (const auto& photons : slices_) {
+        count += photons.size();
+    }
+    return count;
+}
+
+glm::dvec3 CausticPhotonList::stored_power() const {
+    glm::dvec3 sum(0.0);
+    for (const auto& photons : slices_) {
+        for (const CausticPhoton& photon : photons) {
+            sum += glm::dvec3(photon.power);
+        }
+    }
+    return sum;
+}
+
+std::size_t CausticPhotonList::bytes_used() const {
+    std::size_t bytes = sizeof(*this);
+    for (const auto& photons : slices_) {
+        bytes += photons.capacity() * sizeof(CausticPhoton);
+    }
+    bytes += slices_.capacity() * sizeof(std::vector<CausticPhoton>);
+    bytes += dirty_.capacity() * sizeof(std::uint8_t);
+    bytes += slice_retraces_.capacity() * sizeof(std::uint64_t);
+    return bytes;
+}
+
+}  // namespace luxel::lighting

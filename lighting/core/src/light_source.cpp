@@ -1,0 +1,158 @@
+#include "luxel/lighting/core/light_source.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/constants.hpp>
+
+#include "luxel/lighting/core/ray_scene.hpp"
+#include "luxel/runtime/error.hpp"
+
+namespace luxel::lighting {
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+float smoothstep(float edge0, float edge1, float x) {
+    if (!(edge1 > edge0)) {
+        return x >= edge1 ? 1.0f : 0.0f;
+    }
+    const float t = std::clamp((x - edge0) / (edge1 - edge0), 0.0f, 1.0f);
+    return t * t * (3.0f - 2.0f * t);
+}
+
+/// A direction inside the cone of half angle `angle` around `axis`, uniform in solid angle.
+glm::vec3 cone_direction(const glm::vec3& axis, float angle, const glm::dvec2& u) {
+    const double cos_max = std::cos(static_cast<double>(angle));
+    const double cos_theta = 1.0 - u.x * (1.0 - cos_max);
+    const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+    const double phi = kTwoPi * u.y;
+    glm::vec3 t;
+    glm::vec3 b;
+    orthonormal_basis(axis, t, b);
+    return glm::normalize(static_cast<float>(sin_theta * std::cos(phi)) * t +
+                          static_cast<float>(sin_theta * std::sin(phi)) * b +
+                          static_cast<float>(cos_theta) * axis);
+}
+
+}  // namespace
+
+void orthonormal_basis(const glm::vec3& n, glm::vec3& tangent, glm::vec3& bitangent) {
+    // Duff et al.'s branchless construction: continuous except at n.z = -1 exactly.
+    const float sign = std::copysign(1.0f, n.z);
+    const float a = -1.0f / (sign + n.z);
+    const float b = n.x * n.y * a;
+    tangent = glm::vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    bitangent = glm::vec3(b, sign + n.y * n.y * a, -n.y);
+}
+
+glm::vec3 cosine_direction(const glm::vec3& n, const glm::dvec2& u) {
+    const double r = std::sqrt(u.x);
+    const double phi = kTwoPi * u.y;
+    glm::vec3 t;
+    glm::vec3 b;
+    orthonormal_basis(n, t, b);
+    const auto x = static_cast<float>(r * std::cos(phi));
+    const auto y = static_cast<float>(r * std::sin(phi));
+    const auto z = static_cast<float>(std::sqrt(std::max(0.0, 1.0 - u.x)));
+    return glm::normalize(x * t + y * b + z * n);
+}
+
+PhotonEmitter::PhotonEmitter(LightSource light, const BoundingSphere& scene_bounds)
+    : light_(std::move(light)), bounds_(scene_bounds) {
+    constexpr float pi = glm::pi<float>();
+    switch (light_.kind) {
+        case LightKind::Point:
+        case LightKind::Spot:
+            total_power_ = light_.power;
+            break;
+        case LightKind::Directional:
+            total_power_ = light_.power * pi * bounds_.radius * bounds_.radius;
+            break;
+        case LightKind::Area: {
+            if (light_.triangles.size() % 3 != 0) {
+                throw Error("PhotonEmitter: area light triangles need three vertices each");
+            }
+            double area = 0.0;
+            for (std::size_t t = 0; t < light_.triangles.size(); t += 3) {
+                area += 0.5 * static_cast<double>(glm::length(
+                                  glm::cross(light_.triangles[t + 1] - light_.triangles[t],
+                                             light_.triangles[t + 2] - light_.triangles[t])));
+                triangle_cdf_.push_back(area);
+            }
+            for (double& c : triangle_cdf_) {
+                c = area > 0.0 ? c / area : 0.0;
+            }
+            // A Lambertian emitter of radiance L and area A emits pi L A.
+            total_power_ = light_.power * (pi * static_cast<float>(area));
+            break;
+        }
+    }
+}
+
+EmittedPhoton PhotonEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
+                                  std::uint64_t photon_count) const {
+    EmittedPhoton photon;
+    const float share = 1.0f / static_cast<float>(std::max<std::uint64_t>(photon_count, 1));
+    photon.power = total_power_ * share;
+    switch (light_.kind) {
+        case LightKind::Point: {
+            const double z = 1.0 - 2.0 * d.x;
+            const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+            const double phi = kTwoPi * d.y;
+            photon.origin = light_.position;
+            photon.direction =
+                glm::vec3(static_cast<float>(r * std::cos(phi)),
+                          static_cast<float>(r * std::sin(phi)), static_cast<float>(z));
+            break;
+        }
+        case LightKind::Spot: {
+            photon.origin = light_.position;
+            photon.direction = cone_direction(light_.direction, light_.outer_cone, d);
+            // Intensity falls off smoothly from the inner to the outer cone.
+            photon.power *= smoothstep(std::cos(light_.outer_cone), std::cos(light_.inner_cone),
+                                       glm::dot(photon.direction, light_.direction));
+            break;
+        }
+        case LightKind::Directional: {
+            // A point on the disc of the scene's bounding sphere facing the light, moved back
+            // behind the sphere so every photon starts outside the scene.
+            glm::vec3 t;
+            glm::vec3 b;
+            orthonormal_basis(light_.direction, t, b);
+            const double r = static_cast<double>(bounds_.radius) * std::sqrt(d.x);
+            const double phi = kTwoPi * d.y;
+            photon.origin = bounds_.centre + static_cast<float>(r * std::cos(phi)) * t +
+                            static_cast<float>(r * std::sin(phi)) * b -
+                            2.0f * bounds_.radius * light_.direction;
+            photon.direction = light_.direction;
+            break;
+        }
+        case LightKind::Area: {
+            // Pick a triangle by area with p.x, reuse the remainder of p.x and p.y for the
+            // point, and d for the cosine-distributed direction.
+            const auto found = std::upper_bound(triangle_cdf_.begin(), triangle_cdf_.end(), p.x);
+            const std::size_t t = std::min<std::size_t>(
+                static_cast<std::size_t>(found - triangle_cdf_.begin()), triangle_cdf_.size() - 1);
+            const double low = t == 0 ? 0.0 : triangle_cdf_[t - 1];
+            const double width = triangle_cdf_[t] - low;
+            double s = width > 0.0 ? (p.x - low) / width : 0.0;
+            double q = p.y;
+            if (s + q > 1.0) {
+                s = 1.0 - s;
+                q = 1.0 - q;
+            }
+            const glm::vec3& a = light_.triangles[3 * t];
+            const glm::vec3& b = light_.triangles[3 * t + 1];
+            const glm::vec3& c = light_.triangles[3 * t + 2];
+            photon.origin = a + static_cast<float>(s) * (b - a) + static_cast<float>(q) * (c - a);
+            const glm::vec3 normal = glm::normalize(glm::cross(b - a, c - a));
+            photon.direction = cosine_direction(normal, d);
+            photon.origin = offset_ray_origin(photon.origin, normal);
+            break;
+        }
+    }
+    return photon;
+}
+
+}  // namespace luxel::lighting

@@ -1,0 +1,142 @@
+#include "luxel/lighting/core/photon_tracer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "luxel/lighting/core/halton.hpp"
+#include "luxel/lighting/core/optics.hpp"
+
+namespace luxel::lighting {
+namespace {
+
+constexpr std::array<std::uint32_t, 32> kPrimes = {2,  3,  5,  7,   11,  13,  17,  19,  23,  29, 31,
+                                                   37, 41, 43, 47,  53,  59,  61,  67,  71,  73, 79,
+                                                   83, 89, 97, 101, 103, 107, 109, 113, 127, 131};
+
+/// SplitMix64's finaliser: a well-mixed 64-bit hash.
+std::uint64_t mix(std::uint64_t x) {
+    x += 0x9E3779B97F4A7C15ull;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+    return x ^ (x >> 31);
+}
+
+double unit_from_bits(std::uint64_t bits) {
+    return static_cast<double>(bits >> 11) * 0x1.0p-53;
+}
+
+}  // namespace
+
+double photon_sample(std::uint64_t index, std::uint32_t dim, std::uint32_t seed) {
+    if (dim < kPrimes.size()) {
+        const double value = radical_inverse(kPrimes[dim], index);
+        if (dim < 4) {
+            return value;
+        }
+        const double shifted =
+            value + unit_from_bits(mix((static_cast<std::uint64_t>(seed) << 32) ^ dim));
+        return shifted >= 1.0 ? shifted - 1.0 : shifted;
+    }
+    return unit_from_bits(mix(mix(index ^ (static_cast<std::uint64_t>(seed) << 40)) + dim));
+}
+
+TraceCounters& TraceCounters::operator+=(const TraceCounters& other) {
+    photons += other.photons;
+    segments += other.segments;
+    diffuse_hits += other.diffuse_hits;
+    absorbed_back_faces += other.absorbed_back_faces;
+    truncated += other.truncated;
+    return *this;
+}
+
+void trace_photon(const RayScene& scene, std::span<const TraceMaterial> materials,
+                  const EmittedPhoton& photon, std::uint64_t index, std::uint32_t seed,
+                  const TraceLimits& limits, std::vector<TracedHop>& hops,
+                  TraceCounters& counters) {
+    ++counters.photons;
+    glm::vec3 origin = photon.origin;
+    glm::vec3 direction = photon.direction;
+    glm::vec3 power = photon.power;
+    std::uint32_t bounces = 0;
+    std::uint32_t dim = 4;  // 0-3 were spent on emission
+    if (!(power.r > 0.0f || power.g > 0.0f || power.b > 0.0f)) {
+        return;
+    }
+    for (std::uint32_t interaction = 0;; ++interaction) {
+        if (interaction >= limits.max_interactions) {
+            ++counters.truncated;
+            return;
+        }
+        ++counters.segments;
+        const auto hit = scene.intersect(origin, direction);
+        if (!hit) {
+            return;  // left the scene
+        }
+        const TraceMaterial fallback{};
+        const TraceMaterial& material =
+            hit->material < materials.size() ? materials[hit->material] : fallback;
+        const bool front = glm::dot(hit->geometric_normal, direction) < 0.0f;
+        const glm::vec3 facing_geometric = front ? hit->geometric_normal : -hit->geometric_normal;
+        glm::vec3 facing_shading = front ? hit->shading_normal : -hit->shading_normal;
+        if (glm::dot(facing_shading, facing_geometric) <= 0.0f) {
+            facing_shading = facing_geometric;  // interpolated normal bent past the face
+        }
+
+        if (material.scattering == Scattering::Diffuse) {
+            if (!front) {
+                ++counters.absorbed_back_faces;
+                return;
+            }
+            ++counters.diffuse_hits;
+            hops.push_back({hit->position, power, hit->surface, hit->object, bounces});
+            // Russian roulette (thesis ch. 9): survive with p = max albedo channel, and keep
+            // the expected power by dividing by p.
+            const float survival =
+                std::max(material.albedo.r, std::max(material.albedo.g, material.albedo.b));
+            const double xi = photon_sample(index, dim++, seed);
+            if (!(survival > 0.0f) || xi >= static_cast<double>(survival)) {
+                return;
+            }
+            power *= material.albedo / survival;
+            const glm::dvec2 u(photon_sample(index, dim, seed),
+                               photon_sample(index, dim + 1, seed));
+            dim += 2;
+            direction = cosine_direction(facing_shading, u);
+            if (glm::dot(direction, facing_geometric) <= 0.0f) {
+                return;  // shading normal sent it into the surface: absorbed
+            }
+            origin = offset_ray_origin(hit->position, facing_geometric);
+            ++bounces;
+            continue;
+        }
+
+        // Specular: follow it, and note the hop so probes notice when the object moves.
+        hops.push_back({hit->position, power, -1, hit->object, bounces});
+        const float cos_incident = std::clamp(-glm::dot(direction, facing_shading), 0.0f, 1.0f);
+        if (material.scattering == Scattering::Mirror) {
+            power *= optics::fresnel_conductor(cos_incident, material.tint);
+            direction = optics::reflect(direction, facing_shading);
+            origin = offset_ray_origin(hit->position, facing_geometric);
+        } else {
+            const float eta_from = front ? 1.0f : material.ior;
+            const float eta_to = front ? material.ior : 1.0f;
+            const float reflectance = optics::fresnel_dielectric(cos_incident, eta_from, eta_to);
+            const double xi = photon_sample(index, dim++, seed);
+            const auto refracted = optics::refract(direction, facing_shading, eta_from, eta_to);
+            if (!refracted || xi < static_cast<double>(reflectance)) {
+                direction = optics::reflect(direction, facing_shading);
+                origin = offset_ray_origin(hit->position, facing_geometric);
+            } else {
+                direction = *refracted;
+                power *= material.tint;
+                origin = offset_ray_origin(hit->position, facing_geometric, -1.0f);
+            }
+        }
+        if (!(power.r > 0.0f || power.g > 0.0f || power.b > 0.0f)) {
+            return;
+        }
+    }
+}
+
+}  // namespace luxel::lighting

@@ -1,0 +1,402 @@
+#include "luxel/lighting/core/ray_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <string>
+
+#include <embree3/rtcore.h>
+
+#include "luxel/runtime/error.hpp"
+#include "luxel/runtime/log.hpp"
+
+namespace luxel::lighting {
+namespace {
+
+struct DeviceDeleter {
+    void operator()(RTCDevice device) const { rtcReleaseDevice(device); }
+};
+struct SceneDeleter {
+    void operator()(RTCScene scene) const { rtcReleaseScene(scene); }
+};
+using DeviceHandle = std::unique_ptr<RTCDeviceTy, DeviceDeleter>;
+using SceneHandle = std::unique_ptr<RTCSceneTy, SceneDeleter>;
+
+void report_embree_error(void* /*user*/, RTCError code, const char* message) {
+    log::error("Embree error ", static_cast<int>(code), ": ", message != nullptr ? message : "");
+}
+
+glm::vec3 transform_point(const glm::mat4& m, const glm::vec3& p) {
+    return glm::vec3(m * glm::vec4(p, 1.0f));
+}
+
+void check_mesh(const TriangleMesh& mesh) {
+    if (mesh.indices.size() % 3 != 0) {
+        throw Error("RayScene: index count is not a multiple of 3");
+    }
+    const std::size_t triangles = mesh.triangle_count();
+    if (mesh.surface_ids.size() != triangles || mesh.material_ids.size() != triangles) {
+        throw Error("RayScene: need one surface id and one material id per triangle");
+    }
+    if ((!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) ||
+        (!mesh.lightmap_uvs.empty() && mesh.lightmap_uvs.size() != mesh.positions.size())) {
+        throw Error("RayScene: normals and light-map UVs need one entry per position");
+    }
+    for (std::uint32_t index : mesh.indices) {
+        if (index >= mesh.positions.size()) {
+            throw Error("RayScene: index " + std::to_string(index) + " out of range");
+        }
+    }
+    for (const auto& p : mesh.positions) {
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+            throw Error("RayScene: non-finite vertex position");
+        }
+    }
+}
+
+/// Adds a triangle geometry holding `mesh` (positions already in the scene's space) to `scene`
+/// and returns its geometry id. Embree copies into buffers it allocates with the padding its
+/// SIMD loads need past the last vertex.
+unsigned attach_triangles(RTCDevice device, RTCScene scene, const std::vector<glm::vec3>& positions,
+                          const std::vector<std::uint32_t>& indices) {
+    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                3 * sizeof(float), positions.size()));
+    auto* triangles = static_cast<std::uint32_t*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(std::uint32_t), indices.size() / 3));
+    if (vertices == nullptr || triangles == nullptr) {
+        rtcReleaseGeometry(geometry);
+        throw Error("RayScene: Embree could not allocate geometry buffers");
+    }
+    std::memcpy(vertices, positions.data(), positions.size() * sizeof(glm::vec3));
+    std::memcpy(triangles, indices.data(), indices.size() * sizeof(std::uint32_t));
+    rtcCommitGeometry(geometry);
+    const unsigned id = rtcAttachGeometry(scene, geometry);
+    rtcReleaseGeometry(geometry);  // the scene holds it now
+    return id;
+}
+
+}  // namespace
+
+glm::vec3 offset_ray_origin(const glm::vec3& position, const glm::vec3& geometric_normal,
+                            float side) {
+    // Intersection error grows with the magnitude of the coordinates (a few float ulps of the
+    // largest one), so the step does too: 2^-18 of the largest coordinate is ~30 times the
+    // error Embree's watertight test leaves, and still a millionth-scale step. The 1 nm floor
+    // only matters at the origin itself, where the error is tiny as well.
+    constexpr float kRelativeStep = 1.0f / 262144.0f;
+    constexpr float kSmallestStep = 1e-9f;
+    const glm::vec3 magnitude = glm::abs(position);
+    const float largest = std::max(magnitude.x, std::max(magnitude.y, magnitude.z));
+    const float step = std::max(largest * kRelativeStep, kSmallestStep);
+    return position + (side * step) * geometric_normal;
+}
+
+struct RayScene::Impl {
+    struct Object {
+        TriangleMesh mesh;
+        glm::mat4 transform{1.0f};
+        glm::mat3 normal_matrix{1.0f};
+        bool dynamic = false;
+        SceneHandle own_scene;  // dynamic objects only
+        unsigned instance_id = RTC_INVALID_GEOMETRY_ID;
+    };
+
+    DeviceHandle device;
+    SceneHandle top;
+    SceneHandle static_scene;
+    unsigned static_instance = RTC_INVALID_GEOMETRY_ID;
+    std::map<ObjectId, Object> objects;
+    std::vector<ObjectId> static_geometry_owner;          // static geometry id -> object
+    std::map<unsigned, ObjectId> dynamic_instance_owner;  // top-level instance id -> object
+    ObjectId next_id = 0;
+    bool static_dirty = true;
+    bool top_dirty = true;
+    glm::vec3 lo{std::numeric_limits<float>::max()};
+    glm::vec3 hi{std::numeric_limits<float>::lowest()};
+    std::uint64_t static_rebuilds = 0;
+    std::uint64_t top_commits = 0;
+
+    Impl() : device(rtcNewDevice(nullptr)) {
+        if (!device) {
+            throw Error("RayScene: Embree device creation failed (error " +
+                        std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
+        }
+        rtcSetDeviceErrorFunction(device.get(), report_embree_error, nullptr);
+        top.reset(rtcNewScene(device.get()));
+        // The top level is rebuilt whenever something moves: favour build speed.
+        rtcSetSceneFlags(top.get(), RTC_SCENE_FLAG_DYNAMIC);
+        rtcSetSceneBuildQuality(top.get(), RTC_BUILD_QUALITY_LOW);
+    }
+
+    Object& get(ObjectId id) {
+        const auto found = objects.find(id);
+        if (found == objects.end()) {
+            throw Error("RayScene: unknown object " + std::to_string(id));
+        }
+        return found->second;
+    }
+    const Object& get(ObjectId id) const { return const_cast<Impl*>(this)->get(id); }
+
+    void rebuild_static() {
+        if (static_instance != RTC_INVALID_GEOMETRY_ID) {
+            rtcDetachGeometry(top.get(), static_instance);
+            static_instance = RTC_INVALID_GEOMETRY_ID;
+        }
+        static_scene.reset(rtcNewScene(device.get()));
+        rtcSetSceneBuildQuality(static_scene.get(), RTC_BUILD_QUALITY_HIGH);
+        static_geometry_owner.clear();
+        for (const auto& [id, object] : objects) {
+            if (object.dynamic) {
+                continue;
+            }
+            const unsigned geometry = attach_triangles(device.get(), static_scene.get(),
+                                                       object.mesh.positions, object.mesh.indices);
+            if (geometry >= static_geometry_owner.size()) {
+                static_geometry_owner.resize(geometry + 1, kNoObject);
+            }
+            static_geometry_owner[geometry] = id;
+        }
+        rtcCommitScene(static_scene.get());
+        RTCGeometry instance = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(instance, static_scene.get());
+        const glm::mat4 identity(1.0f);
+        rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &identity[0][0]);
+        rtcCommitGeometry(instance);
+        static_instance = rtcAttachGeometry(top.get(), instance);
+        rtcReleaseGeometry(instance);
+        ++static_rebuilds;
+    }
+
+    void recompute_bounds() {
+        lo = glm::vec3(std::numeric_limits<float>::max());
+        hi = glm::vec3(std::numeric_limits<float>::lowest());
+        for (const auto& [id, object] : objects) {
+            for (const auto& p : object.mesh.positions) {
+                const glm::vec3 w = object.dynamic ? transform_point(object.transform, p) : p;
+                lo = glm::min(lo, w);
+                hi = glm::max(hi, w);
+            }
+        }
+    }
+};
+
+RayScene::RayScene() : impl_(std::make_unique<Impl>()) {}
+RayScene::~RayScene() = default;
+RayScene::RayScene(RayScene&&) noexcept = default;
+RayScene& RayScene::operator=(RayScene&&) noexcept = default;
+
+ObjectId RayScene::add_object(TriangleMesh mesh, const glm::mat4& transform, bool dynamic) {
+    check_mesh(mesh);
+    Impl::Object object;
+    object.dynamic = dynamic;
+    object.transform = dynamic ? transform : glm::mat4(1.0f);
+    object.normal_matrix = glm::transpose(glm::inverse(glm::mat3(object.transform)));
+    if (!dynamic) {
+        // Bake static geometry into world space once.
+        const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(transform)));
+        for (auto& p : mesh.positions) {
+            p = transform_point(transform, p);
+        }
+        for (auto& n : mesh.normals) {
+            n = glm::normalize(normal_matrix * n);
+        }
+    }
+    object.mesh = std::move(mesh);
+    const ObjectId id = impl_->next_id++;
+    if (dynamic) {
+        object.own_scene.reset(rtcNewScene(impl_->device.get()));
+        attach_triangles(impl_->device.get(), object.own_scene.get(), object.mesh.positions,
+                         object.mesh.indices);
+        rtcCommitScene(object.own_scene.get());
+        RTCGeometry instance = rtcNewGeometry(impl_->device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(instance, object.own_scene.get());
+        rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
+                                &object.transform[0][0]);
+        rtcCommitGeometry(instance);
+        object.instance_id = rtcAttachGeometry(impl_->top.get(), instance);
+        rtcReleaseGeometry(instance);
+        impl_->dynamic_instance_owner[object.instance_id] = id;
+        impl_->top_dirty = true;
+    } else {
+        impl_->static_dirty = true;
+    }
+    impl_->objects.emplace(id, std::move(object));
+    return id;
+}
+
+void RayScene::set_transform(ObjectId id, const glm::mat4& transform) {
+    Impl::Object& object = impl_->get(id);
+    if (!object.dynamic) {
+        throw Error("RayScene: object " + std::to_string(id) + " is static and cannot move");
+    }
+    object.transform = transform;
+    object.normal_matrix = glm::transpose(glm::inverse(glm::mat3(transform)));
+    RTCGeometry instance = rtcGetGeometry(impl_->top.get(), object.instance_id);
+    rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transform[0][0]);
+    rtcCommitGeometry(instance);
+    impl_->top_dirty = true;
+}
+
+void RayScene::remove_object(ObjectId id) {
+    Impl::Object& object = impl_->get(id);
+    if (object.dynamic) {
+        rtcDetachGeometry(impl_->top.get(), object.instance_id);
+        impl_->dynamic_instance_owner.erase(object.instance_id);
+        impl_->top_dirty = true;
+    } else {
+        impl_->static_dirty = true;
+    }
+    impl_->objects.erase(id);
+}
+
+bool RayScene::contains(ObjectId id) const {
+    return impl_->objects.count(id) != 0;
+}
+bool RayScene::is_dynamic(ObjectId id) const {
+    return impl_->get(id).dynamic;
+}
+
+void RayScene::commit() {
+    if (impl_->static_dirty) {
+        impl_->rebuild_static();
+        impl_->static_dirty = false;
+        impl_->top_dirty = true;
+    }
+    if (impl_->top_dirty) {
+        rtcCommitScene(impl_->top.get());
+        impl_->recompute_bounds();
+        impl_->top_dirty = false;
+        ++impl_->top_commits;
+    }
+}
+
+std::optional<RayHit> RayScene::intersect(const glm::vec3& origin, const glm::vec3& direction,
+                                          float max_distance) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit query{};
+    query.ray.org_x = origin.x;
+    query.ray.org_y = origin.y;
+    query.ray.org_z = origin.z;
+    query.ray.dir_x = direction.x;
+    query.ray.dir_y = direction.y;
+    query.ray.dir_z = direction.z;
+    query.ray.tnear = 0.0f;
+    query.ray.tfar = max_distance;
+    query.ray.mask = 0xFFFFFFFFu;
+    query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(impl_->top.get(), &context, &query);
+    if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+        return std::nullopt;
+    }
+    ObjectId id = kNoObject;
+    if (query.hit.instID[0] == impl_->static_instance) {
+        id = query.hit.geomID < impl_->static_geometry_owner.size()
+                 ? impl_->static_geometry_owner[query.hit.geomID]
+                 : kNoObject;
+    } else if (const auto owner = impl_->dynamic_instance_owner.find(query.hit.instID[0]);
+               owner != impl_->dynamic_instance_owner.end()) {
+        id = owner->second;
+    }
+    const auto found = impl_->objects.find(id);
+    if (found == impl_->objects.end()) {
+        return std::nullopt;  // geometry removed since the last commit
+    }
+    const Impl::Object& object = found->second;
+    const TriangleMesh& mesh = object.mesh;
+    const std::uint32_t triangle = query.hit.primID;
+    const std::uint32_t i0 = mesh.indices[3 * triangle];
+    const std::uint32_t i1 = mesh.indices[3 * triangle + 1];
+    const std::uint32_t i2 = mesh.indices[3 * triangle + 2];
+    const float u = query.hit.u;
+    const float v = query.hit.v;
+    const float w = 1.0f - u - v;
+
+    RayHit hit;
+    hit.distance = query.ray.tfar;
+    hit.object = id;
+    hit.triangle = triangle;
+    hit.surface = mesh.surface_ids[triangle];
+    hit.material = mesh.material_ids[triangle];
+    // Interpolating the triangle's own vertices is more precise than origin + t * direction
+    // far from the origin; it puts the point on the triangle's plane.
+    const glm::vec3 local =
+        w * mesh.positions[i0] + u * mesh.positions[i1] + v * mesh.positions[i2];
+    const glm::vec3 face = glm::cross(mesh.positions[i1] - mesh.positions[i0],
+                                      mesh.positions[i2] - mesh.positions[i0]);
+    if (object.dynamic) {
+        hit.position = transform_point(object.transform, local);
+        hit.geometric_normal = glm::normalize(object.normal_matrix * face);
+    } else {
+        hit.position = local;
+        hit.geometric_normal = glm::normalize(face);
+    }
+    if (!mesh.normals.empty()) {
+        const glm::vec3 n = w * mesh.normals[i0] + u * mesh.normals[i1] + v * mesh.normals[i2];
+        const glm::vec3 world = object.dynamic ? object.normal_matrix * n : n;
+        const float length = glm::length(world);
+        hit.shading_normal = length > 0.0f ? world / length : hit.geometric_normal;
+    } else {
+        hit.shading_normal = hit.geometric_normal;
+    }
+    if (!mesh.lightmap_uvs.empty()) {
+        hit.lightmap_uv =
+            w * mesh.lightmap_uvs[i0] + u * mesh.lightmap_uvs[i1] + v * mesh.lightmap_uvs[i2];
+    }
+    return hit;
+}
+
+bool RayScene::occluded(const glm::vec3& origin, const glm::vec3& direction,
+                        float max_distance) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay ray{};
+    ray.org_x = origin.x;
+    ray.org_y = origin.y;
+    ray.org_z = origin.z;
+    ray.dir_x = direction.x;
+    ray.dir_y = direction.y;
+    ray.dir_z = direction.z;
+    ray.tnear = 0.0f;
+    ray.tfar = max_distance;
+    ray.mask = 0xFFFFFFFFu;
+    rtcOccluded1(impl_->top.get(), &context, &ray);
+    // Embree marks an occluded ray by setting tfar to -inf.
+    return ray.tfar < 0.0f;
+}
+
+glm::vec3 RayScene::bounds_min() const {
+    return impl_->lo;
+}
+glm::vec3 RayScene::bounds_max() const {
+    return impl_->hi;
+}
+std::size_t RayScene::object_count() const {
+    return impl_->objects.size();
+}
+std::size_t RayScene::triangle_count() const {
+    std::size_t total = 0;
+    for (const auto& [id, object] : impl_->objects) {
+        total += object.mesh.triangle_count();
+    }
+    return total;
+}
+std::uint64_t RayScene::static_rebuilds() const {
+    return impl_->static_rebuilds;
+}
+std::uint64_t RayScene::top_level_commits() const {
+    return impl_->top_commits;
+}
+const TriangleMesh& RayScene::mesh(ObjectId id) const {
+    return impl_->get(id).mesh;
+}
+glm::mat4 RayScene::transform(ObjectId id) const {
+    return impl_->get(id).transform;
+}
+
+}  // namespace luxel::lighting

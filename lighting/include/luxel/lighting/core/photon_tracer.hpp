@@ -1,0 +1,59 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "luxel/lighting/core/light_source.hpp"
+#include "luxel/lighting/core/photon_map.hpp"
+#include "luxel/lighting/core/ray_scene.hpp"
+
+namespace luxel::lighting {
+
+/// How a surface scatters photons.
+enum class Scattering {
+    Diffuse,     ///< Lambertian with `albedo`: photons are stored, then Russian roulette
+    Mirror,      ///< metal: reflect with Schlick Fresnel of `tint`
+    Dielectric,  ///< glass, water: Fresnel-weighted choice of reflection or refraction
+};
+
+struct TraceMaterial {
+    Scattering scattering = Scattering::Diffuse;
+    glm::vec3 albedo{0.5f};  ///< diffuse reflectance
+    glm::vec3 tint{1.0f};    ///< mirror F0 or dielectric transmittance colour
+    float ior = 1.5f;
+};
+
+/// The sample of dimension `dim` for photon `index` of a light with `seed`: the Halton radical
+/// inverse in the dim-th prime for the first 32 dimensions, Cranley-Patterson rotated per light
+/// from dimension 4 on (dimensions 0-3 pick the emission and must not move, they define the
+/// groups); a hash beyond, for very long paths. Deterministic and independent of threads.
+[[nodiscard]] double photon_sample(std::uint64_t index, std::uint32_t dim, std::uint32_t seed);
+
+struct TraceLimits {
+    /// A path stops after this many interactions whatever Russian roulette says (a guard for
+    /// albedo 1; counted as truncated).
+    std::uint32_t max_interactions = 65536;
+};
+
+struct TraceCounters {
+    std::uint64_t photons = 0;
+    std::uint64_t segments = 0;  ///< rays shot
+    std::uint64_t diffuse_hits = 0;
+    std::uint64_t absorbed_back_faces = 0;
+    std::uint64_t truncated = 0;
+
+    TraceCounters& operator+=(const TraceCounters& other);
+};
+
+/// Traces one photon from emission and appends its diffuse hits to `hops` (position, power on
+/// arrival, surface, object, diffuse bounces so far). Specular interactions are followed and
+/// recorded as unstored hops (surface -1) so that path comparison sees them. A diffuse
+/// back face absorbs the photon (one-sided surfaces have no light map behind them).
+void trace_photon(const RayScene& scene, std::span<const TraceMaterial> materials,
+                  const EmittedPhoton& photon, std::uint64_t index, std::uint32_t seed,
+                  const TraceLimits& limits, std::vector<TracedHop>& hops, TraceCounters& counters);
+
+}  // namespace luxel::lighting

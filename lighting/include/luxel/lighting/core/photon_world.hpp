@@ -1,0 +1,171 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "luxel/ecs/observer.hpp"
+#include "luxel/ecs/registry.hpp"
+#include "luxel/ecs/transform.hpp"
+#include "luxel/lighting/components.hpp"
+#include "luxel/lighting/core/caustic_photons.hpp"
+#include "luxel/lighting/core/photon_map.hpp"
+#include "luxel/lighting/core/ray_scene.hpp"
+#include "luxel/lighting/core/selective_emitter.hpp"
+#include "luxel/runtime/jobs.hpp"
+
+namespace luxel::lighting {
+
+struct PhotonWorldSettings {
+    SelectiveSettings selective;
+    /// Until luxel-prep has run, a static mesh without a light-map layout gets one surface per
+    /// primitive, so photons are stored (without light-map UVs) and tests and tools work on
+    /// unprepared levels. Off: such meshes only reflect photons.
+    bool implicit_surfaces = true;
+    /// Caustic photons: photons_per_pair for every (caustic generator, enabled light) pair,
+    /// retraced in `slices` slices. photons_per_pair = 0 turns caustics off.
+    CausticSettings caustics;
+};
+
+/// One light-mapped surface as the photon engine knows it.
+struct SurfaceInfo {
+    ecs::Entity entity;
+    int primitive = -1;
+    int layout_id = -1;  ///< the layout's surface id; -1 for implicit surfaces
+};
+
+/// Counters of one PhotonWorld::update.
+struct PhotonFrameStats {
+    EmissionStats probes;
+    EmissionStats retraces;
+    std::uint32_t lights_invalidated = 0;
+    std::uint32_t objects_moved = 0;
+};
+
+/// The caustic photons of one (generator, light) pair.
+struct CausticPair {
+    ecs::Entity generator;
+    ecs::Entity light;
+    CausticPhotonList photons;
+};
+
+/// Counters of one PhotonWorld::update_caustics.
+struct CausticFrameStats {
+    std::uint32_t slices_retraced = 0;  ///< one per list that needed it
+    CausticTraceCounters trace;
+};
+
+/// What the caustic lists hold now (for the scheduler and the HUD).
+struct CausticTotals {
+    std::size_t lists = 0;
+    std::size_t stored = 0;  ///< caustic photons stored
+    std::size_t bytes = 0;   ///< photons and bookkeeping
+};
+
+/// The photon side of the lighting system, fed by the ECS: it mirrors MeshInstance entities
+/// into a RayScene (Dynamic ones as instances), lights into selective emitters, and keeps the
+/// PhotonMap current. It learns what changed only from observers (WorldTransform, MeshInstance,
+/// CausticGenerator and the light components), never by scanning the registry.
+///
+/// Caustics: every entity with a CausticGenerator and a MeshInstance gets one CausticPhotonList
+/// per enabled light (no generator: no list, nothing traced). The generator's specular
+/// primitives take their optics from the component (transmission 0: a mirror with Schlick F0 =
+/// tint; otherwise glass of index `ior` whose refracted photons are scaled by
+/// tint * transmission), for global and caustic photons alike. Any geometry added, removed or
+/// moved invalidates every list (receivers and occluders anywhere can change a caustic); a
+/// light change invalidates its lists, a generator change its own.
+class PhotonWorld {
+  public:
+    PhotonWorld(ecs::Registry& registry, PhotonWorldSettings settings = {});
+    ~PhotonWorld();
+    PhotonWorld(const PhotonWorld&) = delete;
+    PhotonWorld& operator=(const PhotonWorld&) = delete;
+
+    /// Applies the ECS changes since the last call: geometry added, removed or moved, lights
+    /// added, removed, changed, switched or moved (each of those invalidates all its groups).
+    /// Run after the TransformSystem.
+    void sync();
+
+    /// One frame of selective emission: probes (photon frame mod M of every group of every
+    /// enabled light), then a retrace of every invalid group. The scheduler (issue 8) splits
+    /// this work across frames; this call does all of it.
+    PhotonFrameStats update(std::uint64_t frame, JobSystem& jobs);
+
+    /// Caustics: retraces one slice of every list that needs it (see CausticPhotonList for
+    /// which slice), all lists together in one parallel pass.
+    CausticFrameStats update_caustics(std::uint64_t frame, JobSystem& jobs);
+    /// The caustic lists, ordered by (generator, light). The span and references into it stay
+    /// valid until a sync() that adds or removes a pair (a generator or light coming, going or
+    /// being switched).
+    [[nodiscard]] std::span<const CausticPair> caustics() const { return caustic_pairs_; }
+    [[nodiscard]] CausticTotals caustic_totals() const;
+
+    /// Groups waiting for a retrace (invalidated by probes or by light changes).
+    [[nodiscard]] const std::vector<std::uint32_t>& pending_groups() const { return pending_; }
+    /// Runs only the probes of `frame`, adding divergent groups to pending_groups().
+    EmissionStats probe(std::uint64_t frame, JobSystem& jobs);
+    /// Retraces up to `max_groups` pending groups (all when 0), oldest first.
+    EmissionStats retrace_pending(JobSystem& jobs, std::size_t max_groups = 0);
+
+    [[nodiscard]] const RayScene& ray_scene() const { return scene_; }
+    [[nodiscard]] const PhotonMap& photon_map() const { return *map_; }
+    [[nodiscard]] PhotonMap& photon_map() { return *map_; }
+    [[nodiscard]] const std::vector<SurfaceInfo>& surfaces() const { return surfaces_; }
+    [[nodiscard]] const std::vector<TraceMaterial>& materials() const { return materials_; }
+    /// The light entity whose groups include global group `group`, or null_entity.
+    [[nodiscard]] ecs::Entity light_of_group(std::uint32_t group) const;
+    /// The emitters of the enabled lights.
+    [[nodiscard]] std::vector<const LightPhotons*> active_lights() const;
+
+  private:
+    struct LightRecord;
+    /// A caustic generator's bounding sphere, which its caustic photons are aimed at.
+    struct GeneratorRecord {
+        ObjectId object = kNoObject;  ///< the object local_sphere was computed for
+        BoundingSphere local_sphere;  ///< around the object's vertices, in its mesh's frame
+        BoundingSphere world_sphere;
+    };
+
+    void add_mesh(ecs::Entity entity);
+    void remove_mesh(ecs::Entity entity);
+    void refresh_light(ecs::Entity entity);
+    void remove_light(ecs::Entity entity);
+    std::uint32_t material_index(const scene::Scene* source, int material);
+    BoundingSphere scene_sphere() const;
+    std::uint32_t generator_material(ecs::Entity entity, std::uint32_t shared,
+                                     const CausticGenerator& optics);
+    void forget_generator_materials(ecs::Entity entity);
+    void sync_caustics(std::span<const ecs::Entity> lights_touched,
+                       std::span<const ecs::Entity> generators_touched, bool objects_changed);
+
+    ecs::Registry& registry_;
+    PhotonWorldSettings settings_;
+    RayScene scene_;
+    std::unique_ptr<PhotonMap> map_;
+    std::vector<SurfaceInfo> surfaces_;
+    std::vector<TraceMaterial> materials_;
+    std::map<std::pair<const scene::Scene*, int>, std::uint32_t> material_ids_;
+    std::map<ecs::Entity, ObjectId> objects_;
+    std::map<ecs::Entity, std::unique_ptr<LightRecord>> lights_;
+    std::vector<std::uint32_t> pending_;
+    std::map<ecs::Entity, GeneratorRecord> generators_;
+    /// (generator entity, shared material id) -> the generator's own material id.
+    std::map<std::pair<ecs::Entity, std::uint32_t>, std::uint32_t> generator_materials_;
+    std::vector<CausticPair> caustic_pairs_;  ///< sorted by (generator, light)
+    std::uint32_t next_caustic_seed_ = 1;
+    std::uint32_t next_group_ = 0;
+    std::uint32_t next_seed_ = 1;
+    bool scene_changed_ = false;
+
+    ecs::Observer<MeshInstance> mesh_changes_;
+    ecs::Observer<ecs::WorldTransform> moves_;
+    ecs::Observer<PointLight> point_changes_;
+    ecs::Observer<SpotLight> spot_changes_;
+    ecs::Observer<DirectionalLight> directional_changes_;
+    ecs::Observer<AreaLight> area_changes_;
+    ecs::Observer<CausticGenerator> generator_changes_;
+};
+
+}  // namespace luxel::lighting

@@ -1,0 +1,384 @@
+// Photon engine benchmarks on the paper's 13,000-triangle Cornell box (assets/levels/
+// cornell-13k.glb); figures and the commands that produced them are in docs/PERFORMANCE.md.
+//   SegmentsVsRawRays/threads  photon path segments per second (the 77 x 40 photons of the
+//        level's light, traced group by group through RayScene as a retrace does, without the
+//        PhotonMap update) against rtcIntersect1 rays per second replaying the same rays in a
+//        flat Embree scene of the same triangles built here; both on the same JobSystem, timed
+//        alternately within each iteration. Counter `ratio` = segments/s over rays/s (goal 0.6),
+//        `cpu_ratio` the same per CPU-second; `scene_ratio` is RayScene::intersect alone on the
+//        same rays over raw Embree.
+//   FullTrace          PhotonWorld sync + update of the whole level (every group traced and
+//        stored); counter `bytes_per_hit` = PhotonMap::bytes_used() / stored_hit_count()
+//        (goal 32), and the same for the caustic photons once all 8 slices are traced.
+//   PaperFrame/threads the paper's configuration with the level's animations playing (cube
+//        sliding, glass sphere orbiting): 77 groups x 40 photons, 10,000 caustic photons over 8
+//        frames. Each iteration is one 1/30 s frame; the time is PhotonWorld's work only (sync,
+//        probes, group retraces, one caustic slice), with median and 95th percentile counters of
+//        wall time and of process CPU time (summed over the job threads).
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include <embree3/rtcore.h>
+
+#include "luxel/ecs/transform_system.hpp"
+#include "luxel/lighting/core/animation_system.hpp"
+#include "luxel/lighting/core/photon_world.hpp"
+#include "luxel/lighting/core/scene_instance.hpp"
+#include "luxel/runtime/clock.hpp"
+#include "luxel/runtime/scene/gltf.hpp"
+
+namespace {
+
+using namespace luxel;
+
+std::shared_ptr<const scene::Scene> cornell_13k() {
+    static const auto loaded = std::make_shared<scene::Scene>(scene::load_gltf(
+        std::filesystem::path(LUXEL_SOURCE_DIR) / "assets" / "levels" / "cornell-13k.glb"));
+    return loaded;
+}
+
+/// The level as a game holds it: registry, transforms and the photon world.
+struct Level {
+    ecs::Registry registry;
+    lighting::SceneInstance instance;
+    ecs::TransformSystem transforms{registry};
+    std::unique_ptr<lighting::PhotonWorld> photons;
+
+    explicit Level(bool play_animations, lighting::PhotonWorldSettings settings = {}) {
+        lighting::InstantiateOptions options;
+        options.play_animations = play_animations;
+        instance = lighting::instantiate(registry, cornell_13k(), options);
+        transforms.update();
+        photons = std::make_unique<lighting::PhotonWorld>(registry, settings);
+        photons->sync();
+    }
+};
+
+// --- Raw Embree: the same triangles, world space, one flat BVH --------------------------------
+
+struct EmbreeDeleter {
+    void operator()(RTCDevice device) const { rtcReleaseDevice(device); }
+    void operator()(RTCScene scene) const { rtcReleaseScene(scene); }
+};
+
+class RawEmbreeScene {
+  public:
+    explicit RawEmbreeScene(const scene::Scene& source)
+        : device_(rtcNewDevice(nullptr)), scene_(rtcNewScene(device_.get())) {
+        rtcSetSceneBuildQuality(scene_.get(), RTC_BUILD_QUALITY_HIGH);
+        const std::vector<glm::mat4> world = source.world_matrices();
+        for (std::size_t n = 0; n < source.nodes.size(); ++n) {
+            if (source.nodes[n].mesh < 0) {
+                continue;
+            }
+            const auto& mesh = source.meshes.at(static_cast<std::size_t>(source.nodes[n].mesh));
+            for (const scene::Primitive& primitive : mesh.primitives) {
+                RTCGeometry geometry = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+                auto* vertices = static_cast<glm::vec3*>(
+                    rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                            sizeof(glm::vec3), primitive.positions.size()));
+                auto* indices = static_cast<std::uint32_t*>(
+                    rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                            3 * sizeof(std::uint32_t), primitive.triangle_count()));
+                for (std::size_t v = 0; v < primitive.positions.size(); ++v) {
+                    vertices[v] = glm::vec3(world[n] * glm::vec4(primitive.positions[v], 1.0f));
+                }
+                std::copy(primitive.indices.begin(), primitive.indices.end(), indices);
+                rtcCommitGeometry(geometry);
+                rtcAttachGeometry(scene_.get(), geometry);
+                rtcReleaseGeometry(geometry);
+            }
+        }
+        rtcCommitScene(scene_.get());
+    }
+
+    /// Closest-hit query; returns the geometry id hit (or RTC_INVALID_GEOMETRY_ID).
+    unsigned intersect(const glm::vec3& origin, const glm::vec3& direction) const {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        RTCRayHit query{};
+        query.ray.org_x = origin.x;
+        query.ray.org_y = origin.y;
+        query.ray.org_z = origin.z;
+        query.ray.dir_x = direction.x;
+        query.ray.dir_y = direction.y;
+        query.ray.dir_z = direction.z;
+        query.ray.tnear = 0.0f;
+        query.ray.tfar = std::numeric_limits<float>::infinity();
+        query.ray.mask = 0xFFFFFFFFu;
+        query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene_.get(), &context, &query);
+        return query.hit.geomID;
+    }
+
+  private:
+    std::unique_ptr<RTCDeviceTy, EmbreeDeleter> device_;
+    std::unique_ptr<RTCSceneTy, EmbreeDeleter> scene_;
+};
+
+struct Ray {
+    glm::vec3 origin;
+    glm::vec3 direction;
+};
+
+/// The rays the photon tracer shoots for `light`, rebuilt from the traced paths: the emission
+/// ray and every hop-to-hop segment (its origin moved 0.1 mm along the ray, off the surface). A
+/// segment that left the scene after a bounce has no end point and cannot be rebuilt (the
+/// counters report how many rays were rebuilt against how many segments were traced).
+std::vector<Ray> photon_rays(const lighting::LightPhotons& light, const lighting::RayScene& scene,
+                             std::span<const lighting::TraceMaterial> materials) {
+    const auto groups =
+        lighting::partition_into_groups(light.group_count(), light.photons_per_group());
+    const std::uint64_t total =
+        static_cast<std::uint64_t>(light.group_count()) * light.photons_per_group();
+    std::vector<Ray> rays;
+    for (std::uint32_t g = 0; g < light.group_count(); ++g) {
+        for (std::uint32_t p = 0; p < light.photons_per_group(); ++p) {
+            // Emission uses sample dimensions 0-3, which no seed rotates.
+            const std::uint64_t index = groups[g][p];
+            const lighting::EmittedPhoton emitted = light.emitter().emit(
+                {lighting::photon_sample(index, 0, 0), lighting::photon_sample(index, 1, 0)},
+                {lighting::photon_sample(index, 2, 0), lighting::photon_sample(index, 3, 0)},
+                total);
+            std::vector<lighting::TracedHop> hops;
+            lighting::TraceCounters counters;
+            light.trace(scene, materials, g, p, hops, counters);
+            rays.push_back({emitted.origin, emitted.direction});
+            for (std::size_t h = 0; h + 1 < hops.size(); ++h) {
+                const glm::vec3 direction = glm::normalize(hops[h + 1].position - hops[h].position);
+                rays.push_back({hops[h].position + 1e-4f * direction, direction});
+            }
+        }
+    }
+    return rays;
+}
+
+void SegmentsVsRawRays(benchmark::State& state) {
+    Level level(false);
+    JobSystem jobs(static_cast<int>(state.range(0)));
+    const auto lights = level.photons->active_lights();
+    if (lights.size() != 1) {
+        state.SkipWithError("expected the level's one light");
+        return;
+    }
+    const lighting::LightPhotons& light = *lights.front();
+    const lighting::RayScene& scene = level.photons->ray_scene();
+    const auto& materials = level.photons->materials();
+    const RawEmbreeScene raw(*cornell_13k());
+    const std::vector<Ray> rays = photon_rays(light, scene, materials);
+
+    // Wall time, and process CPU time: on a shared machine a phase that is preempted shows the
+    // wait in its wall time but not in its CPU time, so the CPU ratio is the steadier one.
+    double photon_seconds = 0.0;
+    double raw_seconds = 0.0;
+    double scene_seconds = 0.0;
+    double photon_cpu = 0.0;
+    double raw_cpu = 0.0;
+    double scene_cpu = 0.0;
+    auto cpu_seconds_since = [](std::clock_t start) {
+        return static_cast<double>(std::clock() - start) / static_cast<double>(CLOCKS_PER_SEC);
+    };
+    std::uint64_t segments = 0;
+    std::uint64_t raw_rays = 0;
+    constexpr std::size_t kRaysPerChunk = 64;
+    const std::size_t chunks = (rays.size() + kRaysPerChunk - 1) / kRaysPerChunk;
+    for (auto _ : state) {
+        std::vector<lighting::TraceCounters> counters(light.group_count());
+        const std::clock_t photon_cpu_start = std::clock();
+        Stopwatch photon_clock;
+        jobs.parallel_for(0, light.group_count(), [&](std::size_t g) {
+            const lighting::TracedGroup traced =
+                light.trace_group(scene, materials, static_cast<std::uint32_t>(g), counters[g]);
+            benchmark::DoNotOptimize(traced.hops.data());
+        });
+        photon_seconds += to_seconds(photon_clock.elapsed());
+        photon_cpu += cpu_seconds_since(photon_cpu_start);
+        for (const auto& c : counters) {
+            segments += c.segments;
+        }
+
+        std::atomic<std::uint64_t> hits{0};
+        const std::clock_t raw_cpu_start = std::clock();
+        Stopwatch raw_clock;
+        jobs.parallel_for(0, chunks, [&](std::size_t chunk) {
+            std::uint64_t local = 0;
+            const std::size_t end = std::min(rays.size(), (chunk + 1) * kRaysPerChunk);
+            for (std::size_t r = chunk * kRaysPerChunk; r < end; ++r) {
+                local += raw.intersect(rays[r].origin, rays[r].direction) != RTC_INVALID_GEOMETRY_ID
+                             ? 1
+                             : 0;
+            }
+            hits.fetch_add(local, std::memory_order_relaxed);
+        });
+        raw_seconds += to_seconds(raw_clock.elapsed());
+        raw_cpu += cpu_seconds_since(raw_cpu_start);
+        raw_rays += rays.size();
+
+        // The same rays through RayScene::intersect alone: what the two-level BVH and the hit
+        // record (object, material, normals, UVs) cost without the tracer around them.
+        const std::clock_t scene_cpu_start = std::clock();
+        Stopwatch scene_clock;
+        jobs.parallel_for(0, chunks, [&](std::size_t chunk) {
+            std::uint64_t local = 0;
+            const std::size_t end = std::min(rays.size(), (chunk + 1) * kRaysPerChunk);
+            for (std::size_t r = chunk * kRaysPerChunk; r < end; ++r) {
+                local += scene.intersect(rays[r].origin, rays[r].direction).has_value() ? 1 : 0;
+            }
+            hits.fetch_add(local, std::memory_order_relaxed);
+        });
+        scene_seconds += to_seconds(scene_clock.elapsed());
+        scene_cpu += cpu_seconds_since(scene_cpu_start);
+        benchmark::DoNotOptimize(hits.load());
+    }
+    const double segments_per_second = static_cast<double>(segments) / photon_seconds;
+    const double rays_per_second = static_cast<double>(raw_rays) / raw_seconds;
+    state.counters["segments_per_s"] = segments_per_second;
+    state.counters["raw_rays_per_s"] = rays_per_second;
+    state.counters["ratio"] = segments_per_second / rays_per_second;
+    const double scene_rays_per_second = static_cast<double>(raw_rays) / scene_seconds;
+    state.counters["scene_rays_per_s"] = scene_rays_per_second;
+    state.counters["scene_ratio"] = scene_rays_per_second / rays_per_second;
+    // Per CPU-second: (segments / photon_cpu) / (rays / raw_cpu).
+    const auto replayed = static_cast<double>(raw_rays);
+    state.counters["cpu_ratio"] =
+        (static_cast<double>(segments) / photon_cpu) / (replayed / raw_cpu);
+    state.counters["scene_cpu_ratio"] = (replayed / scene_cpu) / (replayed / raw_cpu);
+    state.counters["segments_per_pass"] =
+        static_cast<double>(segments) / static_cast<double>(state.iterations());
+    state.counters["replayed_rays_per_pass"] = static_cast<double>(rays.size());
+}
+BENCHMARK(SegmentsVsRawRays)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void FullTrace(benchmark::State& state) {
+    Level level(false);
+    JobSystem jobs(2);
+    std::size_t bytes = 0;
+    std::size_t hits = 0;
+    std::size_t hops = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        level.photons.reset();
+        level.photons = std::make_unique<lighting::PhotonWorld>(level.registry);
+        state.ResumeTiming();
+        level.photons->sync();
+        level.photons->update(0, jobs);
+        bytes = level.photons->photon_map().bytes_used();
+        hits = level.photons->photon_map().stored_hit_count();
+        hops = level.photons->photon_map().hop_count();
+    }
+    state.counters["stored_hits"] = static_cast<double>(hits);
+    state.counters["hops"] = static_cast<double>(hops);
+    state.counters["bytes_per_hit"] = static_cast<double>(bytes) / static_cast<double>(hits);
+    // Where the bytes go: the per-surface hit arrays (StoredHit, with their growth slack)
+    // against everything else (per-hop records, per-photon path starts, the vectors).
+    const lighting::PhotonMap& map = level.photons->photon_map();
+    std::size_t hit_array_bytes = 0;
+    for (std::uint32_t s = 0; s < map.surface_count(); ++s) {
+        hit_array_bytes += map.surface(s).hits.capacity() * sizeof(lighting::StoredHit);
+    }
+    state.counters["hit_array_bytes_per_hit"] =
+        static_cast<double>(hit_array_bytes) / static_cast<double>(hits);
+    state.counters["path_bytes_per_hit"] =
+        static_cast<double>(bytes - hit_array_bytes) / static_cast<double>(hits);
+    for (std::uint64_t frame = 0; frame < 8; ++frame) {
+        level.photons->update_caustics(frame, jobs);
+    }
+    const lighting::CausticTotals caustics = level.photons->caustic_totals();
+    state.counters["caustic_photons"] = static_cast<double>(caustics.stored);
+    state.counters["caustic_bytes_per_photon"] =
+        static_cast<double>(caustics.bytes) / static_cast<double>(caustics.stored);
+}
+BENCHMARK(FullTrace)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+double percentile(std::vector<double> values, double fraction) {
+    std::sort(values.begin(), values.end());
+    const auto rank = static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1));
+    return values[rank];
+}
+
+void PaperFrame(benchmark::State& state) {
+    lighting::PhotonWorldSettings settings;  // 77 x 40; 10,000 caustic photons, K = 8
+    Level level(true, settings);
+    JobSystem jobs(static_cast<int>(state.range(0)));
+    // Warm up: every group traced, every caustic slice filled, before anything moves.
+    level.photons->update(0, jobs);
+    for (std::uint64_t frame = 0; frame < 8; ++frame) {
+        level.photons->update_caustics(frame, jobs);
+    }
+    std::vector<double> total_ms;
+    std::vector<double> cpu_ms;
+    std::vector<double> sync_ms;
+    std::vector<double> global_ms;
+    std::vector<double> caustic_ms;
+    std::uint64_t retraced_groups = 0;
+    std::uint32_t most_groups_in_a_frame = 0;
+    std::uint64_t caustic_photons = 0;
+    std::uint64_t segments = 0;
+    std::uint64_t frame = 8;
+    for (auto _ : state) {
+        // The game's part of the frame: not counted.
+        lighting::update_animations(level.registry, 1.0 / 30.0);
+        level.transforms.update();
+
+        // Process CPU time as well: on a shared machine a frame that is preempted shows the
+        // time slice it waited in its wall time but not in its CPU time.
+        const std::clock_t cpu_start = std::clock();
+        Stopwatch clock;
+        level.photons->sync();
+        const double after_sync = clock.elapsed_ms();
+        const lighting::PhotonFrameStats global = level.photons->update(frame, jobs);
+        const double after_global = clock.elapsed_ms();
+        const lighting::CausticFrameStats caustics = level.photons->update_caustics(frame, jobs);
+        const double after_caustics = clock.elapsed_ms();
+        const std::clock_t cpu_end = std::clock();
+        state.SetIterationTime(after_caustics / 1000.0);
+        cpu_ms.push_back(1000.0 * static_cast<double>(cpu_end - cpu_start) /
+                         static_cast<double>(CLOCKS_PER_SEC));
+
+        total_ms.push_back(after_caustics);
+        sync_ms.push_back(after_sync);
+        global_ms.push_back(after_global - after_sync);
+        caustic_ms.push_back(after_caustics - after_global);
+        retraced_groups += global.retraces.groups_retraced;
+        most_groups_in_a_frame = std::max(most_groups_in_a_frame, global.retraces.groups_retraced);
+        caustic_photons += caustics.trace.photons;
+        segments +=
+            global.probes.trace.segments + global.retraces.trace.segments + caustics.trace.segments;
+        ++frame;
+    }
+    const auto frames = static_cast<double>(total_ms.size());
+    state.counters["median_ms"] = percentile(total_ms, 0.5);
+    state.counters["p95_ms"] = percentile(total_ms, 0.95);
+    state.counters["cpu_median_ms"] = percentile(cpu_ms, 0.5);
+    state.counters["cpu_p95_ms"] = percentile(cpu_ms, 0.95);
+    state.counters["sync_median_ms"] = percentile(sync_ms, 0.5);
+    state.counters["global_median_ms"] = percentile(global_ms, 0.5);
+    state.counters["caustic_median_ms"] = percentile(caustic_ms, 0.5);
+    state.counters["global_p95_ms"] = percentile(global_ms, 0.95);
+    state.counters["caustic_p95_ms"] = percentile(caustic_ms, 0.95);
+    state.counters["most_groups_retraced"] = most_groups_in_a_frame;
+    state.counters["groups_retraced_per_frame"] = static_cast<double>(retraced_groups) / frames;
+    state.counters["caustic_photons_per_frame"] = static_cast<double>(caustic_photons) / frames;
+    state.counters["segments_per_frame"] = static_cast<double>(segments) / frames;
+}
+BENCHMARK(PaperFrame)
+    ->Arg(1)
+    ->Arg(2)
+    ->Iterations(200)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,97 @@
+// Reflection, refraction and Fresnel reflectance against analytic values.
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/constants.hpp>
+
+#include "luxel/lighting/core/halton.hpp"
+#include "luxel/lighting/core/optics.hpp"
+
+namespace {
+
+using namespace luxel::lighting;
+
+glm::vec3 incoming(float degrees) {
+    // In the xy plane, arriving at `degrees` from the normal +y, travelling downwards.
+    const float a = glm::radians(degrees);
+    return {std::sin(a), -std::cos(a), 0.0f};
+}
+
+TEST(Optics, ReflectionMirrorsAboutTheNormal) {
+    const glm::vec3 n(0, 1, 0);
+    for (float degrees : {0.0f, 45.0f, 80.0f}) {
+        const glm::vec3 r = optics::reflect(incoming(degrees), n);
+        EXPECT_NEAR(r.x, std::sin(glm::radians(degrees)), 1e-6f);
+        EXPECT_NEAR(r.y, std::cos(glm::radians(degrees)), 1e-6f);
+    }
+}
+
+TEST(Optics, RefractionFollowsSnellsLaw) {
+    const glm::vec3 n(0, 1, 0);
+    for (float degrees : {0.0f, 45.0f, 80.0f}) {
+        const auto t = optics::refract(incoming(degrees), n, 1.0f, 1.5f);
+        ASSERT_TRUE(t.has_value());
+        const float sin_t = std::sin(glm::radians(degrees)) / 1.5f;
+        EXPECT_NEAR(t->x, sin_t, 1e-6f);
+        EXPECT_NEAR(t->y, -std::sqrt(1.0f - sin_t * sin_t), 1e-6f);
+        EXPECT_NEAR(glm::length(*t), 1.0f, 1e-6f);
+    }
+    // Glass to air: the critical angle is asin(1 / 1.5) = 41.81 degrees.
+    EXPECT_TRUE(optics::refract(incoming(41.0f), n, 1.5f, 1.0f).has_value());
+    EXPECT_FALSE(optics::refract(incoming(42.0f), n, 1.5f, 1.0f).has_value());
+    EXPECT_FALSE(optics::refract(incoming(80.0f), n, 1.5f, 1.0f).has_value());
+}
+
+TEST(Optics, FresnelMatchesAnalyticValues) {
+    // Normal incidence: ((n1 - n2) / (n1 + n2))^2 = 0.04 for air to glass.
+    EXPECT_NEAR(optics::fresnel_dielectric(1.0f, 1.0f, 1.5f), 0.04f, 1e-6f);
+    // 45 degrees, air to glass: Rs = 0.0920, Rp = 0.0085 (from the Fresnel equations), mean
+    // 0.0503.
+    EXPECT_NEAR(optics::fresnel_dielectric(std::cos(glm::radians(45.0f)), 1.0f, 1.5f), 0.0503f,
+                2e-4f);
+    // 80 degrees: Rs = 0.6133, Rp = 0.3009 (Rs and Rp computed independently below).
+    auto reference = [](float degrees, float n1, float n2) {
+        const double i = glm::radians(double(degrees));
+        const double t = std::asin(n1 / n2 * std::sin(i));
+        const double rs = std::pow(std::sin(i - t) / std::sin(i + t), 2.0);
+        const double rp = std::pow(std::tan(i - t) / std::tan(i + t), 2.0);
+        return 0.5 * (rs + rp);
+    };
+    for (float degrees : {10.0f, 45.0f, 80.0f}) {
+        EXPECT_NEAR(optics::fresnel_dielectric(std::cos(glm::radians(degrees)), 1.0f, 1.5f),
+                    reference(degrees, 1.0f, 1.5f), 1e-5)
+            << degrees;
+        EXPECT_NEAR(optics::fresnel_dielectric(std::cos(glm::radians(degrees * 0.4f)), 1.5f, 1.0f),
+                    reference(degrees * 0.4f, 1.5f, 1.0f), 1e-5)
+            << degrees;
+    }
+    // Beyond the critical angle everything reflects.
+    EXPECT_EQ(optics::fresnel_dielectric(std::cos(glm::radians(45.0f)), 1.5f, 1.0f), 1.0f);
+    // Grazing incidence reflects (almost) everything.
+    EXPECT_NEAR(optics::fresnel_dielectric(0.0f, 1.0f, 1.33f), 1.0f, 1e-6f);
+}
+
+TEST(Optics, ConductorFresnelRisesToOneAtGrazing) {
+    const glm::vec3 brass(0.91f, 0.78f, 0.42f);
+    const glm::vec3 normal = optics::fresnel_conductor(1.0f, brass);
+    EXPECT_NEAR(normal.b, 0.42f, 1e-6f);
+    const glm::vec3 grazing = optics::fresnel_conductor(0.0f, brass);
+    EXPECT_NEAR(grazing.b, 1.0f, 1e-6f);
+}
+
+TEST(Halton, RadicalInverseDigitsAndStratification) {
+    EXPECT_DOUBLE_EQ(radical_inverse(2, 1), 0.5);
+    EXPECT_DOUBLE_EQ(radical_inverse(2, 6), 0.375);      // 110b -> 0.011b
+    EXPECT_DOUBLE_EQ(radical_inverse(3, 5), 7.0 / 9.0);  // 12_3 -> 0.21_3
+    // The first 2^k points of base 2 fall one in each interval of width 2^-k.
+    std::vector<int> cells(64, 0);
+    for (std::uint64_t i = 0; i < 64; ++i) {
+        cells[static_cast<std::size_t>(radical_inverse(2, i) * 64.0)] += 1;
+    }
+    for (int count : cells) {
+        EXPECT_EQ(count, 1);
+    }
+}
+
+}  // namespace

@@ -1,0 +1,162 @@
+// The photon engine fed by the ECS: locality in two-rooms, light changes, determinism of a
+// whole level.
+
+#include <set>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "luxel/ecs/transform_system.hpp"
+#include "luxel/lighting/components.hpp"
+#include "luxel/lighting/core/animation_system.hpp"
+#include "luxel/lighting/core/photon_world.hpp"
+#include "luxel/lighting/core/scene_instance.hpp"
+#include "luxel/runtime/scene/gltf.hpp"
+
+namespace {
+
+using namespace luxel;
+
+std::shared_ptr<const scene::Scene> load_level(const std::string& name) {
+    return std::make_shared<scene::Scene>(scene::load_gltf(
+        std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" / "levels" / (name + ".glb")));
+}
+
+/// A 0.4 m diffuse cube as a one-mesh scene, for adding a moving object to a level.
+std::shared_ptr<const scene::Scene> cube_scene() {
+    auto s = std::make_shared<scene::Scene>();
+    scene::Material grey;
+    grey.metallic = 0.0f;
+    grey.base_color = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);
+    s->materials.push_back(grey);
+    scene::Primitive p;
+    const float h = 0.2f;
+    const glm::vec3 c[8] = {{-h, -h, -h}, {h, -h, -h}, {h, h, -h}, {-h, h, -h},
+                            {-h, -h, h},  {h, -h, h},  {h, h, h},  {-h, h, h}};
+    const int faces[6][4] = {{3, 2, 1, 0}, {4, 5, 6, 7}, {0, 4, 7, 3},
+                             {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}};
+    for (const auto& face : faces) {
+        const auto base = static_cast<std::uint32_t>(p.positions.size());
+        for (int k = 0; k < 4; ++k) {
+            p.positions.push_back(c[face[k]]);
+        }
+        p.indices.insert(p.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+    p.material = 0;
+    s->meshes.push_back({"cube", {p}});
+    return s;
+}
+
+struct Level {
+    ecs::Registry registry;
+    lighting::SceneInstance instance;
+    ecs::TransformSystem transforms{registry};
+    std::unique_ptr<lighting::PhotonWorld> photons;
+    JobSystem jobs{2};
+
+    explicit Level(const std::string& name) {
+        lighting::InstantiateOptions options;
+        options.play_animations = false;
+        instance = lighting::instantiate(registry, load_level(name), options);
+    }
+    void start() {
+        transforms.update();
+        photons = std::make_unique<lighting::PhotonWorld>(registry);
+        photons->sync();
+        photons->update(0, jobs);
+    }
+    void step() {
+        transforms.update();
+        photons->sync();
+    }
+    /// Runs the probes of frames 0 .. M-1 and returns the lights whose groups diverged.
+    std::set<ecs::Entity> probe_full_cycle() {
+        for (std::uint64_t frame = 0; frame < 40; ++frame) {
+            photons->probe(frame, jobs);
+        }
+        std::set<ecs::Entity> lights;
+        for (std::uint32_t group : photons->pending_groups()) {
+            lights.insert(photons->light_of_group(group));
+        }
+        return lights;
+    }
+};
+
+TEST(PhotonLocality, TwoRoomsClosedDoorKeepsChangesInTheirRoom) {
+    Level level("two-rooms");
+    const ecs::Entity cube = level.registry.create();
+    level.registry.emplace<lighting::MeshInstance>(cube, cube_scene(), 0);
+    level.registry.emplace<lighting::Dynamic>(cube);
+    level.registry.emplace<ecs::Transform>(cube, glm::vec3(-2.4f, 0.2f, -0.5f));
+    level.start();
+    ASSERT_TRUE(level.photons->pending_groups().empty());
+    EXPECT_GT(level.photons->photon_map().stored_hit_count(), 10'000u);
+
+    // Nothing moved: a full probe cycle finds nothing.
+    EXPECT_TRUE(level.probe_full_cycle().empty());
+
+    // Move the cube across the west room: only west lights notice.
+    level.registry.patch<ecs::Transform>(cube, [](ecs::Transform& t) {
+        t.translation = {-1.3f, 0.2f, 0.6f};
+    });
+    level.step();
+    const auto noticed = level.probe_full_cycle();
+    ASSERT_FALSE(noticed.empty());
+    for (ecs::Entity light : noticed) {
+        const float x = level.registry.get<ecs::WorldTransform>(light).position().x;
+        EXPECT_LT(x, 0.0f) << level.registry.get<lighting::Name>(light).value
+                           << " in the east room noticed a change behind the closed door";
+    }
+    level.photons->retrace_pending(level.jobs);
+
+    // Open the door (t = 4 s of its animation): east lights now see into the west room.
+    auto& player = level.registry.get<lighting::AnimationPlayer>(level.instance.animations.at(0));
+    player.playing = true;
+    lighting::update_animations(level.registry, 4.0);
+    level.step();
+    const auto after_opening = level.probe_full_cycle();
+    bool east_noticed = false;
+    for (ecs::Entity light : after_opening) {
+        east_noticed =
+            east_noticed || level.registry.get<ecs::WorldTransform>(light).position().x > 0.0f;
+    }
+    EXPECT_TRUE(east_noticed);
+}
+
+TEST(PhotonWorldSync, SwitchingALightOffRemovesItsPhotonsAndOnRetracesThem) {
+    Level level("two-rooms");
+    level.start();
+    const std::size_t all_on = level.photons->photon_map().stored_hit_count();
+    const ecs::Entity lamp = level.instance.find("west lamp");
+    level.registry.patch<lighting::PointLight>(lamp,
+                                               [](lighting::PointLight& l) { l.enabled = false; });
+    level.step();
+    const std::size_t one_off = level.photons->photon_map().stored_hit_count();
+    EXPECT_LT(one_off, all_on);
+    EXPECT_TRUE(level.photons->pending_groups().empty());
+    level.registry.patch<lighting::PointLight>(lamp,
+                                               [](lighting::PointLight& l) { l.enabled = true; });
+    level.step();
+    EXPECT_EQ(level.photons->pending_groups().size(), 77u);
+    level.photons->retrace_pending(level.jobs);
+    EXPECT_EQ(level.photons->photon_map().stored_hit_count(), all_on);
+    // Destroying the light entity removes its photons for good.
+    level.registry.destroy(lamp);
+    level.step();
+    EXPECT_EQ(level.photons->photon_map().stored_hit_count(), one_off);
+}
+
+TEST(PhotonWorldSync, AMovingLightInvalidatesAllItsGroupsEveryFrame) {
+    Level level("cornell");
+    level.start();
+    const ecs::Entity light = level.instance.find("ceiling light");
+    for (int frame = 1; frame <= 3; ++frame) {
+        level.registry.patch<ecs::Transform>(
+            light, [&](ecs::Transform& t) { t.translation.x = 0.05f * frame; });
+        level.step();
+        EXPECT_EQ(level.photons->pending_groups().size(), 77u);
+        level.photons->retrace_pending(level.jobs);
+    }
+}
+
+}  // namespace

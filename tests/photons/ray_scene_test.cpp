@@ -1,0 +1,166 @@
+// The Embree ray scene: hits report what the tracer needs, dynamic objects move by transform
+// only, and ray offsets avoid self-intersection at any scene scale.
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "luxel/lighting/core/halton.hpp"
+#include "luxel/lighting/core/ray_scene.hpp"
+#include "luxel/runtime/error.hpp"
+
+namespace {
+
+using namespace luxel::lighting;
+
+/// A square in the plane y = 0 from (-h, 0, -h) to (h, 0, h), facing +y, with light-map UVs
+/// equal to (x, z) mapped to [0, 1].
+TriangleMesh square(float h, std::int32_t surface, std::uint32_t material) {
+    TriangleMesh mesh;
+    mesh.positions = {{-h, 0, h}, {h, 0, h}, {h, 0, -h}, {-h, 0, -h}};
+    mesh.normals = {{0, 1, 0}, {0, 1, 0}, {0, 1, 0}, {0, 1, 0}};
+    mesh.lightmap_uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+    mesh.indices = {0, 1, 2, 0, 2, 3};
+    mesh.surface_ids = {surface, surface};
+    mesh.material_ids = {material, material};
+    return mesh;
+}
+
+TEST(RayScene, HitReportsPositionNormalsSurfaceMaterialAndLightmapUv) {
+    RayScene scene;
+    const ObjectId floor = scene.add_object(square(1.0f, 7, 3), glm::mat4(1.0f), false);
+    scene.commit();
+    const auto hit = scene.intersect({0.5f, 2.0f, -0.5f}, {0.0f, -1.0f, 0.0f});
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_NEAR(hit->distance, 2.0f, 1e-6f);
+    EXPECT_NEAR(hit->position.x, 0.5f, 1e-6f);
+    EXPECT_NEAR(hit->position.y, 0.0f, 1e-6f);
+    EXPECT_NEAR(hit->geometric_normal.y, 1.0f, 1e-6f);
+    EXPECT_NEAR(hit->shading_normal.y, 1.0f, 1e-6f);
+    EXPECT_EQ(hit->surface, 7);
+    EXPECT_EQ(hit->material, 3u);
+    EXPECT_EQ(hit->object, floor);
+    EXPECT_NEAR(hit->lightmap_uv.x, 0.75f, 1e-6f);
+    EXPECT_NEAR(hit->lightmap_uv.y, 0.25f, 1e-6f);
+    EXPECT_FALSE(scene.intersect({0.0f, 2.0f, 0.0f}, {0.0f, 1.0f, 0.0f}).has_value());
+    EXPECT_TRUE(scene.occluded({0.0f, 2.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, 3.0f));
+    EXPECT_FALSE(scene.occluded({0.0f, 2.0f, 0.0f}, {0.0f, -1.0f, 0.0f}, 1.5f));
+}
+
+TEST(RayScene, StaticGeometryIsBakedIntoWorldSpace) {
+    RayScene scene;
+    const glm::mat4 tilt = glm::translate(glm::mat4(1.0f), {0, 1, 0}) *
+                           glm::rotate(glm::mat4(1.0f), glm::half_pi<float>(), {1, 0, 0});
+    scene.add_object(square(1.0f, 0, 0), tilt, false);  // now the plane z = 0 facing +z
+    scene.commit();
+    const auto hit = scene.intersect({0.2f, 1.3f, 5.0f}, {0.0f, 0.0f, -1.0f});
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_NEAR(hit->position.z, 0.0f, 1e-6f);
+    EXPECT_NEAR(hit->geometric_normal.z, 1.0f, 1e-6f);
+    EXPECT_NEAR(hit->shading_normal.z, 1.0f, 1e-6f);
+}
+
+TEST(RayScene, DynamicObjectsMoveWithoutRebuildingStaticGeometry) {
+    RayScene scene;
+    scene.add_object(square(10.0f, 0, 0), glm::mat4(1.0f), false);
+    const ObjectId lid =
+        scene.add_object(square(0.5f, 1, 1), glm::translate(glm::mat4(1.0f), {0, 1, 0}), true);
+    scene.commit();
+    EXPECT_EQ(scene.static_rebuilds(), 1u);
+    auto hit = scene.intersect({0.0f, 5.0f, 0.0f}, {0.0f, -1.0f, 0.0f});
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->object, lid);
+    EXPECT_NEAR(hit->position.y, 1.0f, 1e-6f);
+
+    // Move it aside: the ray now reaches the floor; only the top level was recommitted.
+    for (int frame = 0; frame < 10; ++frame) {
+        scene.set_transform(lid,
+                            glm::translate(glm::mat4(1.0f), {3.0f, 1.0f + 0.1f * frame, 0.0f}));
+        scene.commit();
+    }
+    hit = scene.intersect({0.0f, 5.0f, 0.0f}, {0.0f, -1.0f, 0.0f});
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->surface, 0);
+    EXPECT_EQ(scene.static_rebuilds(), 1u);
+    EXPECT_EQ(scene.top_level_commits(), 11u);
+    // A rotated and scaled instance reports world-space normals.
+    scene.set_transform(lid, glm::translate(glm::mat4(1.0f), {0, 2, 0}) *
+                                 glm::rotate(glm::mat4(1.0f), glm::pi<float>(), {1, 0, 0}) *
+                                 glm::scale(glm::mat4(1.0f), {2.0f, 1.0f, 0.5f}));
+    scene.commit();
+    hit = scene.intersect({0.0f, 5.0f, 0.0f}, {0.0f, -1.0f, 0.0f});
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->object, lid);
+    EXPECT_NEAR(hit->geometric_normal.y, -1.0f, 1e-5f);  // flipped over: faces down
+    EXPECT_NEAR(glm::length(hit->shading_normal), 1.0f, 1e-5f);
+    EXPECT_THROW(scene.set_transform(0, glm::mat4(1.0f)), luxel::Error);
+
+    scene.remove_object(lid);
+    scene.commit();
+    hit = scene.intersect({0.0f, 5.0f, 0.0f}, {0.0f, -1.0f, 0.0f});
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->surface, 0);
+}
+
+TEST(RayScene, MalformedMeshesAreRejected) {
+    RayScene scene;
+    TriangleMesh mesh = square(1.0f, 0, 0);
+    mesh.indices.push_back(9);
+    EXPECT_THROW(scene.add_object(mesh, glm::mat4(1.0f), false), luxel::Error);
+    mesh = square(1.0f, 0, 0);
+    mesh.surface_ids.pop_back();
+    EXPECT_THROW(scene.add_object(mesh, glm::mat4(1.0f), true), luxel::Error);
+    mesh = square(1.0f, 0, 0);
+    mesh.positions[0].x = NAN;
+    EXPECT_THROW(scene.add_object(mesh, glm::mat4(1.0f), false), luxel::Error);
+}
+
+/// From many points of a plane, rays leave at every angle (down to 0.1 degrees from grazing)
+/// after offset_ray_origin: none may hit the plane it left, at scene scales from a millimetre
+/// to ten kilometres, and a ray sent back through the plane (side -1) must not re-hit it either.
+class RayOffsetAtScale : public ::testing::TestWithParam<float> {};
+
+TEST_P(RayOffsetAtScale, LeavingRaysNeverHitTheirOwnSurface) {
+    const float scale = GetParam();
+    RayScene scene;
+    // A tilted plane far from the origin, so coordinates have large magnitudes.
+    const glm::mat4 placement =
+        glm::translate(glm::mat4(1.0f), glm::vec3(3.7f, -2.1f, 5.3f) * scale) *
+        glm::rotate(glm::mat4(1.0f), 0.4f, glm::normalize(glm::vec3(1, 0.2f, 0.5f)));
+    scene.add_object(square(scale, 0, 0), placement, false);
+    scene.commit();
+    const glm::vec3 normal = glm::normalize(glm::vec3(placement * glm::vec4(0, 1, 0, 0)));
+    const glm::vec3 tangent = glm::normalize(glm::vec3(placement * glm::vec4(1, 0, 0, 0)));
+    const glm::vec3 bitangent = glm::cross(normal, tangent);
+    int self_hits = 0;
+    int tested = 0;
+    for (std::uint64_t i = 1; i <= 2000; ++i) {
+        const glm::dvec2 u = halton2(i);
+        // A point on the plane found by a ray from above, as the tracer would find it.
+        const glm::vec3 target =
+            glm::vec3(placement * glm::vec4((float(u.x) - 0.5f) * 1.8f * scale, 0.0f,
+                                            (float(u.y) - 0.5f) * 1.8f * scale, 1.0f));
+        const auto hit = scene.intersect(target + normal * scale, -normal);
+        ASSERT_TRUE(hit);
+        // Leave at an elevation from 0.1 to 90 degrees, on both sides.
+        const float elevation = glm::radians(0.1f + 89.9f * float(radical_inverse(5, i)));
+        const float azimuth = glm::two_pi<float>() * float(radical_inverse(7, i));
+        const glm::vec3 along = std::cos(azimuth) * tangent + std::sin(azimuth) * bitangent;
+        for (float side : {1.0f, -1.0f}) {
+            const glm::vec3 direction =
+                std::cos(elevation) * along + side * std::sin(elevation) * normal;
+            const glm::vec3 origin = offset_ray_origin(hit->position, hit->geometric_normal, side);
+            ++tested;
+            self_hits += scene.intersect(origin, direction).has_value() ? 1 : 0;
+            // The offset is small against the scene: well under a millionth of its size.
+            ASSERT_LT(glm::length(origin - hit->position), 1e-4f * scale);
+        }
+    }
+    EXPECT_EQ(self_hits, 0) << "of " << tested << " rays at scale " << scale;
+}
+
+INSTANTIATE_TEST_SUITE_P(Scales, RayOffsetAtScale, ::testing::Values(1e-3f, 1.0f, 1e4f));
+
+}  // namespace
