@@ -122,30 +122,21 @@ CausticEmitter::CausticEmitter(const LightSource& light, const BoundingSphere& g
             break;
         }
         case LightKind::Area: {
-            double area = 0.0;
-            for (std::size_t t = 0; t + 2 < light.triangles.size(); t += 3) {
-                const glm::vec3& a = light.triangles[t];
-                const glm::vec3& b = light.triangles[t + 1];
-                const glm::vec3& c = light.triangles[t + 2];
-                const glm::vec3 cross = glm::cross(b - a, c - a);
-                const float length = glm::length(cross);
-                area += 0.5 * static_cast<double>(length);
-                triangles_.insert(triangles_.end(), {a, b, c});
-                normals_.push_back(length > 0.0f ? cross / length : glm::vec3(0.0f));
-                triangle_cdf_.push_back(area);
+            area_ = TriangleSampler(light.triangles);
+            const double area = area_.area();
+            for (std::size_t t = 0; t < area_.size(); ++t) {
                 // The light reaches the generator if the sphere is not wholly behind some
                 // triangle's emitting side.
-                if (length > 0.0f &&
-                    glm::dot(generator.centre - a, cross / length) > -generator.radius) {
+                const glm::vec3& normal = area_.normals()[t];
+                if (glm::dot(normal, normal) > 0.0f &&
+                    glm::dot(generator.centre - area_.vertices()[3 * t], normal) >
+                        -generator.radius) {
                     reaches_ = true;
                 }
             }
             if (!(area > 0.0)) {
                 reaches_ = false;
                 return;
-            }
-            for (double& c : triangle_cdf_) {
-                c /= area;
             }
             power_scale_ = light.power * static_cast<float>(area);
             break;
@@ -188,25 +179,11 @@ EmittedPhoton CausticEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
             break;
         }
         case LightKind::Area: {
-            // Triangle by area with p.x, its remainder and p.y for the point (folded into the
-            // triangle), as PhotonEmitter does.
-            const auto found = std::upper_bound(triangle_cdf_.begin(), triangle_cdf_.end(), p.x);
-            const std::size_t t = std::min<std::size_t>(
-                static_cast<std::size_t>(found - triangle_cdf_.begin()), triangle_cdf_.size() - 1);
-            const double low = t == 0 ? 0.0 : triangle_cdf_[t - 1];
-            const double width = triangle_cdf_[t] - low;
-            double s = width > 0.0 ? std::clamp((p.x - low) / width, 0.0, 1.0) : 0.0;
-            double q = p.y;
-            if (s + q > 1.0) {
-                s = 1.0 - s;
-                q = 1.0 - q;
-            }
-            const glm::vec3& a = triangles_[3 * t];
-            const glm::vec3& b = triangles_[3 * t + 1];
-            const glm::vec3& c = triangles_[3 * t + 2];
-            const glm::vec3 point =
-                a + static_cast<float>(s) * (b - a) + static_cast<float>(q) * (c - a);
-            const glm::vec3& normal = normals_[t];
+            // A point on the light by area (as PhotonEmitter picks it), then a direction in
+            // the cone from that point toward the generator.
+            const TriangleSampler::Sample on_light = area_.sample(p);
+            const glm::vec3 point = on_light.point;
+            const glm::vec3& normal = on_light.normal;
             const DirectionCone toward = cone_toward(point, generator_);
             photon.direction = direction_in_cone(toward, d);
             photon.origin = offset_ray_origin(point, normal);

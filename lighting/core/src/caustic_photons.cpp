@@ -96,7 +96,8 @@ std::optional<CausticPhoton> trace_caustic_photon(const RayScene& scene,
         }
         const TraceMaterial& material =
             hit->material < materials.size() ? materials[hit->material] : fallback;
-        const bool front = glm::dot(hit->geometric_normal, direction) < 0.0f;
+        const FacingNormals normals = facing_normals(*hit, direction);
+        const bool front = normals.front;
 
         if (material.scattering == Scattering::Diffuse) {
             if (specular == 0) {
@@ -117,34 +118,10 @@ std::optional<CausticPhoton> trace_caustic_photon(const RayScene& scene,
             return std::nullopt;
         }
         ++specular;
-        const glm::vec3 facing_geometric = front ? hit->geometric_normal : -hit->geometric_normal;
-        glm::vec3 facing_shading = front ? hit->shading_normal : -hit->shading_normal;
-        if (glm::dot(facing_shading, facing_geometric) <= 0.0f) {
-            facing_shading = facing_geometric;  // interpolated normal bent past the face
-        }
-        const float cos_incident = std::clamp(-glm::dot(direction, facing_shading), 0.0f, 1.0f);
-        if (material.scattering == Scattering::Mirror) {
-            power *= optics::fresnel_conductor(cos_incident, material.tint);
-            direction = optics::reflect(direction, facing_shading);
-            origin = offset_ray_origin(hit->position, facing_geometric);
-        } else {
-            // Entering through the front face means going from air into the medium.
-            const float eta_from = front ? 1.0f : material.ior;
-            const float eta_to = front ? material.ior : 1.0f;
-            const float reflectance = optics::fresnel_dielectric(cos_incident, eta_from, eta_to);
-            const double xi = photon_sample(sample_index, dim++, seed);
-            const auto refracted = optics::refract(direction, facing_shading, eta_from, eta_to);
-            if (!refracted || xi < static_cast<double>(reflectance)) {
-                // Total internal reflection, or the Fresnel-weighted choice of reflection: the
-                // choice keeps the photon's power, so the expected power splits as R : 1 - R.
-                direction = optics::reflect(direction, facing_shading);
-                origin = offset_ray_origin(hit->position, facing_geometric);
-            } else {
-                direction = *refracted;
-                power *= material.tint;
-                origin = offset_ray_origin(hit->position, facing_geometric, -1.0f);
-            }
-        }
+        const double xi = material.scattering == Scattering::Dielectric
+                              ? photon_sample(sample_index, dim++, seed)
+                              : 0.0;
+        scatter_specular(material, *hit, normals, xi, origin, direction, power);
         // A black mirror or a black tint leaves nothing to carry.
         if (!has_power(power)) {
             ++counters.absorbed;

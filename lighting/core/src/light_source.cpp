@@ -37,6 +37,45 @@ glm::vec3 cone_direction(const glm::vec3& axis, float angle, const glm::dvec2& u
 
 }  // namespace
 
+TriangleSampler::TriangleSampler(std::vector<glm::vec3> triangles)
+    : vertices_(std::move(triangles)) {
+    if (vertices_.size() % 3 != 0) {
+        throw Error("TriangleSampler: triangles need three vertices each");
+    }
+    for (std::size_t t = 0; t < vertices_.size(); t += 3) {
+        const glm::vec3 cross =
+            glm::cross(vertices_[t + 1] - vertices_[t], vertices_[t + 2] - vertices_[t]);
+        const float length = glm::length(cross);
+        area_ += 0.5 * static_cast<double>(length);
+        normals_.push_back(length > 0.0f ? cross / length : glm::vec3(0.0f));
+        cdf_.push_back(area_);
+    }
+    for (double& c : cdf_) {
+        c = area_ > 0.0 ? c / area_ : 0.0;
+    }
+}
+
+TriangleSampler::Sample TriangleSampler::sample(const glm::dvec2& p) const {
+    if (cdf_.empty()) {
+        return {};
+    }
+    const auto found = std::upper_bound(cdf_.begin(), cdf_.end(), p.x);
+    const std::size_t t =
+        std::min<std::size_t>(static_cast<std::size_t>(found - cdf_.begin()), cdf_.size() - 1);
+    const double low = t == 0 ? 0.0 : cdf_[t - 1];
+    const double width = cdf_[t] - low;
+    double s = width > 0.0 ? std::clamp((p.x - low) / width, 0.0, 1.0) : 0.0;
+    double q = p.y;
+    if (s + q > 1.0) {  // fold the far half of the parallelogram back into the triangle
+        s = 1.0 - s;
+        q = 1.0 - q;
+    }
+    const glm::vec3& a = vertices_[3 * t];
+    const glm::vec3& b = vertices_[3 * t + 1];
+    const glm::vec3& c = vertices_[3 * t + 2];
+    return {a + static_cast<float>(s) * (b - a) + static_cast<float>(q) * (c - a), normals_[t], t};
+}
+
 void orthonormal_basis(const glm::vec3& n, glm::vec3& tangent, glm::vec3& bitangent) {
     // Duff et al.'s branchless construction: continuous except at n.z = -1 exactly.
     const float sign = std::copysign(1.0f, n.z);
@@ -70,20 +109,8 @@ PhotonEmitter::PhotonEmitter(LightSource light, const BoundingSphere& scene_boun
             total_power_ = light_.power * pi * bounds_.radius * bounds_.radius;
             break;
         case LightKind::Area: {
-            if (light_.triangles.size() % 3 != 0) {
-                throw Error("PhotonEmitter: area light triangles need three vertices each");
-            }
-            double area = 0.0;
-            for (std::size_t t = 0; t < light_.triangles.size(); t += 3) {
-                area += 0.5 * static_cast<double>(glm::length(
-                                  glm::cross(light_.triangles[t + 1] - light_.triangles[t],
-                                             light_.triangles[t + 2] - light_.triangles[t])));
-                triangle_cdf_.push_back(area);
-            }
-            for (double& c : triangle_cdf_) {
-                c = area > 0.0 ? c / area : 0.0;
-            }
-            // A Lambertian emitter of radiance L and area A emits pi L A.
+            area_ = TriangleSampler(light_.triangles);
+            const double area = area_.area();
             total_power_ = light_.power * (pi * static_cast<float>(area));
             break;
         }
@@ -129,24 +156,10 @@ EmittedPhoton PhotonEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
             break;
         }
         case LightKind::Area: {
-            // Pick a triangle by area with p.x, reuse the remainder of p.x and p.y for the
-            // point, and d for the cosine-distributed direction.
-            const auto found = std::upper_bound(triangle_cdf_.begin(), triangle_cdf_.end(), p.x);
-            const std::size_t t = std::min<std::size_t>(
-                static_cast<std::size_t>(found - triangle_cdf_.begin()), triangle_cdf_.size() - 1);
-            const double low = t == 0 ? 0.0 : triangle_cdf_[t - 1];
-            const double width = triangle_cdf_[t] - low;
-            double s = width > 0.0 ? (p.x - low) / width : 0.0;
-            double q = p.y;
-            if (s + q > 1.0) {
-                s = 1.0 - s;
-                q = 1.0 - q;
-            }
-            const glm::vec3& a = light_.triangles[3 * t];
-            const glm::vec3& b = light_.triangles[3 * t + 1];
-            const glm::vec3& c = light_.triangles[3 * t + 2];
-            photon.origin = a + static_cast<float>(s) * (b - a) + static_cast<float>(q) * (c - a);
-            const glm::vec3 normal = glm::normalize(glm::cross(b - a, c - a));
+            // p places the point on the light, d picks the cosine-distributed direction.
+            const TriangleSampler::Sample on_light = area_.sample(p);
+            photon.origin = on_light.point;
+            const glm::vec3 normal = on_light.normal;
             photon.direction = cosine_direction(normal, d);
             photon.origin = offset_ray_origin(photon.origin, normal);
             break;

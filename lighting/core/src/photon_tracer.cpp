@@ -50,6 +50,42 @@ TraceCounters& TraceCounters::operator+=(const TraceCounters& other) {
     return *this;
 }
 
+FacingNormals facing_normals(const RayHit& hit, const glm::vec3& direction) {
+    FacingNormals normals;
+    normals.front = glm::dot(hit.geometric_normal, direction) < 0.0f;
+    normals.geometric = normals.front ? hit.geometric_normal : -hit.geometric_normal;
+    normals.shading = normals.front ? hit.shading_normal : -hit.shading_normal;
+    if (glm::dot(normals.shading, normals.geometric) <= 0.0f) {
+        normals.shading = normals.geometric;  // interpolated normal bent past the face
+    }
+    return normals;
+}
+
+void scatter_specular(const TraceMaterial& material, const RayHit& hit,
+                      const FacingNormals& normals, double xi, glm::vec3& origin,
+                      glm::vec3& direction, glm::vec3& power) {
+    const float cos_incident = std::clamp(-glm::dot(direction, normals.shading), 0.0f, 1.0f);
+    if (material.scattering == Scattering::Mirror) {
+        power *= optics::fresnel_conductor(cos_incident, material.tint);
+        direction = optics::reflect(direction, normals.shading);
+        origin = offset_ray_origin(hit.position, normals.geometric);
+        return;
+    }
+    // Arriving on the front face means going from air into the medium.
+    const float eta_from = normals.front ? 1.0f : material.ior;
+    const float eta_to = normals.front ? material.ior : 1.0f;
+    const float reflectance = optics::fresnel_dielectric(cos_incident, eta_from, eta_to);
+    const auto refracted = optics::refract(direction, normals.shading, eta_from, eta_to);
+    if (!refracted || xi < static_cast<double>(reflectance)) {
+        direction = optics::reflect(direction, normals.shading);
+        origin = offset_ray_origin(hit.position, normals.geometric);
+    } else {
+        direction = *refracted;
+        power *= material.tint;
+        origin = offset_ray_origin(hit.position, normals.geometric, -1.0f);
+    }
+}
+
 void trace_photon(const RayScene& scene, std::span<const TraceMaterial> materials,
                   const EmittedPhoton& photon, std::uint64_t index, std::uint32_t seed,
                   const TraceLimits& limits, std::vector<TracedHop>& hops,
@@ -76,12 +112,10 @@ void trace_photon(const RayScene& scene, std::span<const TraceMaterial> material
         const TraceMaterial fallback{};
         const TraceMaterial& material =
             hit->material < materials.size() ? materials[hit->material] : fallback;
-        const bool front = glm::dot(hit->geometric_normal, direction) < 0.0f;
-        const glm::vec3 facing_geometric = front ? hit->geometric_normal : -hit->geometric_normal;
-        glm::vec3 facing_shading = front ? hit->shading_normal : -hit->shading_normal;
-        if (glm::dot(facing_shading, facing_geometric) <= 0.0f) {
-            facing_shading = facing_geometric;  // interpolated normal bent past the face
-        }
+        const FacingNormals normals = facing_normals(*hit, direction);
+        const bool front = normals.front;
+        const glm::vec3& facing_geometric = normals.geometric;
+        const glm::vec3& facing_shading = normals.shading;
 
         if (material.scattering == Scattering::Diffuse) {
             if (!front) {
@@ -113,26 +147,9 @@ void trace_photon(const RayScene& scene, std::span<const TraceMaterial> material
 
         // Specular: follow it, and note the hop so probes notice when the object moves.
         hops.push_back({hit->position, power, -1, hit->object, bounces});
-        const float cos_incident = std::clamp(-glm::dot(direction, facing_shading), 0.0f, 1.0f);
-        if (material.scattering == Scattering::Mirror) {
-            power *= optics::fresnel_conductor(cos_incident, material.tint);
-            direction = optics::reflect(direction, facing_shading);
-            origin = offset_ray_origin(hit->position, facing_geometric);
-        } else {
-            const float eta_from = front ? 1.0f : material.ior;
-            const float eta_to = front ? material.ior : 1.0f;
-            const float reflectance = optics::fresnel_dielectric(cos_incident, eta_from, eta_to);
-            const double xi = photon_sample(index, dim++, seed);
-            const auto refracted = optics::refract(direction, facing_shading, eta_from, eta_to);
-            if (!refracted || xi < static_cast<double>(reflectance)) {
-                direction = optics::reflect(direction, facing_shading);
-                origin = offset_ray_origin(hit->position, facing_geometric);
-            } else {
-                direction = *refracted;
-                power *= material.tint;
-                origin = offset_ray_origin(hit->position, facing_geometric, -1.0f);
-            }
-        }
+        const double xi =
+            material.scattering == Scattering::Dielectric ? photon_sample(index, dim++, seed) : 0.0;
+        scatter_specular(material, *hit, normals, xi, origin, direction, power);
         if (!(power.r > 0.0f || power.g > 0.0f || power.b > 0.0f)) {
             return;
         }

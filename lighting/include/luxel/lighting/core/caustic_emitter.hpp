@@ -83,9 +83,7 @@ class CausticEmitter {
     float beam_radius_ = 0.0f;
     // Area: the generator and the light's triangles with their area CDF and unit normals.
     BoundingSphere generator_;
-    std::vector<glm::vec3> triangles_;
-    std::vector<glm::vec3> normals_;
-    std::vector<double> triangle_cdf_;
+    TriangleSampler area_;  // area lights
 };
 
 }  // namespace luxel::lighting

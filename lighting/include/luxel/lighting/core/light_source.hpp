@@ -37,6 +37,34 @@ struct BoundingSphere {
     float radius = 1.0f;
 };
 
+/// Points on a set of triangles chosen in proportion to area: the emitting surface of an area
+/// light. Shared by global and caustic photon emission.
+class TriangleSampler {
+  public:
+    TriangleSampler() = default;
+    /// `triangles` holds three world-space vertices per triangle (throws luxel::Error if not).
+    explicit TriangleSampler(std::vector<glm::vec3> triangles);
+
+    struct Sample {
+        glm::vec3 point{0.0f};
+        glm::vec3 normal{0.0f};  ///< unit normal of the emitting side (zero for a degenerate one)
+        std::size_t triangle = 0;
+    };
+    /// A point uniformly distributed over the total area: p.x picks the triangle by area and,
+    /// rescaled, joins p.y to place the point (folded into the triangle).
+    [[nodiscard]] Sample sample(const glm::dvec2& p) const;
+    [[nodiscard]] double area() const { return area_; }
+    [[nodiscard]] std::size_t size() const { return normals_.size(); }
+    [[nodiscard]] const std::vector<glm::vec3>& vertices() const { return vertices_; }
+    [[nodiscard]] const std::vector<glm::vec3>& normals() const { return normals_; }
+
+  private:
+    std::vector<glm::vec3> vertices_;
+    std::vector<glm::vec3> normals_;
+    std::vector<double> cdf_;  // cumulative area, normalised to 1
+    double area_ = 0.0;
+};
+
 /// Maps QMC samples to photons for one light. Every photon of a light carries power
 /// total_power() / photon_count (times the spot falloff at its direction), so the photons of a
 /// light sum to its flux exactly.
@@ -58,7 +86,7 @@ class PhotonEmitter {
     LightSource light_;
     BoundingSphere bounds_;
     glm::vec3 total_power_{0.0f};
-    std::vector<double> triangle_cdf_;  // area lights: cumulative area, normalised to 1
+    TriangleSampler area_;  // area lights
 };
 
 /// An orthonormal basis around n: (tangent, bitangent, n).

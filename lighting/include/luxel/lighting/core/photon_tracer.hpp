@@ -32,6 +32,23 @@ struct TraceMaterial {
 /// groups); a hash beyond, for very long paths. Deterministic and independent of threads.
 [[nodiscard]] double photon_sample(std::uint64_t index, std::uint32_t dim, std::uint32_t seed);
 
+/// The normals at a hit turned toward the side the ray arrived from.
+struct FacingNormals {
+    bool front = true;  ///< the ray hit the side the triangle's winding faces
+    glm::vec3 geometric{0.0f};
+    glm::vec3 shading{0.0f};  ///< never bent past the face: falls back to `geometric`
+};
+[[nodiscard]] FacingNormals facing_normals(const RayHit& hit, const glm::vec3& direction);
+
+/// One specular interaction, shared by global and caustic photons: a mirror reflects with
+/// Schlick's conductor Fresnel on `power`; a dielectric reflects when `xi` falls below the
+/// Fresnel reflectance (or on total internal reflection) and refracts otherwise, tinting the
+/// transmitted power, so the expected power splits R : 1 - R. Updates origin (offset off the
+/// surface on the right side), direction and power.
+void scatter_specular(const TraceMaterial& material, const RayHit& hit,
+                      const FacingNormals& normals, double xi, glm::vec3& origin,
+                      glm::vec3& direction, glm::vec3& power);
+
 struct TraceLimits {
     /// A path stops after this many interactions whatever Russian roulette says (a guard for
     /// albedo 1; counted as truncated).
