@@ -1,0 +1,148 @@
+// The luxel-prep executable: its command line, report, page pictures, errors that name the
+// file or flag at fault, and output that does not depend on --threads.
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "luxel/runtime/image.hpp"
+#include "luxel/runtime/scene/gltf.hpp"
+#include "prep_test_support.hpp"
+#include "temp_dir.hpp"
+
+namespace {
+
+using namespace luxel;
+
+struct CommandResult {
+    int exit_code = -1;
+    std::string output;  ///< stdout and stderr together
+};
+
+CommandResult luxel_prep(const std::string& arguments) {
+    const std::string command =
+        std::string("'") + LUXEL_PREP_EXECUTABLE + "' " + arguments + " 2>&1";
+    CommandResult run;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (pipe == nullptr) {
+        return run;
+    }
+    std::array<char, 4096> chunk{};
+    while (std::fgets(chunk.data(), static_cast<int>(chunk.size()), pipe) != nullptr) {
+        run.output += chunk.data();
+    }
+    const int status = pclose(pipe);
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return run;
+}
+
+std::string quoted(const std::filesystem::path& path) {
+    return "'" + path.string() + "'";
+}
+
+std::vector<char> read_bytes(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(PrepCli, PreparesALevelAndWritesTheReportAndPagePictures) {
+    luxel::testing::TempDir dir("luxel-prep-cli");
+    const auto output = dir / "cornell.glb";
+    const auto report = dir / "cornell.json";
+    const CommandResult run =
+        luxel_prep(quoted(luxel::testing::level_file("cornell")) + " -o " + quoted(output) +
+                   " --texel-size 0.05 --crease-deg 45 --padding 1 --report " + quoted(report));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_NE(run.output.find("packing efficiency"), std::string::npos) << run.output;
+    // Not a terminal: no progress bar, no carriage returns.
+    EXPECT_EQ(run.output.find('\r'), std::string::npos);
+
+    const scene::Scene prepared = scene::load_gltf(output);
+    EXPECT_TRUE(luxel::testing::check_light_map_pages(prepared, 1).failures.empty());
+
+    std::ifstream in(report);
+    const nlohmann::json json = nlohmann::json::parse(in);
+    for (const char* key : {"surfaces", "charts", "texels", "pages", "page_size",
+                            "packing_efficiency", "stretch", "stage_ms", "nodes", "repairs"}) {
+        EXPECT_TRUE(json.contains(key)) << key;
+    }
+    EXPECT_GE(json["packing_efficiency"].get<double>(), 0.7);
+    EXPECT_LE(json["stretch"]["max"].get<double>(), 1.5);
+    for (const char* stage :
+         {"load", "geometry", "surfaces", "charts", "packing", "output", "save"}) {
+        EXPECT_TRUE(json["stage_ms"].contains(stage)) << stage;
+    }
+    const int pages = json["pages"].get<int>();
+    ASSERT_GE(pages, 1);
+    for (int page = 0; page < pages; ++page) {
+        const auto picture = dir / ("cornell.page" + std::to_string(page) + ".png");
+        ASSERT_TRUE(std::filesystem::exists(picture)) << picture;
+        const Image8 image = read_png(picture);
+        EXPECT_GE(image.width, json["page_size"].get<int>());
+        EXPECT_EQ(image.width, image.height);
+    }
+}
+
+TEST(PrepCli, OutputDoesNotDependOnThreads) {
+    luxel::testing::TempDir dir("luxel-prep-cli");
+    for (const std::string threads : {"1", "2"}) {
+        const CommandResult run =
+            luxel_prep(quoted(luxel::testing::level_file("two-rooms")) + " -o " +
+                       quoted(dir / ("out" + threads + ".glb")) + " --threads " + threads);
+        ASSERT_EQ(run.exit_code, 0) << run.output;
+    }
+    EXPECT_TRUE(read_bytes(dir / "out1.glb") == read_bytes(dir / "out2.glb"));
+}
+
+TEST(PrepCli, BadInputIsAClearErrorNamingTheFile) {
+    luxel::testing::TempDir dir("luxel-prep-cli");
+    const auto missing = dir / "missing.glb";
+    CommandResult run = luxel_prep(quoted(missing) + " -o " + quoted(dir / "out.glb"));
+    EXPECT_EQ(run.exit_code, 1);
+    EXPECT_NE(run.output.find("missing.glb"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("error"), std::string::npos) << run.output;
+
+    const auto garbage = dir / "garbage.glb";
+    std::ofstream(garbage) << "glTF? not really";
+    run = luxel_prep(quoted(garbage) + " -o " + quoted(dir / "out.glb"));
+    EXPECT_EQ(run.exit_code, 1);
+    EXPECT_NE(run.output.find("garbage.glb"), std::string::npos) << run.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.glb"));
+}
+
+TEST(PrepCli, BadFlagsAreClearErrorsNamingTheFlag) {
+    luxel::testing::TempDir dir("luxel-prep-cli");
+    const std::string files =
+        quoted(luxel::testing::level_file("cornell")) + " -o " + quoted(dir / "out.glb");
+    const std::pair<const char*, const char*> cases[] = {
+        {"--texel-size 0", "--texel-size"},   {"--texel-size abc", "--texel-size"},
+        {"--crease-deg 181", "--crease-deg"}, {"--padding -2", "--padding"},
+        {"--page-size 1", "--page-size"},     {"--threads -1", "--threads"},
+    };
+    for (const auto& [flags, mention] : cases) {
+        const CommandResult run = luxel_prep(files + " " + flags);
+        EXPECT_NE(run.exit_code, 0) << flags;
+        EXPECT_NE(run.output.find(mention), std::string::npos) << flags << ": " << run.output;
+    }
+    const CommandResult no_output = luxel_prep(quoted(luxel::testing::level_file("cornell")));
+    EXPECT_NE(no_output.exit_code, 0);
+    EXPECT_NE(no_output.output.find("--output"), std::string::npos) << no_output.output;
+}
+
+TEST(PrepCli, EmptySceneIsPreparedWithAWarning) {
+    luxel::testing::TempDir dir("luxel-prep-cli");
+    const auto empty = dir / "empty.gltf";
+    scene::save_gltf(scene::Scene{}, empty, {.embed_buffers = true});
+    const CommandResult run = luxel_prep(quoted(empty) + " -o " + quoted(dir / "out.glb"));
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_NE(run.output.find("warning"), std::string::npos) << run.output;
+    EXPECT_TRUE(std::filesystem::exists(dir / "out.glb"));
+}
+
+}  // namespace

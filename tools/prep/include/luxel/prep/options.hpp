@@ -1,0 +1,45 @@
+#pragma once
+
+#include <cstddef>
+
+/// luxel-prep: the offline asset-preparation step. It splits every mesh into surfaces (the unit
+/// that owns a photon map, an AIM and an IIM), gives each surface a light-map parameterization
+/// at a uniform texel size, packs the charts into light-map pages and writes the result back as
+/// glTF with TEXCOORD_1 and the surface table of runtime/scene/lightmap_layout.hpp.
+namespace luxel::prep {
+
+struct PrepOptions {
+    /// World size of one texel edge, in metres.
+    double texel_size = 0.05;
+    /// Faces of one material whose normals differ by less than this share a surface (thesis
+    /// 8.1: the shared edge is "connected").
+    double crease_degrees = 45.0;
+    /// Texels of gutter around every chart, on every side, owned by that chart alone: bilinear
+    /// filtering at a chart's edge then reads only the chart's own (dilated) texels.
+    int padding = 1;
+    /// Texels per page edge; 0 picks the size automatically (see auto_page_limit).
+    int page_size = 0;
+    /// Largest page the automatic choice considers. Scenes that do not fit one such page get
+    /// several pages of (about) this size.
+    int auto_page_limit = 2048;
+    /// A surface is split along chart seams (or a chart cut in pieces) when its world area
+    /// exceeds this many texels of texel_size: one surface is one unit of lighting work (an AIM
+    /// rebuild, a photon map), and the scheduler needs those units small enough to fit a frame.
+    double surface_texel_budget = 1024.0;
+    /// Bound on every triangle's area stretch: world area per texel within [1/s, s] times
+    /// texel_size^2.
+    double max_stretch = 1.5;
+    /// Light-map specular materials too (mirrors and glass store no photons, so by default
+    /// their primitives are passed through without a light map).
+    bool lightmap_specular = false;
+    /// Worker threads (0: every hardware thread). The output does not depend on it.
+    int threads = 0;
+    /// Upper bound on the texels a scene may ask for (about 1 GiB of page memory at 4 bytes a
+    /// texel); beyond it luxel-prep stops with an error naming --texel-size.
+    std::size_t max_total_texels = std::size_t{1} << 28;
+};
+
+/// Throws luxel::Error naming the command-line flag of the first invalid option.
+void validate(const PrepOptions& options);
+
+}  // namespace luxel::prep

@@ -1,0 +1,122 @@
+// luxel-prep: splits meshes into surfaces and packs light-map texels.
+//   luxel-prep INPUT.gltf|.glb -o OUTPUT.glb [--texel-size METRES] [--crease-deg A]
+//              [--padding TEXELS] [--page-size N] [--report FILE.json] [--threads N]
+// Writes OUTPUT with TEXCOORD_1 and a surface table per mesh node, prints a summary, and
+// writes one PNG per light-map page next to the report (or next to OUTPUT without --report).
+
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <new>
+#include <string>
+#include <system_error>
+
+#include <CLI/CLI.hpp>
+
+#include "luxel/prep/page_images.hpp"
+#include "luxel/prep/prep.hpp"
+#include "luxel/runtime/clock.hpp"
+#include "luxel/runtime/error.hpp"
+#include "luxel/runtime/jobs.hpp"
+#include "luxel/runtime/scene/gltf.hpp"
+
+namespace {
+
+/// Where the page pictures go: beside the report, named after it, or beside the output.
+std::filesystem::path image_stem(const std::filesystem::path& output,
+                                 const std::filesystem::path& report) {
+    const std::filesystem::path& anchor = report.empty() ? output : report;
+    return anchor.parent_path() / anchor.stem();
+}
+
+int run(int argc, char** argv) {
+    CLI::App app{
+        "luxel-prep: splits meshes into surfaces (crease angle and material), gives them a "
+        "light-map parameterization at a uniform texel size, packs the charts into light-map "
+        "pages and writes the scene back with TEXCOORD_1 and a surface table."};
+    luxel::prep::PrepOptions options;
+    std::filesystem::path input;
+    std::filesystem::path output;
+    std::filesystem::path report_file;
+    app.add_option("input", input, "the scene to prepare (.gltf or .glb)")->required();
+    app.add_option("-o,--output", output, "the prepared scene (.glb or .gltf)")->required();
+    app.add_option("--texel-size", options.texel_size, "metres per light-map texel")
+        ->capture_default_str();
+    app.add_option("--crease-deg", options.crease_degrees,
+                   "faces whose normals differ by less than this share a surface")
+        ->capture_default_str();
+    app.add_option("--padding", options.padding, "texels of gutter around every chart")
+        ->capture_default_str();
+    app.add_option("--page-size", options.page_size,
+                   "texels per light-map page edge (0: the size that wastes least)")
+        ->capture_default_str();
+    app.add_option("--report", report_file,
+                   "write the report as JSON here (page PNGs go beside it)");
+    app.add_option("--threads", options.threads, "worker threads (0: all)")->capture_default_str();
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+
+    luxel::prep::validate(options);
+    luxel::JobSystem jobs(options.threads);
+    luxel::Stopwatch stopwatch;
+    const luxel::scene::Scene scene = luxel::scene::load_gltf(input);
+    const double load_ms = stopwatch.elapsed_ms();
+
+    luxel::prep::TerminalProgress progress;
+    luxel::prep::PrepResult result;
+    try {
+        result = luxel::prep::prepare(scene, options, jobs, &progress);
+    } catch (const luxel::Error& e) {
+        progress.finish();
+        throw luxel::Error(input.string() + ": " + e.what());
+    }
+    luxel::prep::PrepReport& report = result.report;
+    report.input = input.string();
+    report.output = output.string();
+    report.stage_ms.insert(report.stage_ms.begin(), {"load", load_ms});
+
+    stopwatch.restart();
+    luxel::scene::save_gltf(result.scene, output);
+    report.add_stage("save", stopwatch.elapsed_ms());
+
+    stopwatch.restart();
+    const auto images = luxel::prep::write_page_images(result, image_stem(output, report_file));
+    report.add_stage("images", stopwatch.elapsed_ms());
+
+    if (!report_file.empty()) {
+        // Like the page pictures beside it, the report may go to a directory yet to be made.
+        std::error_code ignored;
+        if (report_file.has_parent_path()) {
+            std::filesystem::create_directories(report_file.parent_path(), ignored);
+        }
+        std::ofstream out(report_file);
+        out << luxel::prep::to_json(report).dump(2) << "\n";
+        if (!out) {
+            throw luxel::Error(report_file.string() + ": cannot write the report");
+        }
+    }
+    std::cout << luxel::prep::summary(report);
+    for (const auto& image : images) {
+        std::cout << "  page picture: " << image.string() << "\n";
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const luxel::Error& e) {
+        std::cerr << "luxel-prep: error: " << e.what() << "\n";
+    } catch (const std::bad_alloc&) {
+        std::cerr << "luxel-prep: error: out of memory\n";
+    } catch (const std::exception& e) {
+        std::cerr << "luxel-prep: error: " << e.what() << "\n";
+    }
+    return 1;
+}

@@ -1,0 +1,42 @@
+#include "luxel/prep/options.hpp"
+
+#include <string>
+
+#include "luxel/runtime/error.hpp"
+
+namespace luxel::prep {
+
+void validate(const PrepOptions& options) {
+    if (!(options.texel_size > 1e-6 && options.texel_size <= 1e6)) {
+        throw Error("--texel-size must be a positive number of metres (1e-6 to 1e6), got " +
+                    std::to_string(options.texel_size));
+    }
+    if (!(options.crease_degrees >= 0.0 && options.crease_degrees <= 180.0)) {
+        throw Error("--crease-deg must be within 0..180 degrees, got " +
+                    std::to_string(options.crease_degrees));
+    }
+    if (options.padding < 0 || options.padding > 64) {
+        throw Error("--padding must be within 0..64 texels, got " +
+                    std::to_string(options.padding));
+    }
+    // Page UVs are stored as floats; beyond 8192 texels their rounding reaches a texel's
+    // thousandth, the margin charts keep from their rectangle's border.
+    if (options.page_size != 0 &&
+        (options.page_size < 2 * options.padding + 1 || options.page_size > 8192)) {
+        throw Error("--page-size must be 0 (automatic) or within " +
+                    std::to_string(2 * options.padding + 1) + "..8192 texels, got " +
+                    std::to_string(options.page_size));
+    }
+    if (options.auto_page_limit < 2 * options.padding + 1 || options.auto_page_limit > 8192) {
+        throw Error("the automatic page size limit must be within " +
+                    std::to_string(2 * options.padding + 1) + "..8192 texels");
+    }
+    if (!(options.surface_texel_budget >= 1.0) || !(options.max_stretch > 1.0)) {
+        throw Error("the surface texel budget must be >= 1 and the stretch bound > 1");
+    }
+    if (options.threads < 0) {
+        throw Error("--threads must not be negative, got " + std::to_string(options.threads));
+    }
+}
+
+}  // namespace luxel::prep
