@@ -16,8 +16,10 @@
 ///         "id": 7,                      unique within the scene
 ///         "primitive": 0,               the mesh primitive holding exactly this surface
 ///         "page": 0,                    every chart of a surface lies on this page
-///         "rect": [x, y, w, h],         texel bounds of all its charts (padding excluded)
-///         "charts": [[x, y, w, h], ...],
+///         "rect": [x, y, w, h],         texel bounds of all its charts (padding excluded);
+///                                       rects of different surfaces may overlap
+///         "charts": [[x, y, w, h], ...],  charts (with their padding) never overlap: texel
+///                                       ownership comes from the charts, not the rect
 ///         "area": 1.25,                 world area in m^2
 ///         "texels": 512                 texels covered by its charts
 ///       }, ... ] }
