@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "luxel/lighting/core/optics.hpp"
 #include "luxel/runtime/error.hpp"
 
 namespace luxel::lighting {

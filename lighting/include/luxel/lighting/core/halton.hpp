@@ -27,10 +27,4 @@ namespace luxel::lighting {
     return {radical_inverse(2, index), radical_inverse(3, index)};
 }
 
-/// A 2D point from the bases 5 and 7: a second, independent pair of dimensions (used for the
-/// position on area lights and the scene disc, the first pair picking the direction).
-[[nodiscard]] inline glm::dvec2 halton2_next(std::uint64_t index) {
-    return {radical_inverse(5, index), radical_inverse(7, index)};
-}
-
 }  // namespace luxel::lighting
