@@ -67,6 +67,7 @@ TEST(PhotonDensity, FewerThanNPhotonsUseTheCappedRadiusAndNoneGiveZero) {
     const PhotonDensity density(map, surfaces, PhotonSelection::Full);
     DensitySettings settings;
     settings.max_radius = 0.5f;
+    settings.kernel = DensityKernel::Disc;  // equal weights, so the sum is exact
     const glm::vec3 e = density.irradiance({0.05f, 0.0f, 0.0f}, {0, 1, 0}, settings);
     EXPECT_NEAR(e.r, 3.0f / (glm::pi<float>() * 0.25f), 1e-5f);  // both photons, r = the cap
     // Far away: nothing within the cap.
@@ -103,6 +104,7 @@ TEST(PhotonDensity, TheDiscFilterKeepsAWallOutOfTheFloorAtACorner) {
     EXPECT_GT(e.r, 0.5f);
     DensitySettings no_filter;
     no_filter.disc_thickness = 1e9f;
+    no_filter.kernel = DensityKernel::Disc;
     EXPECT_GT(density.irradiance({0.03f, 0.0f, 0.0f}, {0, 1, 0}, no_filter).r, 10.0f);
 }
 

@@ -250,7 +250,7 @@ TEST(PhotonMapStorage, DeltasCountStoredAndRemovedEnergyAndReset) {
     map.replace_group(0, traced);
     EXPECT_DOUBLE_EQ(map.surface(0).delta_full.value(), 4.5);
     EXPECT_DOUBLE_EQ(map.surface(0).delta_indirect.value(), 1.5);
-    map.reset_deltas(0, false);
+    map.reset_full_delta(0);
     EXPECT_DOUBLE_EQ(map.surface(0).delta_full.value(), 0.0);
     EXPECT_DOUBLE_EQ(map.surface(0).delta_indirect.value(), 1.5);
     map.replace_group(0, traced);  // removes 4.5 and stores 4.5

@@ -53,10 +53,10 @@ std::size_t PhotonDensity::photon_count() const {
     return tree_->photons.size();
 }
 
-glm::vec3 PhotonDensity::irradiance(const glm::vec3& position, const glm::vec3& normal,
+DensitySample PhotonDensity::sample(const glm::vec3& position, const glm::vec3& normal,
                                     const DensitySettings& settings) const {
     if (!tree_->index || settings.nearest == 0 || !(settings.max_radius > 0.0f)) {
-        return glm::vec3(0.0f);
+        return {};
     }
     const std::size_t wanted = std::min<std::size_t>(settings.nearest, tree_->photons.size());
     std::vector<std::uint32_t> indices(wanted);
@@ -76,7 +76,7 @@ glm::vec3 PhotonDensity::irradiance(const glm::vec3& position, const glm::vec3& 
         counted = found - 1;
     }
     if (!(radius_squared > 0.0f)) {
-        return glm::vec3(0.0f);  // all N photons at the query point: no area to divide by
+        return {};  // all N photons at the query point: no area to divide by
     }
     const float slab = settings.disc_thickness * std::sqrt(radius_squared);
     glm::dvec3 total(0.0);
@@ -88,9 +88,24 @@ glm::vec3 PhotonDensity::irradiance(const glm::vec3& position, const glm::vec3& 
         if (std::abs(glm::dot(photon.position - position, normal)) > slab) {
             continue;
         }
-        total += glm::dvec3(photon.power);
+        double weight = 1.0;
+        if (settings.kernel == DensityKernel::Epanechnikov) {
+            // Normalised over the disc: the integral of (1 - d^2/r^2) is pi r^2 / 2.
+            weight = 2.0 * (1.0 - static_cast<double>(distances_squared[k]) /
+                                      static_cast<double>(radius_squared));
+        }
+        total += weight * glm::dvec3(photon.power);
     }
-    return glm::vec3(total / (glm::pi<double>() * static_cast<double>(radius_squared)));
+    return {total, std::sqrt(static_cast<double>(radius_squared))};
+}
+
+glm::vec3 PhotonDensity::irradiance(const glm::vec3& position, const glm::vec3& normal,
+                                    const DensitySettings& settings) const {
+    const DensitySample found = sample(position, normal, settings);
+    if (!(found.radius > 0.0)) {
+        return glm::vec3(0.0f);
+    }
+    return glm::vec3(found.power / (glm::pi<double>() * found.radius * found.radius));
 }
 
 glm::vec3 PhotonDensity::radiance(const glm::vec3& position, const glm::vec3& normal,

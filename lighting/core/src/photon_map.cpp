@@ -134,11 +134,12 @@ bool PhotonMap::diverges(std::uint32_t group, std::uint32_t photon, std::span<co
     return false;
 }
 
-void PhotonMap::reset_deltas(std::uint32_t surface, bool indirect_too) {
+void PhotonMap::reset_full_delta(std::uint32_t surface) {
     surfaces_.at(surface).delta_full.reset();
-    if (indirect_too) {
-        surfaces_[surface].delta_indirect.reset();
-    }
+}
+
+void PhotonMap::reset_indirect_delta(std::uint32_t surface) {
+    surfaces_.at(surface).delta_indirect.reset();
 }
 
 std::size_t PhotonMap::hop_count() const {

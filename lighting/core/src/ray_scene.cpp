@@ -379,6 +379,15 @@ glm::vec3 RayScene::bounds_max() const {
 std::size_t RayScene::object_count() const {
     return impl_->objects.size();
 }
+
+std::vector<ObjectId> RayScene::objects() const {
+    std::vector<ObjectId> ids;
+    ids.reserve(impl_->objects.size());
+    for (const auto& entry : impl_->objects) {
+        ids.push_back(entry.first);
+    }
+    return ids;
+}
 std::size_t RayScene::triangle_count() const {
     std::size_t total = 0;
     for (const auto& [id, object] : impl_->objects) {

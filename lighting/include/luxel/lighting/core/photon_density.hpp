@@ -22,6 +22,16 @@ enum class PhotonSelection {
     IndirectOnly,  ///< hits with at least one diffuse bounce: the indirect part
 };
 
+/// How photons within the radius are weighted.
+enum class DensityKernel {
+    /// Every photon counts fully: E = sum P / (pi r^2), the source's estimate.
+    Disc,
+    /// w = 1 - (d / r)^2, normalised (E = 2 sum w P / (pi r^2)): photons at the rim, whose
+    /// coming and going as r changes is the estimate's main noise, count little. Same mean for
+    /// a linear irradiance field, noticeably less noise (docs/PERFORMANCE.md, maps).
+    Epanechnikov,
+};
+
 struct DensitySettings {
     std::uint32_t nearest = 50;  ///< N
     /// The search radius is capped here (metres): with fewer than N photons within it, the
@@ -31,6 +41,16 @@ struct DensitySettings {
     /// query is at most this fraction of r, so photons on a wall meeting the floor at a corner
     /// do not brighten the floor.
     float disc_thickness = 0.25f;
+    DensityKernel kernel = DensityKernel::Epanechnikov;
+};
+
+/// The raw ingredients of one estimate: the power of the photons counted and the radius of the
+/// disc they were found in, so a caller that knows how much of the disc lies on the surface can
+/// divide by that area instead of pi r^2 (IlluminationMaps does, at surface borders).
+struct DensitySample {
+    /// The kernel-weighted power, scaled so that power / (pi r^2) is the irradiance.
+    glm::dvec3 power{0.0};
+    double radius = 0.0;  ///< 0 when nothing was found
 };
 
 class PhotonDensity {
@@ -43,6 +63,9 @@ class PhotonDensity {
     PhotonDensity(const PhotonDensity&) = delete;
     PhotonDensity& operator=(const PhotonDensity&) = delete;
 
+    /// The photons counted around `position` (see irradiance()).
+    [[nodiscard]] DensitySample sample(const glm::vec3& position, const glm::vec3& normal,
+                                       const DensitySettings& settings) const;
     /// Irradiance (W/m^2 per channel) at `position` on a surface with unit `normal`. Zero when
     /// no photon is within the capped radius; never NaN.
     [[nodiscard]] glm::vec3 irradiance(const glm::vec3& position, const glm::vec3& normal,

@@ -82,9 +82,10 @@ class PhotonMap {
     }
     [[nodiscard]] std::size_t surface_count() const { return surfaces_.size(); }
     [[nodiscard]] std::size_t group_count() const { return groups_.size(); }
-    /// Sets delta_f (and delta_i when `indirect_too`) of a surface back to zero: its AIM (IIM)
-    /// was rebuilt.
-    void reset_deltas(std::uint32_t surface, bool indirect_too);
+    /// Sets delta_f of a surface back to zero: its AIM was rebuilt.
+    void reset_full_delta(std::uint32_t surface);
+    /// Sets delta_i of a surface back to zero: a gather pass over its IIM texels began.
+    void reset_indirect_delta(std::uint32_t surface);
 
     [[nodiscard]] std::size_t stored_hit_count() const { return stored_hits_; }
     /// Hops kept for path comparison (stored or not).

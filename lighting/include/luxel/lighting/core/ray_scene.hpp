@@ -88,6 +88,8 @@ class RayScene {
     [[nodiscard]] glm::vec3 bounds_min() const;
     [[nodiscard]] glm::vec3 bounds_max() const;
     [[nodiscard]] std::size_t object_count() const;
+    /// Every object, in id order (what a rasterizer mirroring this scene uploads).
+    [[nodiscard]] std::vector<ObjectId> objects() const;
     [[nodiscard]] std::size_t triangle_count() const;
     /// Counters since construction: static BVH rebuilds and top-level commits.
     [[nodiscard]] std::uint64_t static_rebuilds() const;

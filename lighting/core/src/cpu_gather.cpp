@@ -1,0 +1,87 @@
+#include "luxel/lighting/core/cpu_gather.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <glm/gtc/constants.hpp>
+
+#include "luxel/lighting/core/halton.hpp"
+#include "luxel/lighting/core/light_source.hpp"
+#include "luxel/runtime/jobs.hpp"
+
+namespace luxel::lighting {
+namespace {
+
+/// A per-texel rotation of the Halton pattern, from the texel's position bits: deterministic,
+/// and different for neighbouring texels.
+glm::dvec2 rotation_for(const glm::vec3& position) {
+    std::uint32_t hash = 2166136261u;
+    for (int axis = 0; axis < 3; ++axis) {
+        std::uint32_t bits = 0;
+        const float value = position[axis];
+        static_assert(sizeof(bits) == sizeof(value));
+        std::memcpy(&bits, &value, sizeof(bits));
+        hash = (hash ^ bits) * 16777619u;
+    }
+    hash ^= hash >> 16;
+    hash *= 0x7feb352du;
+    hash ^= hash >> 15;
+    return {static_cast<double>(hash & 0xFFFFu) / 65536.0,
+            static_cast<double>(hash >> 16) / 65536.0};
+}
+
+bool finite_vector(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+}  // namespace
+
+CpuGatherer::CpuGatherer(const RayScene& scene, const RadianceAtlas& atlas,
+                         CpuGatherSettings settings, JobSystem* jobs)
+    : scene_(&scene), atlas_(&atlas), settings_(settings), jobs_(jobs) {}
+
+glm::vec3 CpuGatherer::gather_one(const GatherTexel& texel) const {
+    const std::uint32_t rays = settings_.rays_per_texel;
+    const float normal_length = glm::length(texel.normal);
+    if (rays == 0 || !(normal_length > 0.0f) || !finite_vector(texel.position) ||
+        !std::isfinite(normal_length)) {
+        return glm::vec3(0.0f);
+    }
+    const glm::vec3 normal = texel.normal / normal_length;
+    const glm::vec3 origin = offset_ray_origin(texel.position, normal);
+    const glm::dvec2 rotation = rotation_for(texel.position);
+    // Summed in double: thousands of rays per texel, and the mean must not depend on order.
+    glm::dvec3 sum(0.0);
+    for (std::uint32_t i = 0; i < rays; ++i) {
+        glm::dvec2 u = halton2(i) + rotation;
+        u -= glm::floor(u);
+        const glm::vec3 direction = cosine_direction(normal, u);
+        const auto hit = scene_->intersect(origin, direction, settings_.max_distance);
+        // The AIM holds the radiance leaving a surface's front; a back face is the inside of
+        // a wall or object and sends nothing.
+        if (!hit || glm::dot(hit->geometric_normal, direction) >= 0.0f) {
+            continue;
+        }
+        const glm::vec3 radiance = atlas_->sample(hit->surface, hit->lightmap_uv);
+        if (finite_vector(radiance)) {
+            sum += glm::dvec3(glm::max(radiance, glm::vec3(0.0f)));
+        }
+    }
+    return glm::vec3(sum * (glm::pi<double>() / static_cast<double>(rays)));
+}
+
+void CpuGatherer::gather(std::span<const GatherTexel> texels, std::span<glm::vec3> irradiance) {
+    const std::size_t count = std::min(texels.size(), irradiance.size());
+    if (jobs_ != nullptr && count > 1) {
+        jobs_->parallel_for(0, count,
+                            [&](std::size_t i) { irradiance[i] = gather_one(texels[i]); });
+    } else {
+        for (std::size_t i = 0; i < count; ++i) {
+            irradiance[i] = gather_one(texels[i]);
+        }
+    }
+    rays_traced_ += static_cast<std::uint64_t>(count) * settings_.rays_per_texel;
+}
+
+}  // namespace luxel::lighting

@@ -1,0 +1,368 @@
+#include "luxel/lighting/core/illumination_maps.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <glm/gtc/constants.hpp>
+
+#include "luxel/ecs/hierarchy.hpp"
+
+namespace luxel::lighting {
+namespace {
+
+bool finite_vector(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+/// A value fit for a light map: finite and non-negative per channel.
+glm::vec3 sanitized(const glm::vec3& v) {
+    return finite_vector(v) ? glm::max(v, glm::vec3(0.0f)) : glm::vec3(0.0f);
+}
+
+glm::mat4 world_matrix(const ecs::Registry& registry, ecs::Entity entity) {
+    if (const auto* world = registry.try_get<ecs::WorldTransform>(entity)) {
+        return world->matrix;
+    }
+    return ecs::compute_world_matrix(registry, entity);
+}
+
+/// A relative delta, guarded: a surface holding nothing has changed "completely" when anything
+/// arrived, and not at all otherwise.
+double relative(double delta, double stored) {
+    if (stored > 0.0) {
+        return delta / stored;
+    }
+    return delta > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
+}
+
+double safe_area(double area) {
+    return area > 1e-12 ? area : 1e-12;
+}
+
+}  // namespace
+
+IlluminationMaps::IlluminationMaps(ecs::Registry& registry, PhotonWorld& world,
+                                   IlluminationSettings settings)
+    : registry_(registry),
+      world_(world),
+      settings_(settings),
+      moves_(registry.observe<ecs::WorldTransform>()) {
+    sync();
+}
+
+std::int32_t IlluminationMaps::page_index(const scene::Scene* source, int page, int page_size) {
+    const auto key = std::make_pair(source, page);
+    if (const auto found = pages_.find(key); found != pages_.end()) {
+        return found->second;
+    }
+    const auto index = static_cast<std::int32_t>(aim_.pages.size());
+    aim_.pages.emplace_back(page_size);
+    iim_pages_.emplace_back(page_size);
+    owners_.emplace_back(static_cast<std::size_t>(page_size) * static_cast<std::size_t>(page_size),
+                         -1);
+    pages_.emplace(key, index);
+    return index;
+}
+
+void IlluminationMaps::add_surface(std::uint32_t surface) {
+    const SurfaceInfo& info = world_.surfaces()[surface];
+    MapSurface mapped;
+    mapped.entity = info.entity;
+    const auto* instance = registry_.try_get<MeshInstance>(info.entity);
+    const auto* layout = registry_.try_get<LightmappedSurface>(info.entity);
+    std::int32_t page = -1;
+    if (instance != nullptr && layout != nullptr && info.layout_id >= 0 && info.primitive >= 0) {
+        const scene::Mesh& mesh = instance->geometry();
+        const auto& primitive = mesh.primitives.at(static_cast<std::size_t>(info.primitive));
+        for (const auto& entry : layout->layout.surfaces) {
+            if (entry.id != info.layout_id) {
+                continue;
+            }
+            page = page_index(instance->source.get(), entry.page, layout->layout.page_size);
+            mapped.texels = rasterize_surface(primitive, entry.page, layout->layout.page_size);
+            mapped.footprint = SurfaceFootprint(primitive, mapped.texels);
+            break;
+        }
+        if (primitive.material >= 0) {
+            const scene::Material& material =
+                instance->source->materials.at(static_cast<std::size_t>(primitive.material));
+            // The albedo the photon tracer bounces with, so the AIM and the photons agree.
+            mapped.albedo = glm::clamp(glm::vec3(material.base_color), 0.0f, 1.0f);
+            mapped.content =
+                material.base_color_image >= 0 ? IimContent::Irradiance : IimContent::Radiance;
+        }
+    }
+    aim_.surface_page.push_back(page);
+    if (page >= 0) {
+        auto& owners = owners_[static_cast<std::size_t>(page)];
+        const auto size = static_cast<std::size_t>(mapped.texels.page_size);
+        for (const SurfaceTexel& texel : mapped.texels.texels) {
+            owners[static_cast<std::size_t>(texel.y) * size + static_cast<std::size_t>(texel.x)] =
+                static_cast<std::int32_t>(surface);
+        }
+    }
+    mapped.gather_cursor = mapped.texels.texels.size();
+    surfaces_.push_back(std::move(mapped));
+    surfaces_of_[info.entity].push_back(surface);
+    refresh_transform(surface);
+}
+
+void IlluminationMaps::refresh_transform(std::uint32_t surface) {
+    MapSurface& mapped = surfaces_[surface];
+    if (!registry_.valid(mapped.entity)) {
+        return;
+    }
+    mapped.to_world = world_matrix(registry_, mapped.entity);
+    // Light maps assume a similarity transform (no shear): its scale is the cube root of the
+    // volume change.
+    const double scale =
+        std::cbrt(std::abs(static_cast<double>(glm::determinant(glm::mat3(mapped.to_world)))));
+    mapped.world_metres_per_texel = mapped.texels.metres_per_texel * scale;
+}
+
+void IlluminationMaps::sync() {
+    for (auto s = static_cast<std::uint32_t>(surfaces_.size()); s < world_.surfaces().size(); ++s) {
+        add_surface(s);
+    }
+    moves_.consume([&](ecs::Entity entity, ecs::ChangeKind kind) {
+        if (kind == ecs::ChangeKind::Destroyed) {
+            return;
+        }
+        const auto found = surfaces_of_.find(entity);
+        if (found == surfaces_of_.end()) {
+            return;
+        }
+        for (std::uint32_t surface : found->second) {
+            refresh_transform(surface);
+        }
+    });
+}
+
+std::vector<GatherTexel> IlluminationMaps::world_texels(std::uint32_t surface) const {
+    const MapSurface& mapped = surfaces_.at(surface);
+    const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(mapped.to_world)));
+    std::vector<GatherTexel> texels;
+    texels.reserve(mapped.texels.texels.size());
+    for (const SurfaceTexel& texel : mapped.texels.texels) {
+        GatherTexel world;
+        world.position = glm::vec3(mapped.to_world * glm::vec4(texel.position, 1.0f));
+        const glm::vec3 n = normal_matrix * texel.normal;
+        const float length = glm::length(n);
+        world.normal = length > 0.0f && std::isfinite(length) ? n / length : texel.normal;
+        texels.push_back(world);
+    }
+    return texels;
+}
+
+std::vector<MapRequest> IlluminationMaps::aim_requests() const {
+    std::vector<MapRequest> requests;
+    const PhotonMap& map = world_.photon_map();
+    for (std::uint32_t s = 0; s < surfaces_.size(); ++s) {
+        const MapSurface& mapped = surfaces_[s];
+        if (mapped.texels.texels.empty() || !registry_.valid(mapped.entity) ||
+            s >= map.surface_count()) {
+            continue;
+        }
+        const SurfacePhotons& photons = map.surface(s);
+        const double delta = photons.delta_full.value();
+        const double change = relative(delta, photons.stored_energy.value());
+        const bool first = !mapped.aim_built;
+        if (first || change > settings_.aim_threshold) {
+            // Unbuilt maps first; then the surfaces whose light changed most per square metre.
+            const double priority = delta / safe_area(mapped.texels.area);
+            requests.push_back({s, first ? std::numeric_limits<double>::max() : priority});
+        }
+    }
+    std::stable_sort(
+        requests.begin(), requests.end(),
+        [](const MapRequest& l, const MapRequest& r) { return l.priority > r.priority; });
+    return requests;
+}
+
+void IlluminationMaps::rebuild_aim(std::uint32_t surface) {
+    MapSurface& mapped = surfaces_.at(surface);
+    const std::int32_t page_id = aim_.surface_page.at(surface);
+    PhotonMap& map = world_.photon_map();
+    if (page_id < 0 || surface >= map.surface_count()) {
+        return;
+    }
+    RadiancePage& page = aim_.pages[static_cast<std::size_t>(page_id)];
+    const std::array<std::uint32_t, 1> sources{surface};
+    // The only tree in memory: dropped at the end of this call.
+    const PhotonDensity density(map, sources, PhotonSelection::Full);
+    const double metres_per_texel = mapped.world_metres_per_texel;
+    const std::vector<GatherTexel> texels = world_texels(surface);
+    int x0 = page.size;
+    int y0 = page.size;
+    int x1 = -1;
+    int y1 = -1;
+    for (std::size_t i = 0; i < texels.size(); ++i) {
+        const SurfaceTexel& texel = mapped.texels.texels[i];
+        const DensitySample found =
+            density.sample(texels[i].position, texels[i].normal, settings_.density);
+        glm::vec3 radiance(0.0f);
+        if (found.radius > 0.0 && metres_per_texel > 0.0) {
+            const double on_surface = mapped.footprint.fraction(i, found.radius / metres_per_texel,
+                                                                settings_.density.kernel);
+            const double area = glm::pi<double>() * found.radius * found.radius * on_surface;
+            radiance =
+                glm::vec3(glm::dvec3(mapped.albedo) * found.power / (area * glm::pi<double>()));
+        }
+        page.at(texel.x, texel.y) = sanitized(radiance);
+        x0 = std::min(x0, texel.x);
+        y0 = std::min(y0, texel.y);
+        x1 = std::max(x1, texel.x);
+        y1 = std::max(y1, texel.y);
+    }
+    dilate(surface, page);
+    if (x1 >= x0) {
+        // One texel of padding on every side was dilated too.
+        const int left = std::max(x0 - 1, 0);
+        const int top = std::max(y0 - 1, 0);
+        page.mark_dirty(
+            {left, top, std::min(x1 + 2, page.size) - left, std::min(y1 + 2, page.size) - top});
+    }
+    map.reset_full_delta(surface);
+    mapped.aim_built = true;
+    ++counters_.aim_rebuilds;
+    counters_.aim_texels += texels.size();
+}
+
+void IlluminationMaps::dilate(std::uint32_t surface, RadiancePage& page) const {
+    const MapSurface& mapped = surfaces_[surface];
+    const auto& owners = owners_[static_cast<std::size_t>(aim_.surface_page[surface])];
+    const int size = page.size;
+    const auto owner = [&](int x, int y) {
+        return owners[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) +
+                      static_cast<std::size_t>(x)];
+    };
+    const auto self = static_cast<std::int32_t>(surface);
+    for (const SurfaceTexel& texel : mapped.texels.texels) {
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                const int x = texel.x + dx;
+                const int y = texel.y + dy;
+                if (x < 0 || y < 0 || x >= size || y >= size || owner(x, y) >= 0) {
+                    continue;
+                }
+                // The mean of this surface's texels around the padding texel.
+                glm::vec3 sum(0.0f);
+                int count = 0;
+                for (int ny = std::max(y - 1, 0); ny <= std::min(y + 1, size - 1); ++ny) {
+                    for (int nx = std::max(x - 1, 0); nx <= std::min(x + 1, size - 1); ++nx) {
+                        if (owner(nx, ny) == self) {
+                            sum += page.at(nx, ny);
+                            ++count;
+                        }
+                    }
+                }
+                page.at(x, y) = count > 0 ? sum / static_cast<float>(count) : glm::vec3(0.0f);
+            }
+        }
+    }
+}
+
+std::vector<MapRequest> IlluminationMaps::gather_requests() const {
+    std::vector<MapRequest> requests;
+    const PhotonMap& map = world_.photon_map();
+    for (std::uint32_t s = 0; s < surfaces_.size(); ++s) {
+        const MapSurface& mapped = surfaces_[s];
+        if (mapped.texels.texels.empty() || !registry_.valid(mapped.entity) ||
+            s >= map.surface_count()) {
+            continue;
+        }
+        const SurfacePhotons& photons = map.surface(s);
+        const double delta = photons.delta_indirect.value();
+        const bool changed =
+            relative(delta, photons.stored_energy.value()) > settings_.iim_threshold;
+        if (mapped.gather_in_progress || !mapped.gathered_once || changed) {
+            // A pass in progress finishes first: half-updated surfaces show seams.
+            double priority = delta / safe_area(mapped.texels.area);
+            if (mapped.gather_in_progress || !mapped.gathered_once) {
+                priority = std::numeric_limits<double>::max();
+            }
+            requests.push_back({s, priority});
+        }
+    }
+    std::stable_sort(
+        requests.begin(), requests.end(),
+        [](const MapRequest& l, const MapRequest& r) { return l.priority > r.priority; });
+    return requests;
+}
+
+std::size_t IlluminationMaps::gather(std::uint32_t surface, std::size_t max_texels,
+                                     IrradianceGatherer& gatherer, double now_seconds) {
+    MapSurface& mapped = surfaces_.at(surface);
+    const std::int32_t page_id = aim_.surface_page.at(surface);
+    if (page_id < 0 || mapped.texels.texels.empty() || max_texels == 0) {
+        return 0;
+    }
+    if (!mapped.gather_in_progress) {
+        // Changes from now on need another pass; those before are what this pass sees.
+        mapped.gather_in_progress = true;
+        mapped.gather_cursor = 0;
+        world_.photon_map().reset_indirect_delta(surface);
+        ++counters_.gather_passes;
+    }
+    const std::size_t total = mapped.texels.texels.size();
+    const std::size_t first = mapped.gather_cursor;
+    const std::size_t count = std::min(max_texels, total - first);
+    const std::vector<GatherTexel> all = world_texels(surface);
+    const std::span<const GatherTexel> batch(all.data() + first, count);
+    std::vector<glm::vec3> irradiance(count, glm::vec3(0.0f));
+    gatherer.gather(batch, irradiance);
+
+    IimPage& page = iim_pages_[static_cast<std::size_t>(page_id)];
+    int x0 = page.current.size;
+    int y0 = page.current.size;
+    int x1 = -1;
+    int y1 = -1;
+    for (std::size_t i = 0; i < count; ++i) {
+        const SurfaceTexel& texel = mapped.texels.texels[first + i];
+        const glm::vec3 e = sanitized(irradiance[i]);
+        const glm::vec3 value = mapped.content == IimContent::Irradiance
+                                    ? e
+                                    : mapped.albedo * e * glm::one_over_pi<float>();
+        page.commit(texel.x, texel.y, value, now_seconds, settings_.blend_seconds);
+        x0 = std::min(x0, texel.x);
+        y0 = std::min(y0, texel.y);
+        x1 = std::max(x1, texel.x);
+        y1 = std::max(y1, texel.y);
+    }
+    mapped.gather_cursor = first + count;
+    if (mapped.gather_cursor >= total) {
+        mapped.gather_in_progress = false;
+        mapped.gathered_once = true;
+        // The pass is complete: fill the padding so bilinear lookups at the border hold.
+        const auto& owners = owners_[static_cast<std::size_t>(page_id)];
+        const int size = page.current.size;
+        for (const SurfaceTexel& texel : mapped.texels.texels) {
+            for (int dy = -1; dy <= 1; ++dy) {
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int x = texel.x + dx;
+                    const int y = texel.y + dy;
+                    if (x < 0 || y < 0 || x >= size || y >= size ||
+                        owners[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) +
+                               static_cast<std::size_t>(x)] >= 0) {
+                        continue;
+                    }
+                    page.commit(x, y, page.current.at(texel.x, texel.y), now_seconds,
+                                settings_.blend_seconds);
+                    x0 = std::min(x0, x);
+                    y0 = std::min(y0, y);
+                    x1 = std::max(x1, x);
+                    y1 = std::max(y1, y);
+                }
+            }
+        }
+    }
+    if (x1 >= x0) {
+        page.current.mark_dirty({x0, y0, x1 - x0 + 1, y1 - y0 + 1});
+    }
+    counters_.texels_gathered += count;
+    return count;
+}
+
+}  // namespace luxel::lighting

@@ -1,0 +1,64 @@
+#include "luxel/lighting/core/radiance_atlas.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace luxel::lighting {
+
+RadiancePage::RadiancePage(int page_size)
+    : size(std::max(page_size, 0)),
+      texels(static_cast<std::size_t>(size) * static_cast<std::size_t>(size), glm::vec3(0.0f)) {}
+
+void RadiancePage::mark_dirty(const scene::TexelRect& rect) {
+    if (rect.width <= 0 || rect.height <= 0) {
+        return;
+    }
+    ++version;
+    if (dirty.width <= 0 || dirty.height <= 0) {
+        dirty = rect;
+        return;
+    }
+    const int x0 = std::min(dirty.x, rect.x);
+    const int y0 = std::min(dirty.y, rect.y);
+    const int x1 = std::max(dirty.x + dirty.width, rect.x + rect.width);
+    const int y1 = std::max(dirty.y + dirty.height, rect.y + rect.height);
+    dirty = {x0, y0, x1 - x0, y1 - y0};
+}
+
+scene::TexelRect RadiancePage::take_dirty() {
+    const scene::TexelRect taken = dirty;
+    dirty = {};
+    return taken;
+}
+
+glm::vec3 RadiancePage::sample(const glm::vec2& uv) const {
+    if (size <= 0 || !std::isfinite(uv.x) || !std::isfinite(uv.y)) {
+        return glm::vec3(0.0f);
+    }
+    const float extent = static_cast<float>(size);
+    // Texel centres sit at integer + 0.5; clamp so both taps stay on the page.
+    const float fx = std::clamp(uv.x * extent - 0.5f, 0.0f, extent - 1.0f);
+    const float fy = std::clamp(uv.y * extent - 0.5f, 0.0f, extent - 1.0f);
+    const int x0 = static_cast<int>(fx);
+    const int y0 = static_cast<int>(fy);
+    const int x1 = std::min(x0 + 1, size - 1);
+    const int y1 = std::min(y0 + 1, size - 1);
+    const float tx = fx - static_cast<float>(x0);
+    const float ty = fy - static_cast<float>(y0);
+    const glm::vec3 top = glm::mix(at(x0, y0), at(x1, y0), tx);
+    const glm::vec3 bottom = glm::mix(at(x0, y1), at(x1, y1), tx);
+    return glm::mix(top, bottom, ty);
+}
+
+glm::vec3 RadianceAtlas::sample(std::int32_t surface, const glm::vec2& uv) const {
+    if (surface < 0 || static_cast<std::size_t>(surface) >= surface_page.size()) {
+        return glm::vec3(0.0f);
+    }
+    const std::int32_t page = surface_page[static_cast<std::size_t>(surface)];
+    if (page < 0 || static_cast<std::size_t>(page) >= pages.size()) {
+        return glm::vec3(0.0f);
+    }
+    return pages[static_cast<std::size_t>(page)].sample(uv);
+}
+
+}  // namespace luxel::lighting

@@ -1,0 +1,52 @@
+#pragma once
+
+#include <cstdint>
+
+#include "luxel/lighting/core/gather.hpp"
+#include "luxel/lighting/core/radiance_atlas.hpp"
+#include "luxel/lighting/core/ray_scene.hpp"
+
+namespace luxel {
+class JobSystem;
+}
+
+namespace luxel::lighting {
+
+struct CpuGatherSettings {
+    std::uint32_t rays_per_texel = 256;
+    /// Rays that travel further than this (metres) see nothing: the scene's outside is black.
+    float max_distance = 1e6f;
+};
+
+/// The CPU backend: from each texel centre, cosine-weighted Halton directions (bases 2, 3;
+/// Cranley-Patterson rotated per texel so neighbouring texels do not share one pattern of
+/// bias) traced with Embree; at each hit the AIM radiance is read bilinearly from the hit
+/// surface's light map, and E = pi * mean(L) (the cosine-weighted estimator of
+/// integral L cos dw). Rays leave from the texel centre moved off the surface along its normal
+/// by offset_ray_origin, so they do not hit the surface they start on.
+class CpuGatherer final : public IrradianceGatherer {
+  public:
+    /// Both are read at every gather call (they may change between calls, not during one).
+    /// With `jobs`, texels are gathered in parallel.
+    CpuGatherer(const RayScene& scene, const RadianceAtlas& atlas, CpuGatherSettings settings = {},
+                JobSystem* jobs = nullptr);
+
+    [[nodiscard]] std::string_view name() const override { return "cpu"; }
+    void gather(std::span<const GatherTexel> texels, std::span<glm::vec3> irradiance) override;
+
+    /// Irradiance at one texel (what gather() does per texel).
+    [[nodiscard]] glm::vec3 gather_one(const GatherTexel& texel) const;
+
+    /// Rays traced since construction (for rays-per-second figures).
+    [[nodiscard]] std::uint64_t rays_traced() const { return rays_traced_; }
+    [[nodiscard]] const CpuGatherSettings& settings() const { return settings_; }
+
+  private:
+    const RayScene* scene_;
+    const RadianceAtlas* atlas_;
+    CpuGatherSettings settings_;
+    JobSystem* jobs_;
+    std::uint64_t rays_traced_ = 0;
+};
+
+}  // namespace luxel::lighting

@@ -1,0 +1,36 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+
+#include <glm/glm.hpp>
+
+/// Final gathering (seed 002 §4, thesis ch. 11): irradiance at a light-map texel centre from
+/// the AIM-lit scene, E = integral over the hemisphere of L(w) cos(theta) dw. One contract, two
+/// backends: Embree rays on the CPU (CpuGatherer) and the hemi-plane on the GPU
+/// (lighting/gpu HemiPlaneGatherer).
+namespace luxel::lighting {
+
+/// A texel centre to gather at, in world space.
+struct GatherTexel {
+    glm::vec3 position{0.0f};
+    glm::vec3 normal{0.0f, 1.0f, 0.0f};  ///< unit, the side light is gathered from
+};
+
+class IrradianceGatherer {
+  public:
+    virtual ~IrradianceGatherer() = default;
+    [[nodiscard]] virtual std::string_view name() const = 0;
+    /// Irradiance (W/m^2 per channel) at each texel, from the radiance the atlas holds for
+    /// the surfaces the hemisphere sees (not the texel's own emission or direct light).
+    /// `irradiance` has one entry per texel. Never NaN or negative.
+    virtual void gather(std::span<const GatherTexel> texels, std::span<glm::vec3> irradiance) = 0;
+};
+
+/// The fraction of the cosine-weighted hemisphere a hemi-plane of half-width `a` at unit
+/// distance covers: F(a) = (4/pi) (a / sqrt(1 + a^2)) atan(a / sqrt(1 + a^2)).
+/// F(1) = 0.554, F(2) = 0.831; F(a) -> 1 as a grows.
+[[nodiscard]] double hemi_plane_coverage(double half_width);
+
+}  // namespace luxel::lighting

@@ -1,0 +1,140 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "luxel/ecs/observer.hpp"
+#include "luxel/ecs/registry.hpp"
+#include "luxel/ecs/transform.hpp"
+#include "luxel/lighting/core/gather.hpp"
+#include "luxel/lighting/core/iim_page.hpp"
+#include "luxel/lighting/core/photon_density.hpp"
+#include "luxel/lighting/core/photon_world.hpp"
+#include "luxel/lighting/core/radiance_atlas.hpp"
+#include "luxel/lighting/core/surface_footprint.hpp"
+#include "luxel/lighting/core/surface_texels.hpp"
+
+/// Photons into light maps (seed 002 §3-4, thesis ch. 10-11): the AIM of each light-mapped
+/// surface from its photons, and the IIM from final gathering over the AIM-lit scene.
+namespace luxel::lighting {
+
+/// What an IIM texel holds (as the source does): irradiance for textured surfaces, whose
+/// albedo varies within a texel and is applied per pixel; radiance pre-multiplied by the
+/// albedo (albedo * E / pi) for uniform ones, saving the renderer a lookup.
+enum class IimContent { Irradiance, Radiance };
+
+struct IlluminationSettings {
+    DensitySettings density;
+    /// A surface's AIM is rebuilt when delta_f exceeds this fraction of the energy stored on
+    /// it (relative, so the threshold means the same for a 1 mW and a 1 MW light).
+    double aim_threshold = 0.05;
+    /// A surface's texels are gathered again when delta_i exceeds this fraction of its stored
+    /// energy.
+    double iim_threshold = 0.05;
+    /// Seconds over which an updated IIM texel fades in (0: at once).
+    double blend_seconds = 0.5;
+};
+
+/// A piece of work the scheduler can order: a surface and its priority (delta / area, W/m^2).
+struct MapRequest {
+    std::uint32_t surface = 0;
+    double priority = 0.0;
+};
+
+/// One light-mapped surface as the maps know it.
+struct MapSurface {
+    ecs::Entity entity;
+    SurfaceTexels texels;  ///< object space
+    SurfaceFootprint footprint;
+    glm::vec3 albedo{0.5f};
+    IimContent content = IimContent::Radiance;
+    glm::mat4 to_world{1.0f};
+    /// World metres per page texel (the object-space scale times the transform's).
+    double world_metres_per_texel = 0.0;
+    bool aim_built = false;
+    bool gathered_once = false;
+    /// The next texel of a gather pass in progress; texels.texels.size() when none is.
+    std::size_t gather_cursor = 0;
+    bool gather_in_progress = false;
+};
+
+/// Counters since construction.
+struct MapCounters {
+    std::uint64_t aim_rebuilds = 0;
+    std::uint64_t aim_texels = 0;
+    std::uint64_t gather_passes = 0;
+    std::uint64_t texels_gathered = 0;
+};
+
+class IlluminationMaps {
+  public:
+    /// Follows `world`'s surfaces (call sync() after PhotonWorld::sync()).
+    IlluminationMaps(ecs::Registry& registry, PhotonWorld& world,
+                     IlluminationSettings settings = {});
+    IlluminationMaps(const IlluminationMaps&) = delete;
+    IlluminationMaps& operator=(const IlluminationMaps&) = delete;
+
+    /// Takes in surfaces the photon world added and transforms of entities that moved.
+    void sync();
+
+    /// Surfaces whose AIM needs rebuilding, highest delta_f / area first (never-built surfaces
+    /// holding photons first of all).
+    [[nodiscard]] std::vector<MapRequest> aim_requests() const;
+    /// Rebuilds one surface's AIM from the photons on it (one kd-tree at a time, dropped
+    /// afterwards), dilates it into the chart padding, and resets the surface's delta_f.
+    ///
+    /// Each texel's estimate divides by the part of its disc that lies on the surface
+    /// (SurfaceFootprint), not by pi r^2. That is why only the surface's own photons count:
+    /// photons of a coplanar neighbour across a seam would be counted over an area that
+    /// excludes the neighbour. The source gathers from neighbours to soften the darkening at
+    /// borders; measuring the area removes it.
+    void rebuild_aim(std::uint32_t surface);
+
+    /// Surfaces whose IIM needs gathering (a pass in progress, or delta_i over the threshold),
+    /// highest delta_i / area first.
+    [[nodiscard]] std::vector<MapRequest> gather_requests() const;
+    /// Gathers up to `max_texels` texels of the surface's pass (starting one, and resetting
+    /// delta_i, if none is in progress), commits them into the IIM at `now_seconds`, and
+    /// returns how many were gathered.
+    std::size_t gather(std::uint32_t surface, std::size_t max_texels, IrradianceGatherer& gatherer,
+                       double now_seconds);
+
+    /// The AIM pages both gather backends read.
+    [[nodiscard]] const RadianceAtlas& aim() const { return aim_; }
+    [[nodiscard]] std::span<const IimPage> iim_pages() const { return iim_pages_; }
+    [[nodiscard]] std::span<IimPage> iim_pages() { return iim_pages_; }
+    /// Per surface; entries without texels belong to surfaces that have no light map.
+    [[nodiscard]] std::span<const MapSurface> surfaces() const { return surfaces_; }
+    [[nodiscard]] const IlluminationSettings& settings() const { return settings_; }
+    [[nodiscard]] const MapCounters& counters() const { return counters_; }
+    /// The world-space texel centres of a surface (what its gathers start from).
+    [[nodiscard]] std::vector<GatherTexel> world_texels(std::uint32_t surface) const;
+
+  private:
+    void add_surface(std::uint32_t surface);
+    void refresh_transform(std::uint32_t surface);
+    /// Fills the padding texels around `surface`'s texels on `page` with the mean of their
+    /// owned neighbours, so bilinear lookups at a chart's border do not fetch black.
+    void dilate(std::uint32_t surface, RadiancePage& page) const;
+    std::int32_t page_index(const scene::Scene* source, int page, int page_size);
+
+    ecs::Registry& registry_;
+    PhotonWorld& world_;
+    IlluminationSettings settings_;
+    RadianceAtlas aim_;
+    std::vector<IimPage> iim_pages_;
+    /// Per page texel, the surface that owns it (-1: padding or unused).
+    std::vector<std::vector<std::int32_t>> owners_;
+    std::vector<MapSurface> surfaces_;
+    std::map<std::pair<const scene::Scene*, int>, std::int32_t> pages_;
+    std::map<ecs::Entity, std::vector<std::uint32_t>> surfaces_of_;
+    ecs::Observer<ecs::WorldTransform> moves_;
+    MapCounters counters_;
+};
+
+}  // namespace luxel::lighting

@@ -1,0 +1,120 @@
+// Every built-in prepared level through photons, AIM and CPU gather: texels agree with the
+// layout luxel-prep wrote, and no texel is NaN, infinite or negative.
+
+#include <cmath>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "luxel/lighting/core/cpu_gather.hpp"
+#include "luxel/lighting/core/scene_instance.hpp"
+#include "luxel/runtime/jobs.hpp"
+#include "luxel/runtime/scene/gltf.hpp"
+#include "map_test_scenes.hpp"
+
+namespace {
+
+using namespace luxel;
+
+class LevelMaps : public ::testing::TestWithParam<const char*> {};
+
+bool valid(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && v.x >= 0.0f &&
+           v.y >= 0.0f && v.z >= 0.0f;
+}
+
+TEST_P(LevelMaps, TexelsMatchTheLayoutAndEveryValueIsFinite) {
+    const std::filesystem::path file = std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" /
+                                       "levels" / "prepared" / (std::string(GetParam()) + ".glb");
+    ecs::Registry registry;
+    lighting::InstantiateOptions options;
+    options.play_animations = false;
+    lighting::instantiate(registry, std::make_shared<scene::Scene>(scene::load_gltf(file)),
+                          options);
+    ecs::TransformSystem transforms(registry);
+    transforms.update();
+    JobSystem jobs(2);
+    lighting::PhotonWorld photons(registry);
+    photons.sync();
+    photons.update(0, jobs);
+    lighting::IlluminationMaps maps(registry, photons);
+    maps.sync();
+
+    // Every surface's texel count is what luxel-prep's table says: the runtime lights exactly
+    // the texels the layout reserved.
+    std::size_t checked = 0;
+    for (std::uint32_t s = 0; s < maps.surfaces().size(); ++s) {
+        const auto& info = photons.surfaces()[s];
+        if (info.layout_id < 0) {
+            continue;
+        }
+        const auto& layout = registry.get<lighting::LightmappedSurface>(info.entity).layout;
+        for (const auto& entry : layout.surfaces) {
+            if (entry.id == info.layout_id) {
+                EXPECT_EQ(static_cast<std::int64_t>(maps.surfaces()[s].texels.texels.size()),
+                          entry.texels)
+                    << GetParam() << " surface " << entry.id;
+                ++checked;
+            }
+        }
+    }
+    EXPECT_GT(checked, 0u);
+
+    const auto requests = maps.aim_requests();
+    for (const auto& request : requests) {
+        maps.rebuild_aim(request.surface);
+    }
+    EXPECT_TRUE(maps.aim_requests().empty());
+    double total = 0.0;
+    for (const auto& page : maps.aim().pages) {
+        for (const glm::vec3& texel : page.texels) {
+            ASSERT_TRUE(valid(texel)) << GetParam() << " AIM";
+            total += texel.x + texel.y + texel.z;
+        }
+    }
+    EXPECT_GT(total, 0.0) << GetParam() << ": photons reached no light-mapped texel";
+
+    lighting::CpuGatherer gatherer(photons.ray_scene(), maps.aim(), {16, 1e6f}, &jobs);
+    for (const auto& request : maps.gather_requests()) {
+        maps.gather(request.surface, 1u << 20, gatherer, 0.0);
+    }
+    EXPECT_TRUE(maps.gather_requests().empty());
+    double gathered = 0.0;
+    for (const auto& page : maps.iim_pages()) {
+        for (const glm::vec3& texel : page.current.texels) {
+            ASSERT_TRUE(valid(texel)) << GetParam() << " IIM";
+            gathered += texel.x;
+        }
+    }
+    EXPECT_GT(gathered, 0.0) << GetParam();
+    std::printf("[ figures  ] %s: %zu surfaces, %llu AIM texels, %llu texels gathered\n",
+                GetParam(), maps.surfaces().size(),
+                static_cast<unsigned long long>(maps.counters().aim_texels),
+                static_cast<unsigned long long>(maps.counters().texels_gathered));
+}
+
+INSTANTIATE_TEST_SUITE_P(BuiltInLevels, LevelMaps,
+                         ::testing::Values("cornell", "two-rooms", "caustics", "furnace"),
+                         [](const auto& param_info) {
+                             std::string name = param_info.param;
+                             std::replace(name.begin(), name.end(), '-', '_');
+                             return name;
+                         });
+
+TEST(IlluminationMaps, GatherPassesRunInSlicesAndFadeIn) {
+    luxel::testing::PlaneWorld world(1.0f, 0.1f, 16, glm::vec3(0.5f));
+    ASSERT_EQ(world.maps->surfaces()[0].texels.texels.size(), 100u);
+    lighting::CpuGatherer gatherer(world.photons->ray_scene(), world.maps->aim(), {4, 1e6f});
+    auto requests = world.maps->gather_requests();
+    ASSERT_EQ(requests.size(), 1u);
+    EXPECT_EQ(world.maps->gather(0, 30, gatherer, 1.0), 30u);
+    EXPECT_EQ(world.maps->gather_requests().size(), 1u) << "a pass in progress stays queued";
+    EXPECT_EQ(world.maps->gather(0, 100, gatherer, 1.0), 70u);
+    EXPECT_TRUE(world.maps->gather_requests().empty());
+    EXPECT_EQ(world.maps->counters().gather_passes, 1u);
+    const auto dirty = world.maps->iim_pages()[0].current.dirty;
+    EXPECT_GT(dirty.width, 0);
+    EXPECT_LE(dirty.width, 12);  // the chart and its one-texel ring, not the page
+}
+
+}  // namespace

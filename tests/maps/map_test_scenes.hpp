@@ -1,0 +1,110 @@
+#pragma once
+
+// Small scenes for the illumination-map tests: a light-mapped plane fed with photons from a
+// known irradiance field, and levels loaded through the ECS.
+
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <random>
+
+#include <glm/glm.hpp>
+
+#include "luxel/ecs/registry.hpp"
+#include "luxel/ecs/transform.hpp"
+#include "luxel/ecs/transform_system.hpp"
+#include "luxel/lighting/components.hpp"
+#include "luxel/lighting/core/illumination_maps.hpp"
+#include "luxel/lighting/core/photon_world.hpp"
+
+namespace luxel::testing {
+
+/// A side x side metre plane at y = 0 (normal +y) cut into cells x cells squares, light-mapped
+/// at texel_size metres per texel on a page_size page, its chart at texel (2, 2).
+inline std::shared_ptr<const scene::Scene> lightmapped_plane(float side, int cells,
+                                                             float texel_size, int page_size,
+                                                             glm::vec3 albedo) {
+    auto s = std::make_shared<scene::Scene>();
+    scene::Material material;
+    material.base_color = glm::vec4(albedo, 1.0f);
+    s->materials.push_back(material);
+    scene::Primitive p;
+    p.material = 0;
+    const float texels = side / texel_size;
+    for (int j = 0; j <= cells; ++j) {
+        for (int i = 0; i <= cells; ++i) {
+            const float u = static_cast<float>(i) / static_cast<float>(cells);
+            const float v = static_cast<float>(j) / static_cast<float>(cells);
+            p.positions.emplace_back(u * side, 0.0f, v * side);
+            p.normals.emplace_back(0.0f, 1.0f, 0.0f);
+            p.texcoords1.emplace_back((2.0f + u * texels) / static_cast<float>(page_size),
+                                      (2.0f + v * texels) / static_cast<float>(page_size));
+        }
+    }
+    const auto row = static_cast<std::uint32_t>(cells + 1);
+    for (std::uint32_t j = 0; j < static_cast<std::uint32_t>(cells); ++j) {
+        for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(cells); ++i) {
+            const std::uint32_t a = j * row + i;
+            // Counter-clockwise seen from +y.
+            p.indices.insert(p.indices.end(), {a, a + row, a + 1, a + 1, a + row, a + row + 1});
+        }
+    }
+    s->meshes.push_back({"plane", {p}});
+    return s;
+}
+
+/// A registry holding one light-mapped plane entity, a PhotonWorld without lights (the test
+/// stores photons itself) and the maps over it.
+struct PlaneWorld {
+    ecs::Registry registry;
+    ecs::TransformSystem transforms{registry};
+    std::unique_ptr<lighting::PhotonWorld> photons;
+    std::unique_ptr<lighting::IlluminationMaps> maps;
+    ecs::Entity plane;
+    int texel_count = 0;
+
+    PlaneWorld(float side, float texel_size, int page_size, glm::vec3 albedo,
+               lighting::IlluminationSettings settings = {},
+               glm::mat4 transform = glm::mat4(1.0f)) {
+        plane = registry.create();
+        registry.emplace<lighting::MeshInstance>(
+            plane, lightmapped_plane(side, 8, texel_size, page_size, albedo), 0);
+        scene::LightmapLayout layout;
+        layout.texel_size = texel_size;
+        layout.page_size = page_size;
+        scene::LightmapSurface surface;
+        surface.id = 0;
+        surface.primitive = 0;
+        surface.page = 0;
+        const int texels = static_cast<int>(std::lround(side / texel_size));
+        surface.rect = {2, 2, texels, texels};
+        surface.charts = {surface.rect};
+        surface.area = static_cast<double>(side) * side;
+        surface.texels = static_cast<std::int64_t>(texels) * texels;
+        layout.surfaces.push_back(surface);
+        registry.emplace<lighting::LightmappedSurface>(plane, layout);
+        ecs::Transform t;
+        t.translation = glm::vec3(transform[3]);
+        registry.emplace<ecs::Transform>(plane, t);
+        transforms.update();
+        photons = std::make_unique<lighting::PhotonWorld>(registry);
+        photons->sync();
+        maps = std::make_unique<lighting::IlluminationMaps>(registry, *photons, settings);
+        maps->sync();
+    }
+
+    /// Stores photons at `positions` with `powers` on surface 0, as one group's direct hits.
+    void store(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& powers) {
+        lighting::PhotonMap& map = photons->photon_map();
+        const std::uint32_t group = map.add_groups(1);
+        lighting::TracedGroup traced;
+        traced.starts.push_back(0);
+        for (std::size_t i = 0; i < positions.size(); ++i) {
+            traced.hops.push_back({positions[i], powers[i], 0, lighting::kNoObject, 0});
+            traced.starts.push_back(static_cast<std::uint32_t>(traced.hops.size()));
+        }
+        map.replace_group(group, traced);
+    }
+};
+
+}  // namespace luxel::testing
