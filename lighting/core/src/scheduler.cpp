@@ -1,0 +1,238 @@
+#include "luxel/lighting/core/scheduler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace luxel::lighting {
+
+double FrameReport::predicted_ms() const {
+    double sum = 0.0;
+    for (const KindFrameReport& k : kinds) {
+        sum += k.predicted_ms;
+    }
+    return sum;
+}
+
+std::size_t FrameReport::pending_after() const {
+    std::size_t sum = 0;
+    for (const KindFrameReport& k : kinds) {
+        sum += k.pending_after;
+    }
+    return sum;
+}
+
+namespace {
+
+/// Priorities beyond this are clamped: it keeps priority * weight + aging finite, so the sort
+/// below always sees a strict weak order (a NaN or inf - inf would break it).
+constexpr double kMaxPriority = 1e12;
+constexpr double kMaxWeight = 1e6;
+
+double clamp_finite(double value, double lo, double hi, double fallback) {
+    return std::isfinite(value) ? std::clamp(value, lo, hi) : fallback;
+}
+
+/// Resets Scheduler::running_ however run() leaves (a callback may throw).
+class RunningFlag {
+  public:
+    explicit RunningFlag(bool& flag) : flag_(flag) { flag_ = true; }
+    ~RunningFlag() { flag_ = false; }
+    RunningFlag(const RunningFlag&) = delete;
+    RunningFlag& operator=(const RunningFlag&) = delete;
+
+  private:
+    bool& flag_;
+};
+
+/// One queued unit as seen at the start of a frame.
+struct Candidate {
+    WorkKind kind;
+    std::uint64_t key;
+    std::uint64_t sequence;
+    std::uint64_t waited;
+    double effective;
+    bool overdue;
+};
+
+/// Overdue units first, oldest first; then by effective priority; ties by enqueue order.
+bool goes_before(const Candidate& a, const Candidate& b) {
+    if (a.overdue != b.overdue) {
+        return a.overdue;
+    }
+    if (a.overdue && a.waited != b.waited) {
+        return a.waited > b.waited;
+    }
+    if (a.effective != b.effective) {
+        return a.effective > b.effective;
+    }
+    return a.sequence < b.sequence;
+}
+
+}  // namespace
+
+Scheduler::Scheduler(const Clock& clock, SchedulerSettings settings)
+    : clock_(&clock), settings_(settings), cost_(settings.cost) {
+    const SchedulerSettings defaults;
+    for (std::size_t k = 0; k < kWorkKindCount; ++k) {
+        settings_.weight[k] =
+            clamp_finite(settings_.weight[k], 0.0, kMaxWeight, defaults.weight[k]);
+        // Outside (0, 1) a share is no cap at all.
+        const double share = settings_.max_share[k];
+        settings_.max_share[k] = std::isfinite(share) && share > 0.0 && share < 1.0 ? share : 0.0;
+    }
+    settings_.aging_per_frame =
+        clamp_finite(settings_.aging_per_frame, 0.0, kMaxPriority, defaults.aging_per_frame);
+    settings_.cost = cost_.settings();
+}
+
+void Scheduler::enqueue(WorkUnit unit) {
+    if (!unit.run) {
+        throw std::invalid_argument("Scheduler::enqueue: work unit without a callback");
+    }
+    const double priority = clamp_finite(unit.priority, -kMaxPriority, kMaxPriority, 0.0);
+    // A size that is not a finite non-negative number predicts nothing and teaches nothing.
+    const double size = std::isfinite(unit.size) && unit.size > 0.0 ? unit.size : 0.0;
+    Queue& queue = queues_[index(unit.kind)];
+    auto [it, inserted] = queue.try_emplace(unit.key);
+    Entry& entry = it->second;
+    if (inserted) {
+        entry.priority = priority;
+        entry.enqueued_frame = frame_;
+        entry.sequence = next_sequence_++;
+    } else {
+        entry.priority = std::max(entry.priority, priority);
+    }
+    entry.size = size;
+    entry.run = std::move(unit.run);
+}
+
+bool Scheduler::cancel(WorkKind kind, std::uint64_t key) {
+    return queues_[index(kind)].erase(key) > 0;
+}
+
+void Scheduler::clear() {
+    for (Queue& queue : queues_) {
+        queue.clear();
+    }
+}
+
+bool Scheduler::queued(WorkKind kind, std::uint64_t key) const {
+    return queues_[index(kind)].contains(key);
+}
+
+std::size_t Scheduler::pending(WorkKind kind) const {
+    return queues_[index(kind)].size();
+}
+
+std::size_t Scheduler::pending_total() const {
+    std::size_t total = 0;
+    for (const Queue& queue : queues_) {
+        total += queue.size();
+    }
+    return total;
+}
+
+FrameReport Scheduler::run(double budget_ms) {
+    if (running_) {
+        throw std::logic_error("Scheduler::run called from a work unit");
+    }
+    FrameReport report;
+    report.frame = frame_;
+    // NaN compares false: it pauses like 0. +inf runs everything queued.
+    if (!(budget_ms > 0.0)) {
+        // Paused: nothing runs and nothing ages (frame_ does not advance).
+        report.paused = true;
+        report.budget_ms = 0.0;
+        for (std::size_t k = 0; k < kWorkKindCount; ++k) {
+            report.kinds[k].pending_after = queues_[k].size();
+        }
+        return report;
+    }
+    report.budget_ms = budget_ms;
+    const RunningFlag running(running_);
+    const Nanoseconds start = clock_->now();
+    const double budget = report.budget_ms;
+
+    std::vector<Candidate> order;
+    order.reserve(pending_total());
+    for (std::size_t k = 0; k < kWorkKindCount; ++k) {
+        for (const auto& [key, entry] : queues_[k]) {
+            const std::uint64_t waited = frame_ - entry.enqueued_frame;
+            const double effective = entry.priority * settings_.weight[k] +
+                                     settings_.aging_per_frame * static_cast<double>(waited);
+            order.push_back(Candidate{static_cast<WorkKind>(k), key, entry.sequence, waited,
+                                      effective, waited >= settings_.max_wait_frames});
+        }
+    }
+    std::sort(order.begin(), order.end(), goes_before);
+
+    PerKind<double> kind_used{};
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        const Candidate& c = order[i];
+        const double remaining = budget - to_milliseconds(clock_->now() - start);
+        if (remaining < 0.0) {
+            break;  // nothing fits any more, not even a unit predicted to cost 0
+        }
+        const std::size_t k = index(c.kind);
+        auto it = queues_[k].find(c.key);
+        // Cancelled by an earlier callback, or cancelled and enqueued again (a new unit, which
+        // runs from the next frame on).
+        if (it == queues_[k].end() || it->second.sequence != c.sequence) {
+            continue;
+        }
+        Entry& entry = it->second;
+        const double predicted = cost_.predict(c.kind, entry.size);
+        const double bound = cost_.prediction_error(c.kind, entry.size);
+        const double share = settings_.max_share[k];
+        const bool fits =
+            predicted <= remaining && (share == 0.0 || kind_used[k] + predicted <= share * budget);
+        // Minimum progress: only the first unit of the frame can be forced, so a forced unit
+        // starts on an untouched budget and the frame overruns by at most its cost.
+        const bool forced = !fits && i == 0 && c.overdue;
+        if (!fits && !forced) {
+            continue;
+        }
+        std::function<void()> callback = std::move(entry.run);
+        const double size = entry.size;
+        queues_[k].erase(it);  // before the callback, which may enqueue the same key again
+
+        const Nanoseconds t0 = clock_->now();
+        callback();
+        const double actual = to_milliseconds(clock_->now() - t0);
+        cost_.record(c.kind, size, actual);
+
+        kind_used[k] += actual;
+        KindFrameReport& kr = report.kinds[k];
+        kr.units_done += 1;
+        kr.ms += actual;
+        kr.predicted_ms += predicted;
+        report.units_done += 1;
+        report.max_error_ms = std::max(report.max_error_ms, std::abs(actual - predicted));
+        report.max_error_bound_ms = std::max(report.max_error_bound_ms, bound);
+        if (forced) {
+            report.forced_units += 1;
+            report.forced_ms = actual;
+        }
+        if (settings_.record_units) {
+            report.units.push_back(UnitRecord{c.kind, c.key, size, predicted, bound, actual,
+                                              c.waited, c.effective, forced});
+        }
+        KindTotals& kt = totals_.kinds[k];
+        kt.units_done += 1;
+        kt.predicted_ms += predicted;
+        kt.actual_ms += actual;
+    }
+
+    report.used_ms = to_milliseconds(clock_->now() - start);
+    for (std::size_t k = 0; k < kWorkKindCount; ++k) {
+        report.kinds[k].pending_after = queues_[k].size();
+    }
+    totals_.frames += 1;
+    totals_.forced_units += report.forced_units;
+    frame_ += 1;
+    return report;
+}
+
+}  // namespace luxel::lighting
