@@ -1,0 +1,86 @@
+#include "radiance_texture.hpp"
+
+#include <algorithm>
+
+namespace luxel::lighting {
+
+void RadianceTexture::allocate(const RadianceAtlas& atlas) {
+    layer_size_ = 1;
+    for (const RadiancePage& page : atlas.pages) {
+        layer_size_ = std::max(layer_size_, page.size);
+    }
+    // At least one layer, so the sampler is always complete even with no pages.
+    const auto layers = static_cast<GLsizei>(std::max<std::size_t>(atlas.pages.size(), 1));
+    texture_ = gl::Texture::create(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(texture_.id(), 1, GL_RGB32F, layer_size_, layer_size_, layers);
+    glTextureParameteri(texture_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(texture_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(texture_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    // Unused corners of smaller pages and the placeholder layer read as black.
+    const float zero[3] = {0.0f, 0.0f, 0.0f};
+    glClearTexImage(texture_.id(), 0, GL_RGB, GL_FLOAT, zero);
+    gl::check_error("RadianceTexture allocate");
+    uploaded_.assign(atlas.pages.size(), PageState{});
+}
+
+void RadianceTexture::upload_page(const RadiancePage& page, int layer) {
+    if (page.size > 0 && page.texels.size() == static_cast<std::size_t>(page.size) *
+                                                   static_cast<std::size_t>(page.size)) {
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+        glTextureSubImage3D(texture_.id(), 0, 0, 0, layer, page.size, page.size, 1, GL_RGB,
+                            GL_FLOAT, page.texels.data());
+        gl::check_error("RadianceTexture upload");
+    }
+    uploaded_[static_cast<std::size_t>(layer)] = {page.size, page.version, page.texels.data()};
+    ++page_uploads_;
+}
+
+void RadianceTexture::sync(const RadianceAtlas& atlas) {
+    bool reallocate = !texture_ || uploaded_.size() != atlas.pages.size();
+    for (std::size_t i = 0; !reallocate && i < atlas.pages.size(); ++i) {
+        reallocate = uploaded_[i].size != atlas.pages[i].size;
+    }
+    if (reallocate) {
+        allocate(atlas);
+    }
+    for (std::size_t i = 0; i < atlas.pages.size(); ++i) {
+        const RadiancePage& page = atlas.pages[i];
+        const PageState& state = uploaded_[i];
+        if (reallocate || state.version != page.version || state.storage != page.texels.data()) {
+            upload_page(page, static_cast<int>(i));
+        }
+    }
+
+    std::vector<glm::vec4> table;
+    table.reserve(std::max<std::size_t>(atlas.surface_page.size(), 1));
+    for (const std::int32_t page : atlas.surface_page) {
+        if (page < 0 || static_cast<std::size_t>(page) >= atlas.pages.size() ||
+            atlas.pages[static_cast<std::size_t>(page)].size <= 0) {
+            table.emplace_back(-1.0f, 0.0f, 0.0f, 0.0f);
+            continue;
+        }
+        const auto size = static_cast<float>(atlas.pages[static_cast<std::size_t>(page)].size);
+        // Clamping the UV to the outermost texel centres keeps both bilinear taps on the page
+        // (RadiancePage::sample clamps the same way); the scale then maps the page's UV into
+        // its corner of the larger layer.
+        table.emplace_back(static_cast<float>(page), size / static_cast<float>(layer_size_),
+                           0.5f / size, (size - 0.5f) / size);
+    }
+    if (table.empty()) {
+        table.emplace_back(-1.0f, 0.0f, 0.0f, 0.0f);
+    }
+    if (!surface_table_ || table != table_) {
+        // Recreated when the surface count changes: the shader bounds its lookups by the
+        // buffer's length.
+        if (surface_table_.size() != table.size() * sizeof(glm::vec4)) {
+            surface_table_ = gl::Buffer::create(table.size() * sizeof(glm::vec4), table.data());
+        } else {
+            surface_table_.update(0, table.size() * sizeof(glm::vec4), table.data());
+        }
+        table_ = std::move(table);
+    }
+}
+
+}  // namespace luxel::lighting
