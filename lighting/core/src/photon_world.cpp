@@ -316,9 +316,11 @@ void PhotonWorld::remove_light(ecs::Entity entity) {
 }
 
 void PhotonWorld::sync() {
+    last_sync_ = {};
     std::vector<ecs::Entity> light_touched;
     std::vector<ecs::Entity> meshes_added;
     mesh_changes_.consume([&](ecs::Entity entity, ecs::ChangeKind kind) {
+        ++last_sync_.meshes_changed;
         switch (kind) {
             case ecs::ChangeKind::Destroyed:
                 remove_mesh(entity);
@@ -377,6 +379,7 @@ void PhotonWorld::sync() {
             return;
         }
         if (const auto found = objects_.find(entity); found != objects_.end()) {
+            ++last_sync_.objects_moved;
             if (scene_.is_dynamic(found->second)) {
                 scene_.set_transform(found->second, world_matrix(registry_, entity));
             } else {
@@ -403,6 +406,11 @@ void PhotonWorld::sync() {
     light_touched.erase(std::unique(light_touched.begin(), light_touched.end()),
                         light_touched.end());
     for (ecs::Entity entity : light_touched) {
+        if (lights_.contains(entity) ||
+            (registry_.valid(entity) &&
+             registry_.has_any<PointLight, SpotLight, DirectionalLight, AreaLight>(entity))) {
+            ++last_sync_.lights_refreshed;
+        }
         const bool is_light =
             registry_.valid(entity) &&
             (registry_.has_any<PointLight, SpotLight, DirectionalLight>(entity) ||
@@ -503,6 +511,19 @@ void PhotonWorld::sync_caustics(std::span<const ecs::Entity> lights_touched,
                                generators_.at(pair.generator).world_sphere, scene_bounds));
         }
     }
+}
+
+bool PhotonWorld::caustics_pending() const {
+    return std::any_of(caustic_pairs_.begin(), caustic_pairs_.end(),
+                       [](const CausticPair& pair) { return pair.photons.needs_retrace(); });
+}
+
+std::size_t PhotonWorld::dynamic_object_count() const {
+    std::size_t count = 0;
+    for (const auto& entry : objects_) {
+        count += scene_.is_dynamic(entry.second) ? 1 : 0;
+    }
+    return count;
 }
 
 CausticFrameStats PhotonWorld::update_caustics(std::uint64_t frame, JobSystem& jobs) {

@@ -96,7 +96,8 @@ class IlluminationMaps {
     void rebuild_aim(std::uint32_t surface);
 
     /// Surfaces whose IIM needs gathering (a pass in progress, or delta_i over the threshold),
-    /// highest delta_i / area first.
+    /// highest delta_i / area first. No new pass starts while a surface holding photons has
+    /// no AIM yet.
     [[nodiscard]] std::vector<MapRequest> gather_requests() const;
     /// Gathers up to `max_texels` texels of the surface's pass (starting one, and resetting
     /// delta_i, if none is in progress), commits them into the IIM at `now_seconds`, and

@@ -57,6 +57,13 @@ struct CausticFrameStats {
     CausticTraceCounters trace;
 };
 
+/// What the last PhotonWorld::sync() took in.
+struct PhotonSyncStats {
+    std::uint32_t objects_moved = 0;     ///< mesh entities whose transform changed
+    std::uint32_t meshes_changed = 0;    ///< mesh entities added, removed or replaced
+    std::uint32_t lights_refreshed = 0;  ///< lights added, changed, moved or removed
+};
+
 /// What the caustic lists hold now (for the scheduler and the HUD).
 struct CausticTotals {
     std::size_t lists = 0;
@@ -101,6 +108,14 @@ class PhotonWorld {
     /// being switched).
     [[nodiscard]] std::span<const CausticPair> caustics() const { return caustic_pairs_; }
     [[nodiscard]] CausticTotals caustic_totals() const;
+    /// Whether some caustic list has slices waiting for a retrace.
+    [[nodiscard]] bool caustics_pending() const;
+    [[nodiscard]] const PhotonSyncStats& last_sync() const { return last_sync_; }
+    /// Counts for the FeaturePlan: lights (enabled or not), caustic generators, and mesh
+    /// objects that may move.
+    [[nodiscard]] std::size_t light_count() const { return lights_.size(); }
+    [[nodiscard]] std::size_t generator_count() const { return generators_.size(); }
+    [[nodiscard]] std::size_t dynamic_object_count() const;
 
     /// Groups waiting for a retrace (invalidated by probes or by light changes).
     [[nodiscard]] const std::vector<std::uint32_t>& pending_groups() const { return pending_; }
@@ -158,6 +173,7 @@ class PhotonWorld {
     std::uint32_t next_group_ = 0;
     std::uint32_t next_seed_ = 1;
     bool scene_changed_ = false;
+    PhotonSyncStats last_sync_;
 
     ecs::Observer<MeshInstance> mesh_changes_;
     ecs::Observer<ecs::WorldTransform> moves_;

@@ -1,0 +1,173 @@
+#include "luxel/lighting/core/lighting_system.hpp"
+
+#include <algorithm>
+
+namespace luxel::lighting {
+namespace {
+
+/// Within one kind, earlier requests (the maps order them by delta / area) get a priority in
+/// (1, 2]; the scheduler's per-kind weights decide between kinds.
+double rank_priority(std::size_t rank, std::size_t count) {
+    return 1.0 +
+           static_cast<double>(count - rank) / static_cast<double>(std::max<std::size_t>(count, 1));
+}
+
+}  // namespace
+
+LightingSystem::LightingSystem(ecs::Registry& registry, JobSystem& jobs, LightingConfig config,
+                               const Clock& clock)
+    : registry_(registry),
+      jobs_(jobs),
+      config_(config),
+      photons_(std::make_unique<PhotonWorld>(registry, config.photons)),
+      maps_(std::make_unique<IlluminationMaps>(registry, *photons_, config.maps)),
+      cpu_gatherer_(
+          std::make_unique<CpuGatherer>(photons_->ray_scene(), maps_->aim(), config.gather, &jobs)),
+      gatherer_(cpu_gatherer_.get()),
+      scheduler_(clock, config.scheduler),
+      plan_(FeaturePlan::from({})) {}
+
+LightingSystem::~LightingSystem() = default;
+
+void LightingSystem::set_gatherer(IrradianceGatherer* gatherer) {
+    gatherer_ = gatherer != nullptr ? gatherer : cpu_gatherer_.get();
+}
+
+SceneCensus LightingSystem::take_census() const {
+    SceneCensus census;
+    census.lights_total = static_cast<std::uint32_t>(photons_->light_count());
+    census.lights_enabled = static_cast<std::uint32_t>(photons_->active_lights().size());
+    census.caustic_generators = static_cast<std::uint32_t>(photons_->generator_count());
+    std::uint32_t mapped = 0;
+    for (const MapSurface& surface : maps_->surfaces()) {
+        mapped += surface.texels.texels.empty() ? 0u : 1u;
+    }
+    census.lightmapped_surfaces = mapped;
+    census.dynamic_objects = static_cast<std::uint32_t>(photons_->dynamic_object_count());
+    const PhotonSyncStats& sync = photons_->last_sync();
+    census.moving_objects = sync.objects_moved;
+    census.geometry_changes = sync.meshes_changed;
+    std::uint32_t specular = 0;
+    for (const TraceMaterial& material : photons_->materials()) {
+        specular += material.scattering != Scattering::Diffuse ? 1u : 0u;
+    }
+    census.specular_materials = specular;
+    const std::uint64_t probe_cycle = config_.photons.selective.per_group;
+    census.converged = photons_->pending_groups().empty() && !photons_->caustics_pending() &&
+                       maps_->aim_requests().empty() && maps_->gather_requests().empty() &&
+                       scheduler_.pending_total() == 0 && frames_since_change_ >= probe_cycle;
+    return census;
+}
+
+const LightingStats& LightingSystem::update(double budget_ms, double now_seconds) {
+    now_seconds_ = now_seconds;
+    photons_->sync();
+    maps_->sync();
+    const PhotonSyncStats& sync = photons_->last_sync();
+    const bool changed =
+        sync.objects_moved > 0 || sync.meshes_changed > 0 || sync.lights_refreshed > 0;
+    frames_since_change_ = changed ? 0 : frames_since_change_ + 1;
+
+    stats_ = {};
+    stats_.frame = frame_;
+    stats_.census = take_census();
+    plan_ = FeaturePlan::from(stats_.census);
+    queue_work();
+    const std::uint64_t aim_before = maps_->counters().aim_texels;
+    const std::uint64_t gathered_before = maps_->counters().texels_gathered;
+    stats_.schedule = scheduler_.run(budget_ms);
+    stats_.aim_texels = maps_->counters().aim_texels - aim_before;
+    stats_.texels_gathered = maps_->counters().texels_gathered - gathered_before;
+    stats_.stored_hits = photons_->photon_map().stored_hit_count();
+    const CausticTotals caustics = photons_->caustic_totals();
+    stats_.caustic_photons_stored = caustics.stored;
+    stats_.caustic_bytes = caustics.bytes;
+    ++frame_;
+    return stats_;
+}
+
+void LightingSystem::queue_work() {
+    // Probes: one photon of every group, while something may have changed a path.
+    if (plan_.selective_probes()) {
+        scheduler_.enqueue({WorkKind::PhotonProbe, 0, 1.0,
+                            [this] {
+                                const EmissionStats done = photons_->probe(probe_frame_++, jobs_);
+                                stats_.photons_traced += done.trace.photons;
+                            },
+                            1.0});
+    } else {
+        scheduler_.cancel(WorkKind::PhotonProbe, 0);
+    }
+
+    // Group retraces, a few groups per unit, oldest first.
+    const std::size_t per_unit = std::max<std::uint32_t>(config_.groups_per_retrace_unit, 1);
+    const std::size_t pending = plan_.photon_tracing() ? photons_->pending_groups().size() : 0;
+    const std::size_t retrace_units = (pending + per_unit - 1) / per_unit;
+    for (std::size_t unit = 0; unit < retrace_units; ++unit) {
+        scheduler_.enqueue({WorkKind::GroupRetrace, unit, rank_priority(unit, retrace_units),
+                            [this, per_unit] {
+                                const EmissionStats done =
+                                    photons_->retrace_pending(jobs_, per_unit);
+                                stats_.photons_traced += done.trace.photons;
+                            },
+                            static_cast<double>(per_unit)});
+    }
+    for (std::size_t unit = retrace_units; unit < queued_retrace_units_; ++unit) {
+        scheduler_.cancel(WorkKind::GroupRetrace, unit);
+    }
+    queued_retrace_units_ = retrace_units;
+
+    // Caustic slices: one slice of every list that needs it, as one unit.
+    if (plan_.caustics() && photons_->caustics_pending()) {
+        scheduler_.enqueue({WorkKind::CausticSlice, 0, 1.0,
+                            [this] {
+                                const CausticFrameStats done =
+                                    photons_->update_caustics(caustic_frame_++, jobs_);
+                                stats_.caustic_photons_traced += done.trace.photons;
+                            },
+                            1.0});
+    } else {
+        scheduler_.cancel(WorkKind::CausticSlice, 0);
+    }
+
+    // AIM rebuilds and IIM gathers, per surface, in the maps' order.
+    const auto requeue = [this](WorkKind kind, const std::vector<MapRequest>& requests,
+                                std::vector<std::uint32_t>& queued, auto make_unit) {
+        std::vector<std::uint32_t> now;
+        now.reserve(requests.size());
+        for (std::size_t rank = 0; rank < requests.size(); ++rank) {
+            const std::uint32_t surface = requests[rank].surface;
+            scheduler_.enqueue(make_unit(surface, rank_priority(rank, requests.size())));
+            now.push_back(surface);
+        }
+        std::sort(now.begin(), now.end());
+        for (std::uint32_t surface : queued) {
+            if (!std::binary_search(now.begin(), now.end(), surface)) {
+                scheduler_.cancel(kind, surface);
+            }
+        }
+        queued = std::move(now);
+    };
+    requeue(WorkKind::AimRebuild, plan_.aim() ? maps_->aim_requests() : std::vector<MapRequest>{},
+            queued_aim_, [this](std::uint32_t surface, double priority) {
+                const auto texels =
+                    static_cast<double>(maps_->surfaces()[surface].texels.texels.size());
+                return WorkUnit{WorkKind::AimRebuild, surface, priority,
+                                [this, surface] { maps_->rebuild_aim(surface); },
+                                std::max(texels, 1.0)};
+            });
+    const std::uint32_t texels_per_unit =
+        std::max<std::uint32_t>(config_.texels_per_gather_unit, 1);
+    requeue(WorkKind::IimGather,
+            plan_.iim_gather() ? maps_->gather_requests() : std::vector<MapRequest>{},
+            queued_gather_, [this, texels_per_unit](std::uint32_t surface, double priority) {
+                return WorkUnit{WorkKind::IimGather, surface, priority,
+                                [this, surface, texels_per_unit] {
+                                    maps_->gather(surface, texels_per_unit, *gatherer_,
+                                                  now_seconds_);
+                                },
+                                static_cast<double>(texels_per_unit)};
+            });
+}
+
+}  // namespace luxel::lighting

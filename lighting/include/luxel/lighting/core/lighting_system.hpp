@@ -1,0 +1,106 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "luxel/ecs/registry.hpp"
+#include "luxel/lighting/core/cpu_gather.hpp"
+#include "luxel/lighting/core/feature_plan.hpp"
+#include "luxel/lighting/core/illumination_maps.hpp"
+#include "luxel/lighting/core/photon_world.hpp"
+#include "luxel/lighting/core/scheduler.hpp"
+#include "luxel/runtime/clock.hpp"
+#include "luxel/runtime/jobs.hpp"
+
+namespace luxel::lighting {
+
+struct LightingConfig {
+    PhotonWorldSettings photons;
+    IlluminationSettings maps;
+    SchedulerSettings scheduler;
+    /// The CPU gather backend's settings (used unless set_gatherer() installs another).
+    CpuGatherSettings gather{64, 1e6f};
+    /// Work granularity: texels per gather unit and groups per retrace unit. Smaller units fit
+    /// a tight budget better; larger ones spend less on scheduling.
+    std::uint32_t texels_per_gather_unit = 32;
+    std::uint32_t groups_per_retrace_unit = 4;
+};
+
+/// What one update did (for the HUD, luxel-bench and the frame-budget tests).
+struct LightingStats {
+    std::uint64_t frame = 0;
+    FrameReport schedule;              ///< budget, time per kind of unit, predicted vs actual
+    SceneCensus census;                ///< what the plan was made from
+    std::uint64_t photons_traced = 0;  ///< global photons (probes and retraces) this frame
+    std::uint64_t caustic_photons_traced = 0;
+    std::uint64_t aim_texels = 0;
+    std::uint64_t texels_gathered = 0;
+    std::size_t stored_hits = 0;
+    std::size_t caustic_photons_stored = 0;
+    std::size_t caustic_bytes = 0;
+};
+
+/// The one façade a game drives lighting with:
+///
+///     LightingSystem lighting(registry, jobs);   // after the game has added its components
+///     each frame: game systems, TransformSystem::update(), lighting.update(budget_ms, t), render
+///
+/// It learns what changed only through the ECS change lists (PhotonWorld's and
+/// IlluminationMaps' observers): moved, added, removed and edited components. Every frame it
+/// re-derives the FeaturePlan, queues the work the plan allows (photon probes, group retraces,
+/// caustic slices, AIM rebuilds by delta_f/area, IIM gathers by delta_i/area) and lets the
+/// Scheduler run what fits `budget_ms`. A budget of 0 pauses lighting: nothing is traced or
+/// gathered and the queues wait; a later non-zero budget works the backlog off.
+class LightingSystem {
+  public:
+    /// `clock` times the work units (inject a ManualClock in tests).
+    LightingSystem(ecs::Registry& registry, JobSystem& jobs, LightingConfig config = {},
+                   const Clock& clock = SteadyClock::instance());
+    ~LightingSystem();
+    LightingSystem(const LightingSystem&) = delete;
+    LightingSystem& operator=(const LightingSystem&) = delete;
+
+    /// One frame of lighting work within `budget_ms`; `now_seconds` stamps IIM updates for
+    /// their fade-in.
+    const LightingStats& update(double budget_ms, double now_seconds);
+
+    /// Replaces the gather backend (e.g. lighting/gpu's HemiPlaneGatherer); null restores the
+    /// CPU one. The gatherer must outlive its use here.
+    void set_gatherer(IrradianceGatherer* gatherer);
+
+    [[nodiscard]] const FeaturePlan& plan() const { return plan_; }
+    [[nodiscard]] const LightingStats& stats() const { return stats_; }
+    [[nodiscard]] const PhotonWorld& photons() const { return *photons_; }
+    [[nodiscard]] PhotonWorld& photons() { return *photons_; }
+    [[nodiscard]] const IlluminationMaps& maps() const { return *maps_; }
+    [[nodiscard]] const Scheduler& scheduler() const { return scheduler_; }
+    [[nodiscard]] const LightingConfig& config() const { return config_; }
+
+  private:
+    SceneCensus take_census() const;
+    void queue_work();
+
+    ecs::Registry& registry_;
+    JobSystem& jobs_;
+    LightingConfig config_;
+    std::unique_ptr<PhotonWorld> photons_;
+    std::unique_ptr<IlluminationMaps> maps_;
+    std::unique_ptr<CpuGatherer> cpu_gatherer_;
+    IrradianceGatherer* gatherer_ = nullptr;
+    Scheduler scheduler_;
+    FeaturePlan plan_;
+    LightingStats stats_;
+    std::uint64_t frame_ = 0;
+    double now_seconds_ = 0.0;
+    /// Frames since an object or light last changed: probes keep running for a full probe
+    /// cycle (M frames) after the last change, since a path may diverge at any of its photons.
+    std::uint64_t frames_since_change_ = 0;
+    std::uint64_t probe_frame_ = 0;    ///< advances only when probes run
+    std::uint64_t caustic_frame_ = 0;  ///< advances only when caustic slices run
+    std::size_t queued_retrace_units_ = 0;
+    std::vector<std::uint32_t> queued_aim_;     ///< sorted surface ids
+    std::vector<std::uint32_t> queued_gather_;  ///< sorted surface ids
+};
+
+}  // namespace luxel::lighting

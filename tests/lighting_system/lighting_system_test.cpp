@@ -1,0 +1,181 @@
+// The LightingSystem façade on real levels: a static scene converges and then does nothing per
+// frame, a scene without caustic generators holds no caustic data until one is added, motion
+// brings work back, and a budget of zero pauses everything.
+
+#include <filesystem>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "luxel/ecs/transform_system.hpp"
+#include "luxel/lighting/core/animation_system.hpp"
+#include "luxel/lighting/core/lighting_system.hpp"
+#include "luxel/lighting/core/scene_instance.hpp"
+#include "luxel/runtime/scene/gltf.hpp"
+
+namespace {
+
+using namespace luxel;
+using namespace luxel::lighting;
+
+constexpr double kUnlimited = 1e9;  // milliseconds: everything queued runs
+
+std::shared_ptr<const scene::Scene> prepared(const std::string& name) {
+    return std::make_shared<scene::Scene>(
+        scene::load_gltf(std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" / "levels" /
+                         "prepared" / (name + ".glb")));
+}
+
+LightingConfig small_config() {
+    LightingConfig config;
+    config.photons.selective.groups = 16;
+    config.photons.selective.per_group = 8;
+    config.photons.caustics.photons_per_pair = 2000;
+    config.photons.caustics.slices = 4;
+    config.gather.rays_per_texel = 8;
+    config.texels_per_gather_unit = 4096;
+    return config;
+}
+
+struct Game {
+    ecs::Registry registry;
+    SceneInstance instance;
+    ecs::TransformSystem transforms{registry};
+    JobSystem jobs{2};
+    std::unique_ptr<LightingSystem> lighting;
+    double time = 0.0;
+
+    Game(const std::string& level, bool animate) {
+        InstantiateOptions options;
+        options.play_animations = animate;
+        instance = instantiate(registry, prepared(level), options);
+        transforms.update();
+        lighting = std::make_unique<LightingSystem>(registry, jobs, small_config());
+    }
+
+    const LightingStats& frame(double budget_ms, double dt = 1.0 / 60.0) {
+        time += dt;
+        update_animations(registry, dt);
+        transforms.update();
+        return lighting->update(budget_ms, time);
+    }
+
+    /// Runs frames with an unlimited budget until the plan says converged; returns how many.
+    int converge(int limit) {
+        for (int i = 1; i <= limit; ++i) {
+            frame(kUnlimited);
+            if (lighting->plan().census().converged) {
+                return i;
+            }
+        }
+        return limit + 1;
+    }
+};
+
+TEST(LightingSystem, AStaticSceneConvergesAndThenDoesNoWork) {
+    Game game("cornell", false);
+    const int frames = game.converge(200);
+    ASSERT_LE(frames, 200) << "the static Cornell box never converged";
+    EXPECT_GT(game.lighting->stats().stored_hits, 100u);
+    EXPECT_GT(game.lighting->maps().counters().texels_gathered, 0u);
+    EXPECT_GT(game.lighting->maps().counters().aim_rebuilds, 0u);
+    for (int i = 0; i < 50; ++i) {
+        const LightingStats& stats = game.frame(kUnlimited);
+        EXPECT_EQ(stats.photons_traced, 0u) << "frame " << i;
+        EXPECT_EQ(stats.caustic_photons_traced, 0u);
+        EXPECT_EQ(stats.aim_texels, 0u);
+        EXPECT_EQ(stats.texels_gathered, 0u);
+        EXPECT_EQ(stats.schedule.units_done, 0u);
+        EXPECT_FALSE(game.lighting->plan().any_tracing());
+    }
+    std::printf("[ figures  ] static cornell converged in %d frames\n", frames);
+}
+
+TEST(LightingSystem, NoGeneratorMeansNoCausticDataUntilOneIsAdded) {
+    Game game("two-rooms", false);
+    ASSERT_LE(game.converge(300), 300);
+    for (int i = 0; i < 20; ++i) {
+        const LightingStats& stats = game.frame(kUnlimited);
+        EXPECT_EQ(stats.caustic_photons_traced, 0u);
+        EXPECT_EQ(stats.caustic_bytes, 0u);
+    }
+    EXPECT_TRUE(game.lighting->photons().caustics().empty());
+    EXPECT_FALSE(game.lighting->plan().caustics());
+    EXPECT_FALSE(game.lighting->plan().caustic_data());
+    EXPECT_NE(game.lighting->plan().reason(Pass::Caustics).find("generator"), std::string::npos);
+
+    // A glass cube on the west room's floor, at run time.
+    auto glass = std::make_shared<scene::Scene>();
+    scene::Material material;
+    material.transmission = 1.0f;
+    material.ior = 1.5f;
+    material.base_color = glm::vec4(1.0f);
+    material.roughness = 0.0f;
+    glass->materials.push_back(material);
+    scene::Primitive cube;
+    const float h = 0.2f;
+    const glm::vec3 c[8] = {{-h, -h, -h}, {h, -h, -h}, {h, h, -h}, {-h, h, -h},
+                            {-h, -h, h},  {h, -h, h},  {h, h, h},  {-h, h, h}};
+    const int faces[6][4] = {{3, 2, 1, 0}, {4, 5, 6, 7}, {0, 4, 7, 3},
+                             {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}};
+    for (const auto& face : faces) {
+        const auto base = static_cast<std::uint32_t>(cube.positions.size());
+        for (int k = 0; k < 4; ++k) {
+            cube.positions.push_back(c[face[k]]);
+        }
+        cube.indices.insert(cube.indices.end(),
+                            {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+    cube.material = 0;
+    glass->meshes.push_back({"glass cube", {cube}});
+    const ecs::Entity entity = game.registry.create();
+    game.registry.emplace<MeshInstance>(entity, glass, 0);
+    game.registry.emplace<CausticGenerator>(entity, 1.5f, 1.0f, glm::vec3(1.0f));
+    game.registry.emplace<ecs::Transform>(entity, glm::vec3(-2.0f, 0.5f, 0.0f));
+    std::uint64_t traced = game.frame(kUnlimited).caustic_photons_traced;
+    EXPECT_TRUE(game.lighting->plan().caustics());
+    for (int i = 0; i < 10; ++i) {
+        traced += game.frame(kUnlimited).caustic_photons_traced;
+    }
+    // Traced and converged: no more caustic tracing, but the data and its filter stay.
+    EXPECT_TRUE(game.lighting->plan().caustic_data());
+    EXPECT_FALSE(game.lighting->photons().caustics().empty());
+    EXPECT_GT(traced, 0u);
+    EXPECT_GT(game.lighting->stats().caustic_bytes, 0u);
+}
+
+TEST(LightingSystem, MotionBringsWorkBackAndStoppingConvergesAgain) {
+    Game game("cornell", true);
+    // Animations playing: the cube slides and the sphere orbits; work never stops.
+    std::uint64_t traced = 0;
+    std::uint64_t gathered = 0;
+    for (int i = 0; i < 120; ++i) {
+        const LightingStats& stats = game.frame(kUnlimited);
+        traced += stats.photons_traced;
+        gathered += stats.texels_gathered;
+        EXPECT_TRUE(game.lighting->plan().selective_probes());
+    }
+    EXPECT_GT(traced, 0u);
+    EXPECT_GT(gathered, 0u);
+    // Stop every animation: within a probe cycle plus the work it finds, lighting goes idle.
+    game.registry.view<AnimationPlayer>().each(
+        [](ecs::Entity, AnimationPlayer& player) { player.playing = false; });
+    EXPECT_LE(game.converge(400), 400);
+    EXPECT_EQ(game.frame(kUnlimited).photons_traced, 0u);
+}
+
+TEST(LightingSystem, ABudgetOfZeroPausesAndResumingFinishesTheBacklog) {
+    Game game("cornell", false);
+    for (int i = 0; i < 30; ++i) {
+        const LightingStats& stats = game.frame(0.0);
+        EXPECT_EQ(stats.schedule.units_done, 0u);
+        EXPECT_EQ(stats.photons_traced, 0u);
+        EXPECT_TRUE(stats.schedule.paused);
+    }
+    EXPECT_EQ(game.lighting->photons().photon_map().stored_hit_count(), 0u);
+    EXPECT_GT(game.lighting->scheduler().pending_total(), 0u);
+    EXPECT_LE(game.converge(200), 200);
+    EXPECT_GT(game.lighting->photons().photon_map().stored_hit_count(), 0u);
+}
+
+}  // namespace
