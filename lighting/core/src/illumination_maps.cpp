@@ -52,6 +52,16 @@ IlluminationMaps::IlluminationMaps(ecs::Registry& registry, PhotonWorld& world,
     sync();
 }
 
+/// A rebuild in progress: the surface's kd-tree (the only one in memory) and where it got to.
+struct IlluminationMaps::AimPass {
+    std::uint32_t surface = 0;
+    std::unique_ptr<PhotonDensity> density;
+    std::vector<GatherTexel> texels;  ///< world space, at the pass's start
+    std::size_t cursor = 0;
+};
+
+IlluminationMaps::~IlluminationMaps() = default;
+
 std::int32_t IlluminationMaps::page_index(const scene::Scene* source, int page, int page_size) {
     const auto key = std::make_pair(source, page);
     if (const auto found = pages_.find(key); found != pages_.end()) {
@@ -169,10 +179,18 @@ std::vector<MapRequest> IlluminationMaps::aim_requests() const {
         const double delta = photons.delta_full.value();
         const double change = relative(delta, photons.stored_energy.value());
         const bool first = !mapped.aim_built;
-        if (first || change > settings_.aim_threshold) {
-            // Unbuilt maps first; then the surfaces whose light changed most per square metre.
-            const double priority = delta / safe_area(mapped.texels.area);
-            requests.push_back({s, first ? std::numeric_limits<double>::max() : priority});
+        const bool in_progress = aim_pass_ && aim_pass_->surface == s;
+        if (first || in_progress || change > settings_.aim_threshold) {
+            // The pass in progress, then unbuilt maps, then the surfaces whose light changed
+            // most per square metre.
+            double priority = delta / safe_area(mapped.texels.area);
+            if (first) {
+                priority = std::numeric_limits<double>::max() / 2.0;
+            }
+            if (in_progress) {
+                priority = std::numeric_limits<double>::max();
+            }
+            requests.push_back({s, priority});
         }
     }
     std::stable_sort(
@@ -181,27 +199,44 @@ std::vector<MapRequest> IlluminationMaps::aim_requests() const {
     return requests;
 }
 
-void IlluminationMaps::rebuild_aim(std::uint32_t surface) {
+std::size_t IlluminationMaps::rebuild_aim(std::uint32_t surface, std::size_t max_texels) {
     MapSurface& mapped = surfaces_.at(surface);
     const std::int32_t page_id = aim_.surface_page.at(surface);
     PhotonMap& map = world_.photon_map();
-    if (page_id < 0 || surface >= map.surface_count()) {
-        return;
+    if (page_id < 0 || surface >= map.surface_count() || max_texels == 0) {
+        return 0;
     }
+    if (aim_pass_ && aim_pass_->surface != surface) {
+        // One tree at a time: the pass in progress goes on (this call's effort goes to it), so
+        // passes finish in order however the requests interleave. Only a pass whose surface
+        // went away is dropped.
+        if (registry_.valid(surfaces_[aim_pass_->surface].entity)) {
+            return rebuild_aim(aim_pass_->surface, max_texels);
+        }
+        aim_pass_.reset();
+    }
+    if (!aim_pass_) {
+        aim_pass_ = std::make_unique<AimPass>();
+        aim_pass_->surface = surface;
+        const std::array<std::uint32_t, 1> sources{surface};
+        aim_pass_->density = std::make_unique<PhotonDensity>(map, sources, PhotonSelection::Full);
+        aim_pass_->texels = world_texels(surface);
+        // Photons that change from now on need another pass; this one sees the tree's snapshot.
+        map.reset_full_delta(surface);
+    }
+    AimPass& pass = *aim_pass_;
     RadiancePage& page = aim_.pages[static_cast<std::size_t>(page_id)];
-    const std::array<std::uint32_t, 1> sources{surface};
-    // The only tree in memory: dropped at the end of this call.
-    const PhotonDensity density(map, sources, PhotonSelection::Full);
     const double metres_per_texel = mapped.world_metres_per_texel;
-    const std::vector<GatherTexel> texels = world_texels(surface);
+    const std::size_t first = pass.cursor;
+    const std::size_t end = std::min(pass.texels.size(), first + max_texels);
     int x0 = page.size;
     int y0 = page.size;
     int x1 = -1;
     int y1 = -1;
-    for (std::size_t i = 0; i < texels.size(); ++i) {
+    for (std::size_t i = first; i < end; ++i) {
         const SurfaceTexel& texel = mapped.texels.texels[i];
         const DensitySample found =
-            density.sample(texels[i].position, texels[i].normal, settings_.density);
+            pass.density->sample(pass.texels[i].position, pass.texels[i].normal, settings_.density);
         glm::vec3 radiance(0.0f);
         if (found.radius > 0.0 && metres_per_texel > 0.0) {
             const double on_surface = mapped.footprint.fraction(i, found.radius / metres_per_texel,
@@ -216,18 +251,32 @@ void IlluminationMaps::rebuild_aim(std::uint32_t surface) {
         x1 = std::max(x1, texel.x);
         y1 = std::max(y1, texel.y);
     }
-    dilate(surface, page);
-    if (x1 >= x0) {
-        // One texel of padding on every side was dilated too.
-        const int left = std::max(x0 - 1, 0);
-        const int top = std::max(y0 - 1, 0);
-        page.mark_dirty(
-            {left, top, std::min(x1 + 2, page.size) - left, std::min(y1 + 2, page.size) - top});
+    pass.cursor = end;
+    const bool complete = pass.cursor >= pass.texels.size();
+    if (complete) {
+        dilate(surface, page);
+        // The padding ring around the whole surface was written too.
+        for (const SurfaceTexel& texel : mapped.texels.texels) {
+            x0 = std::min(x0, texel.x - 1);
+            y0 = std::min(y0, texel.y - 1);
+            x1 = std::max(x1, texel.x + 1);
+            y1 = std::max(y1, texel.y + 1);
+        }
     }
-    map.reset_full_delta(surface);
-    mapped.aim_built = true;
-    ++counters_.aim_rebuilds;
-    counters_.aim_texels += texels.size();
+    if (x1 >= x0) {
+        x0 = std::max(x0, 0);
+        y0 = std::max(y0, 0);
+        x1 = std::min(x1, page.size - 1);
+        y1 = std::min(y1, page.size - 1);
+        page.mark_dirty({x0, y0, x1 - x0 + 1, y1 - y0 + 1});
+    }
+    counters_.aim_texels += end - first;
+    if (complete) {
+        mapped.aim_built = true;
+        ++counters_.aim_rebuilds;
+        aim_pass_.reset();
+    }
+    return end - first;
 }
 
 void IlluminationMaps::dilate(std::uint32_t surface, RadiancePage& page) const {

@@ -150,11 +150,12 @@ void LightingSystem::queue_work() {
     };
     requeue(WorkKind::AimRebuild, plan_.aim() ? maps_->aim_requests() : std::vector<MapRequest>{},
             queued_aim_, [this](std::uint32_t surface, double priority) {
-                const auto texels =
-                    static_cast<double>(maps_->surfaces()[surface].texels.texels.size());
-                return WorkUnit{WorkKind::AimRebuild, surface, priority,
-                                [this, surface] { maps_->rebuild_aim(surface); },
-                                std::max(texels, 1.0)};
+                const std::size_t slice = std::max<std::uint32_t>(config_.texels_per_aim_unit, 1);
+                const std::size_t texels = maps_->surfaces()[surface].texels.texels.size();
+                return WorkUnit{
+                    WorkKind::AimRebuild, surface, priority,
+                    [this, surface, slice] { maps_->rebuild_aim(surface, slice); },
+                    static_cast<double>(std::max<std::size_t>(std::min(texels, slice), 1))};
             });
     const std::uint32_t texels_per_unit =
         std::max<std::uint32_t>(config_.texels_per_gather_unit, 1);

@@ -1,7 +1,9 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <map>
+#include <memory>
 #include <span>
 #include <utility>
 #include <vector>
@@ -76,6 +78,7 @@ class IlluminationMaps {
     /// Follows `world`'s surfaces (call sync() after PhotonWorld::sync()).
     IlluminationMaps(ecs::Registry& registry, PhotonWorld& world,
                      IlluminationSettings settings = {});
+    ~IlluminationMaps();
     IlluminationMaps(const IlluminationMaps&) = delete;
     IlluminationMaps& operator=(const IlluminationMaps&) = delete;
 
@@ -93,7 +96,13 @@ class IlluminationMaps {
     /// photons of a coplanar neighbour across a seam would be counted over an area that
     /// excludes the neighbour. The source gathers from neighbours to soften the darkening at
     /// borders; measuring the area removes it.
-    void rebuild_aim(std::uint32_t surface);
+    ///
+    /// A rebuild may run in slices of `max_texels` texels across frames (the scheduler keeps
+    /// units small so they fit a budget): the tree lives until the pass completes, and
+    /// aim_requests() lists the pass in progress first. While a pass of another surface is in
+    /// progress, the call continues that pass instead. Returns the texels done.
+    std::size_t rebuild_aim(std::uint32_t surface,
+                            std::size_t max_texels = std::numeric_limits<std::size_t>::max());
 
     /// Surfaces whose IIM needs gathering (a pass in progress, or delta_i over the threshold),
     /// highest delta_i / area first. No new pass starts while a surface holding photons has
@@ -117,6 +126,8 @@ class IlluminationMaps {
     [[nodiscard]] std::vector<GatherTexel> world_texels(std::uint32_t surface) const;
 
   private:
+    struct AimPass;
+
     void add_surface(std::uint32_t surface);
     void refresh_transform(std::uint32_t surface);
     /// Fills the padding texels around `surface`'s texels on `page` with the mean of their
@@ -136,6 +147,7 @@ class IlluminationMaps {
     std::map<ecs::Entity, std::vector<std::uint32_t>> surfaces_of_;
     ecs::Observer<ecs::WorldTransform> moves_;
     MapCounters counters_;
+    std::unique_ptr<AimPass> aim_pass_;
 };
 
 }  // namespace luxel::lighting

@@ -21,10 +21,12 @@ struct LightingConfig {
     SchedulerSettings scheduler;
     /// The CPU gather backend's settings (used unless set_gatherer() installs another).
     CpuGatherSettings gather{64, 1e6f};
-    /// Work granularity: texels per gather unit and groups per retrace unit. Smaller units fit
-    /// a tight budget better; larger ones spend less on scheduling.
-    std::uint32_t texels_per_gather_unit = 32;
-    std::uint32_t groups_per_retrace_unit = 4;
+    /// Work granularity: texels per gather and AIM unit, groups per retrace unit. Smaller units
+    /// fit a tight budget better (a unit that has waited too long runs even if it overruns,
+    /// so the largest unit bounds the overrun); larger ones spend less on scheduling.
+    std::uint32_t texels_per_gather_unit = 16;
+    std::uint32_t texels_per_aim_unit = 128;
+    std::uint32_t groups_per_retrace_unit = 2;
 };
 
 /// What one update did (for the HUD, luxel-bench and the frame-budget tests).
