@@ -15,6 +15,7 @@
 #include "levels.hpp"
 #include "luxel/ecs/hierarchy.hpp"
 #include "luxel/ecs/transform.hpp"
+#include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/components.hpp"
 #include "luxel/lighting/core/animation_system.hpp"
 #include "luxel/lighting/core/scene_instance.hpp"
@@ -57,7 +58,7 @@ struct Loaded {
 
 TEST(BuiltInLevels, CommittedFilesAreWhatTheGeneratorBuilds) {
     const auto recipes = levels::built_in_levels();
-    ASSERT_EQ(recipes.size(), 6u);
+    ASSERT_EQ(recipes.size(), 7u);
     for (const auto& recipe : recipes) {
         const auto committed = read_bytes(kLevels / (recipe.name + ".glb"));
         ASSERT_FALSE(committed.empty()) << recipe.name << ".glb is missing";
@@ -139,6 +140,34 @@ TEST(BuiltInLevels, CausticsHasThreeGeneratorsAndEveryLightKind) {
     const auto& wave = level.scene->nodes.at(static_cast<std::size_t>(
         level.registry.get<lighting::SceneNode>(level["water surface"]).index));
     EXPECT_TRUE(wave.flags.raw.contains("wave"));
+}
+
+TEST(BuiltInLevels, SandboxHasEverythingTheGameLevelPromises) {
+    Loaded level("sandbox");
+    // A door that swings, a glass sculpture that turns, a lamp that swings, a switched light,
+    // and a ball the game's bounce system moves (dynamic, no animation of its own).
+    EXPECT_EQ(level.scene->animations.size(), 3u);
+    EXPECT_EQ(count<lighting::PointLight>(level.registry), 4u);
+    EXPECT_EQ(count<lighting::LightSwitch>(level.registry), 1u);
+    EXPECT_EQ(count<lighting::CausticGenerator>(level.registry), 1u);
+    EXPECT_TRUE(level.registry.has<lighting::CausticGenerator>(level["glass sculpture"]));
+    EXPECT_TRUE(level.registry.has<lighting::Dynamic>(level["door"]));
+    EXPECT_TRUE(level.registry.has<lighting::Dynamic>(level["swinging lamp"]));
+    EXPECT_TRUE(level.registry.has<lighting::Dynamic>(level["ball"]));
+    const auto& ball = level.scene->nodes.at(
+        static_cast<std::size_t>(level.registry.get<lighting::SceneNode>(level["ball"]).index));
+    ASSERT_TRUE(ball.flags.raw.contains("bounce"));
+    EXPECT_DOUBLE_EQ(ball.flags.raw["bounce"]["height"].get<double>(), 1.0);
+    // The lamp swings: from its rest pose to t = 1.5 s (30 degrees) it moves sideways.
+    ecs::TransformSystem transforms(level.registry);
+    transforms.update();
+    const glm::vec3 before =
+        level.registry.get<ecs::WorldTransform>(level["swinging lamp"]).position();
+    lighting::update_animations(level.registry, 1.5);
+    transforms.update();
+    const glm::vec3 after =
+        level.registry.get<ecs::WorldTransform>(level["swinging lamp"]).position();
+    EXPECT_GT(std::abs(after.x - before.x), 0.3f);  // 0.9 m cord, 30 degrees: 0.45 m
 }
 
 TEST(BuiltInLevels, FurnaceIsAClosedEmissiveSphere) {

@@ -94,7 +94,7 @@ TEST_P(LevelMaps, TexelsMatchTheLayoutAndEveryValueIsFinite) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltInLevels, LevelMaps,
-                         ::testing::Values("cornell", "two-rooms", "caustics", "furnace"),
+                         ::testing::Values("cornell", "two-rooms", "caustics", "sandbox", "furnace"),
                          [](const auto& param_info) {
                              std::string name = param_info.param;
                              std::replace(name.begin(), name.end(), '-', '_');

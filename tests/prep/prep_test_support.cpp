@@ -106,7 +106,8 @@ void fail(PageCheck& check, const std::string& message) {
 }  // namespace
 
 std::vector<std::string> built_in_level_names() {
-    return {"cornell", "cornell-13k", "cornell-133k", "two-rooms", "caustics", "furnace"};
+    return {"cornell",  "cornell-13k", "cornell-133k", "two-rooms",
+            "caustics", "sandbox",     "furnace"};
 }
 
 std::filesystem::path level_file(const std::string& name) {

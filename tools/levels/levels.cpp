@@ -253,6 +253,132 @@ scene::Scene make_caustics() {
     return level.finish();
 }
 
+scene::Scene make_sandbox() {
+    LevelBuilder level("sandbox");
+    // Two 4 x 3 x 4 m rooms joined along x by a corridor 3 m long, as wide (1 m) and high
+    // (2.2 m) as the doorways at its ends:
+    //   west room x in [-4, 0], corridor x in [0, 3], east room x in [3, 7]; z in [-2, 2].
+    constexpr float depth = 2.0f;
+    constexpr float height = 3.0f;
+    constexpr float door_half = 0.5f;
+    constexpr float door_height = 2.2f;
+    constexpr float corridor_end = 3.0f;
+    const int plaster = level.add_diffuse("plaster", glm::vec3(0.78f, 0.76f, 0.72f));
+    const int sage = level.add_diffuse("sage plaster", glm::vec3(0.55f, 0.68f, 0.52f));
+    const int terracotta = level.add_diffuse("terracotta", glm::vec3(0.72f, 0.42f, 0.30f));
+    const int floor_wood = level.add_diffuse("wood floor", glm::vec3(0.55f, 0.38f, 0.22f));
+    const int stone = level.add_diffuse("stone", glm::vec3(0.6f, 0.6f, 0.58f));
+    const int door_paint = level.add_diffuse("door", glm::vec3(0.20f, 0.30f, 0.55f));
+    const int ball_paint = level.add_diffuse("ball", glm::vec3(0.85f, 0.15f, 0.10f));
+    const int shade = level.add_diffuse("lamp shade", glm::vec3(0.9f, 0.85f, 0.7f));
+    const int sculpture_glass = level.add_material(glass("sculpture glass", 1.5f));
+
+    // A room's inner wall facing along `inward` (+1: faces +x, -1: faces -x) at x, with a
+    // doorway |z| < door_half, y < door_height.
+    auto doorway_wall = [&](float x, float facing) {
+        scene::Primitive wall;
+        auto face = [&](float z_low, float z_high, float y_low, float y_high) {
+            const glm::vec3 up(0.0f, y_high - y_low, 0.0f);
+            return facing < 0.0f ? make_quad({x, y_low, z_low}, {0, 0, z_high - z_low}, up, 4, 4)
+                                 : make_quad({x, y_low, z_high}, {0, 0, z_low - z_high}, up, 4, 4);
+        };
+        append(wall, face(door_half, depth, 0.0f, height));
+        append(wall, face(-depth, -door_half, 0.0f, height));
+        append(wall, face(-door_half, door_half, door_height, height));
+        return wall;
+    };
+    auto room = [&](const std::string& prefix, float x0, float x1, int walls, bool west) {
+        const float width = x1 - x0;
+        level.add_mesh_node(prefix + "floor",
+                            make_quad({x0, 0, depth}, {width, 0, 0}, {0, 0, -2 * depth}, 8, 8),
+                            floor_wood);
+        level.add_mesh_node(prefix + "ceiling",
+                            make_quad({x0, height, -depth}, {width, 0, 0}, {0, 0, 2 * depth}, 8, 8),
+                            plaster);
+        level.add_mesh_node(prefix + "north wall",
+                            make_quad({x0, 0, -depth}, {width, 0, 0}, {0, height, 0}, 8, 6), walls);
+        level.add_mesh_node(prefix + "south wall",
+                            make_quad({x1, 0, depth}, {-width, 0, 0}, {0, height, 0}, 8, 6), walls);
+        if (west) {
+            level.add_mesh_node(prefix + "end wall",
+                                make_quad({x0, 0, depth}, {0, 0, -2 * depth}, {0, height, 0}, 8, 6),
+                                walls);
+            level.add_mesh_node(prefix + "doorway wall", doorway_wall(x1, -1.0f), walls);
+        } else {
+            level.add_mesh_node(prefix + "end wall",
+                                make_quad({x1, 0, -depth}, {0, 0, 2 * depth}, {0, height, 0}, 8, 6),
+                                walls);
+            level.add_mesh_node(prefix + "doorway wall", doorway_wall(x0, 1.0f), walls);
+        }
+    };
+    room("west ", -4.0f, 0.0f, sage, true);
+    room("east ", corridor_end, corridor_end + 4.0f, terracotta, false);
+    // The corridor: floor, ceiling and its two side walls.
+    level.add_mesh_node(
+        "corridor floor",
+        make_quad({0, 0, door_half}, {corridor_end, 0, 0}, {0, 0, -2 * door_half}, 6, 2), stone);
+    level.add_mesh_node(
+        "corridor ceiling",
+        make_quad({0, door_height, -door_half}, {corridor_end, 0, 0}, {0, 0, 2 * door_half}, 6, 2),
+        plaster);
+    level.add_mesh_node(
+        "corridor north wall",
+        make_quad({0, 0, -door_half}, {corridor_end, 0, 0}, {0, door_height, 0}, 6, 4), plaster);
+    level.add_mesh_node(
+        "corridor south wall",
+        make_quad({corridor_end, 0, door_half}, {-corridor_end, 0, 0}, {0, door_height, 0}, 6, 4),
+        plaster);
+
+    // The door between the west room and the corridor: hinged at (0, 0, -0.5), it swings
+    // 100 degrees into the west room and back on an 8 s loop.
+    const int hinge = level.add_node("door hinge", -1, {-0.03f, 0.0f, -door_half});
+    level.add_mesh_node("door", make_box({0.04f, door_height - 0.02f, 2 * door_half - 0.02f}),
+                        door_paint, hinge, {0.0f, door_height / 2, door_half});
+    level.animate("door swing", hinge, AnimatedProperty::Rotation, Interpolation::Linear,
+                  {0.0f, 2.0f, 4.0f, 6.0f, 8.0f},
+                  {as_key(yaw(0.0f)), as_key(yaw(0.0f)), as_key(yaw(glm::radians(-100.0f))),
+                   as_key(yaw(glm::radians(-100.0f))), as_key(yaw(0.0f))});
+
+    // The east room: a glass sculpture turning on a stone plinth under a lamp.
+    level.add_mesh_node("plinth", make_box({0.5f, 0.6f, 0.5f}), stone, -1, {5.0f, 0.3f, 0.0f});
+    const int sculpture = level.add_mesh_node("glass sculpture", make_box({0.3f, 0.5f, 0.3f}),
+                                              sculpture_glass, -1, {5.0f, 0.85f, 0.0f});
+    std::vector<float> turn_times;
+    std::vector<glm::vec4> turn;
+    for (int k = 0; k <= 4; ++k) {
+        turn_times.push_back(2.5f * static_cast<float>(k));
+        turn.push_back(as_key(yaw(0.5f * kPi * static_cast<float>(k)) *
+                              glm::angleAxis(0.35f, glm::vec3(1.0f, 0.0f, 0.0f))));
+    }
+    level.animate("sculpture turn", sculpture, AnimatedProperty::Rotation, Interpolation::Linear,
+                  turn_times, turn);
+    level.add_light(point_light("sculpture lamp", 60.0f, {1.0f, 0.95f, 0.85f}), {5.6f, 2.4f, 0.6f});
+    level.add_light(point_light("east lamp", 40.0f, {0.9f, 0.95f, 1.0f}), {6.2f, 2.7f, -1.5f});
+
+    // The west room: a lamp swinging on a 0.9 m cord, and a ball that a game system bounces.
+    const int pivot = level.add_node("lamp pivot", -1, {-2.0f, height, -0.6f});
+    const glm::quat left = glm::angleAxis(glm::radians(30.0f), glm::vec3(0.0f, 0.0f, 1.0f));
+    const glm::quat right = glm::angleAxis(glm::radians(-30.0f), glm::vec3(0.0f, 0.0f, 1.0f));
+    level.animate("lamp swing", pivot, AnimatedProperty::Rotation, Interpolation::Linear,
+                  {0.0f, 1.5f, 3.0f}, {as_key(left), as_key(right), as_key(left)});
+    level.add_mesh_node("lamp shade", make_open_cylinder(0.12f, 0.1f, 24), shade, pivot,
+                        {0.0f, -0.85f, 0.0f});
+    level.add_light(point_light("swinging lamp", 50.0f, {1.0f, 0.85f, 0.65f}), {0.0f, -0.9f, 0.0f},
+                    glm::quat(1, 0, 0, 0), pivot);
+    const int ball =
+        level.add_mesh_node("ball", make_sphere(0.2f, 32, 16), ball_paint, -1, {-1.2f, 0.2f, 0.9f});
+    level.node(ball).flags.dynamic = true;
+    level.node(ball).flags.raw["bounce"] = {{"height", 1.0}, {"period", 1.2}};
+
+    // The corridor light switches on for 2 s of every 4.
+    const int corridor_light =
+        level.add_light(point_light("corridor light", 15.0f, {1.0f, 0.9f, 0.75f}),
+                        {1.5f, door_height - 0.15f, 0.0f});
+    add_switch(level.node(corridor_light), 4.0f, 2.0f, 0.0f);
+    level.add_camera("camera", {-3.5f, 1.6f, 1.6f}, {1.0f, 1.1f, -0.2f}, glm::radians(60.0f));
+    return level.finish();
+}
+
 scene::Scene make_furnace(float albedo, float emitted_radiance) {
     LevelBuilder level("furnace");
     scene::Material inside;
@@ -282,6 +408,10 @@ std::vector<LevelRecipe> built_in_levels() {
          [] { return make_two_rooms(); }},
         {"caustics", "brass ring, glass sphere in a box, water surface over a pool",
          [] { return make_caustics(); }},
+        {"sandbox",
+         "the sandbox game level: two rooms and a corridor, door, glass sculpture, "
+         "bouncing ball, swinging lamp, switched light",
+         [] { return make_sandbox(); }},
         {"furnace", "closed sphere, uniform albedo 0.5 and emission 1 W/(m^2 sr)",
          [] { return make_furnace(); }},
     };

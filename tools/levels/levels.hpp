@@ -23,6 +23,10 @@ struct LevelRecipe {
 [[nodiscard]] scene::Scene make_cornell(const std::string& name, int floor_cells);
 [[nodiscard]] scene::Scene make_two_rooms();
 [[nodiscard]] scene::Scene make_caustics();
+/// The sandbox game level (issue 10): two rooms joined by a corridor, a swinging door, a turning
+/// glass sculpture, a bouncing ball (moved by a game system from extras.luxel.bounce), a
+/// swinging lamp and a switched light.
+[[nodiscard]] scene::Scene make_sandbox();
 /// A closed sphere seen from inside, uniform albedo and emission (stability checks: the exact
 /// radiance inside is L = Le / (1 - albedo)).
 [[nodiscard]] scene::Scene make_furnace(float albedo = 0.5f, float emitted_radiance = 1.0f);
