@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include <glm/gtc/constants.hpp>
 
@@ -31,6 +32,39 @@ glm::dvec2 rotation_for(const glm::vec3& position) {
             static_cast<double>(hash >> 16) / 65536.0};
 }
 
+constexpr double kTwoPi = 6.283185307179586476925286766559;
+
+/// Halton point i of the gather pattern before the per-texel rotation: u.x (the squared radius
+/// of the cosine mapping) and the unit vector (cos, sin) of the azimuth 2 pi u.y.
+struct PatternPoint {
+    double radius_squared;
+    double cos_phi;
+    double sin_phi;
+};
+
+PatternPoint pattern_point(std::uint32_t i) {
+    const glm::dvec2 h = halton2(i);
+    const double phi = kTwoPi * h.y;
+    return {h.x, std::cos(phi), std::sin(phi)};
+}
+
+/// Pattern points are the same for every texel: each thread tabulates them once (up to this
+/// many; beyond, they are computed per ray) instead of computing Halton digits and a sincos
+/// per ray.
+constexpr std::uint32_t kMaxTabulated = 1u << 16;
+
+const std::vector<PatternPoint>& tabulated_pattern(std::uint32_t rays) {
+    thread_local std::vector<PatternPoint> points;
+    const std::uint32_t wanted = std::min(rays, kMaxTabulated);
+    if (points.size() < wanted) {
+        points.reserve(wanted);
+        for (auto i = static_cast<std::uint32_t>(points.size()); i < wanted; ++i) {
+            points.push_back(pattern_point(i));
+        }
+    }
+    return points;
+}
+
 bool finite_vector(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
@@ -51,12 +85,28 @@ glm::vec3 CpuGatherer::gather_one(const GatherTexel& texel) const {
     const glm::vec3 normal = texel.normal / normal_length;
     const glm::vec3 origin = offset_ray_origin(texel.position, normal);
     const glm::dvec2 rotation = rotation_for(texel.position);
+    // cosine_direction(normal, frac(halton2(i) + rotation)), with the tangent frame built once
+    // per texel and the azimuth's rotation applied to the tabulated (cos, sin) by the angle
+    // sum (exact: the azimuth is periodic, so its wrap-around changes nothing).
+    glm::vec3 tangent;
+    glm::vec3 bitangent;
+    orthonormal_basis(normal, tangent, bitangent);
+    const double cos_rotation = std::cos(kTwoPi * rotation.y);
+    const double sin_rotation = std::sin(kTwoPi * rotation.y);
+    const std::vector<PatternPoint>& pattern = tabulated_pattern(rays);
     // Summed in double: thousands of rays per texel, and the mean must not depend on order.
     glm::dvec3 sum(0.0);
     for (std::uint32_t i = 0; i < rays; ++i) {
-        glm::dvec2 u = halton2(i) + rotation;
-        u -= glm::floor(u);
-        const glm::vec3 direction = cosine_direction(normal, u);
+        const PatternPoint point = i < pattern.size() ? pattern[i] : pattern_point(i);
+        double u = point.radius_squared + rotation.x;
+        u -= std::floor(u);
+        const double r = std::sqrt(u);
+        const auto x =
+            static_cast<float>(r * (point.cos_phi * cos_rotation - point.sin_phi * sin_rotation));
+        const auto y =
+            static_cast<float>(r * (point.sin_phi * cos_rotation + point.cos_phi * sin_rotation));
+        const auto z = static_cast<float>(std::sqrt(std::max(0.0, 1.0 - u)));
+        const glm::vec3 direction = glm::normalize(x * tangent + y * bitangent + z * normal);
         const auto hit = scene_->intersect(origin, direction, settings_.max_distance);
         // The AIM holds the radiance leaving a surface's front; a back face is the inside of
         // a wall or object and sends nothing.
