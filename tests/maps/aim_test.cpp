@@ -119,7 +119,7 @@ TEST(AimAnalytic, NoPhotonsGiveZeroNotNaN) {
 TEST(AimAnalytic, FewerThanNPhotonsUseTheCappedRadius) {
     lighting::IlluminationSettings settings;
     settings.density.nearest = 50;
-    settings.density.max_radius = 0.5f;
+    settings.max_radius_texels = 10.0f;  // 0.5 m at 5 cm texels
     settings.density.kernel = lighting::DensityKernel::Disc;
     luxel::testing::PlaneWorld world(kSide, kTexel, kPage, kAlbedo, settings);
     // 3 photons of 1 W near the centre: a texel there sees all 3 in a 0.5 m disc.

@@ -227,6 +227,11 @@ std::size_t IlluminationMaps::rebuild_aim(std::uint32_t surface, std::size_t max
     AimPass& pass = *aim_pass_;
     RadiancePage& page = aim_.pages[static_cast<std::size_t>(page_id)];
     const double metres_per_texel = mapped.world_metres_per_texel;
+    DensitySettings density = settings_.density;
+    if (metres_per_texel > 0.0 && settings_.max_radius_texels > 0.0f) {
+        density.max_radius =
+            static_cast<float>(static_cast<double>(settings_.max_radius_texels) * metres_per_texel);
+    }
     const std::size_t first = pass.cursor;
     const std::size_t end = std::min(pass.texels.size(), first + max_texels);
     int x0 = page.size;
@@ -236,7 +241,7 @@ std::size_t IlluminationMaps::rebuild_aim(std::uint32_t surface, std::size_t max
     for (std::size_t i = first; i < end; ++i) {
         const SurfaceTexel& texel = mapped.texels.texels[i];
         const DensitySample found =
-            pass.density->sample(pass.texels[i].position, pass.texels[i].normal, settings_.density);
+            pass.density->sample(pass.texels[i].position, pass.texels[i].normal, density);
         glm::vec3 radiance(0.0f);
         if (found.radius > 0.0 && metres_per_texel > 0.0) {
             const double on_surface = mapped.footprint.fraction(i, found.radius / metres_per_texel,

@@ -61,11 +61,14 @@ SceneCensus LightingSystem::take_census() const {
 
 const LightingStats& LightingSystem::update(double budget_ms, double now_seconds) {
     now_seconds_ = now_seconds;
+    const bool had_photons = photons_->photon_map().stored_hit_count() > 0;
     photons_->sync();
     maps_->sync();
     const PhotonSyncStats& sync = photons_->last_sync();
-    const bool changed =
-        sync.objects_moved > 0 || sync.meshes_changed > 0 || sync.lights_refreshed > 0;
+    // Only geometry that moved or changed under stored photons needs probes to find the paths
+    // it diverted; lights that change invalidate their own groups, and geometry added before
+    // anything was traced is simply traced through.
+    const bool changed = sync.objects_moved > 0 || (sync.meshes_changed > 0 && had_photons);
     frames_since_change_ = changed ? 0 : frames_since_change_ + 1;
 
     stats_ = {};

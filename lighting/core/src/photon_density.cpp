@@ -75,8 +75,16 @@ DensitySample PhotonDensity::sample(const glm::vec3& position, const glm::vec3& 
         radius_squared = distances_squared[found - 1];
         counted = found - 1;
     }
+    // A pile-up (N photons within a hair of the query: kd-tree ties, a focused caustic) would
+    // divide by an area of zero. The radius has a floor of 1/1000 of the cap, inside which every
+    // photon found counts: large where light really concentrates, but finite and bounded.
+    const float floor_squared = cap_squared * 1e-6f;
+    if (!(radius_squared >= floor_squared)) {
+        radius_squared = floor_squared;
+        counted = found;
+    }
     if (!(radius_squared > 0.0f)) {
-        return {};  // all N photons at the query point: no area to divide by
+        return {};
     }
     const float slab = settings.disc_thickness * std::sqrt(radius_squared);
     glm::dvec3 total(0.0);

@@ -31,7 +31,13 @@ namespace luxel::lighting {
 enum class IimContent { Irradiance, Radiance };
 
 struct IlluminationSettings {
+    /// The density estimate; its max_radius (metres) is replaced per surface by
+    /// max_radius_texels, below.
     DensitySettings density;
+    /// The capped search radius in light-map texels of the surface (10 texels = 0.5 m at
+    /// luxel-prep's default 5 cm): tied to the light map, not to metres, so a level scaled by
+    /// 1e-3 or 1e4 gets the same light maps.
+    float max_radius_texels = 10.0f;
     /// A surface's AIM is rebuilt when delta_f exceeds this fraction of the energy stored on
     /// it (relative, so the threshold means the same for a 1 mW and a 1 MW light).
     double aim_threshold = 0.05;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -97,7 +98,8 @@ class LightingSystem {
     double now_seconds_ = 0.0;
     /// Frames since an object or light last changed: probes keep running for a full probe
     /// cycle (M frames) after the last change, since a path may diverge at any of its photons.
-    std::uint64_t frames_since_change_ = 0;
+    /// (Starts as "long ago": nothing has moved yet.)
+    std::uint64_t frames_since_change_ = std::numeric_limits<std::uint64_t>::max() / 2;
     std::uint64_t probe_frame_ = 0;    ///< advances only when probes run
     std::uint64_t caustic_frame_ = 0;  ///< advances only when caustic slices run
     std::size_t queued_retrace_units_ = 0;
