@@ -1,0 +1,115 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "luxel/lighting/core/light_source.hpp"
+#include "luxel/lighting/core/photon_tracer.hpp"
+#include "luxel/lighting/core/ray_scene.hpp"
+
+namespace luxel::lighting {
+class PhotonWorld;
+class IlluminationMaps;
+}  // namespace luxel::lighting
+
+/// What the reference integrator (DESIGN.md §4) knows of a scene: the geometry and materials
+/// of a PhotonWorld's RayScene, its lights, and the light-map texels to estimate. Nothing of the
+/// real-time estimate (photon maps, AIM, IIM) is shared, so the reference can judge it.
+namespace luxel::lighting::reference {
+
+/// A light-map texel whose irradiance the reference estimates.
+struct ReferenceTexel {
+    glm::vec3 position{0.0f};  ///< world space, on the surface
+    /// The interpolated texel normal: irradiance is measured over the hemisphere around it,
+    /// as the real-time gather measures it.
+    glm::vec3 normal{0.0f, 1.0f, 0.0f};
+    /// The face under the texel on the normal's side: rays start off it, and directions below
+    /// it (which would leave through the surface) carry nothing.
+    glm::vec3 geometric{0.0f, 1.0f, 0.0f};
+    std::int32_t x = 0;  ///< page texel
+    std::int32_t y = 0;
+    /// World m^2 of the surface inside the texel's square (less than a full texel at a chart's
+    /// border); the weight of DESIGN.md §4's relRMSE and the divisor of the caustic bins.
+    double area = 0.0;
+};
+
+/// One light-mapped surface: a PhotonWorld surface id (RayHit::surface) and its texels.
+struct ReferenceSurface {
+    std::uint32_t surface = 0;
+    int page = 0;  ///< the surface's light-map page (luxel-prep's page index)
+    int page_size = 0;
+    std::vector<ReferenceTexel> texels;
+    std::size_t first_texel = 0;  ///< index of texels[0] among all the scene's texels
+};
+
+/// A light as the reference samples it.
+struct ReferenceLight {
+    LightSource source;
+    TriangleSampler triangles;  ///< area lights: the emitting triangles
+    /// Point and spot: radiant intensity on the axis, W/sr (spot: before the falloff).
+    glm::vec3 intensity{0.0f};
+
+    [[nodiscard]] bool is_delta() const { return source.kind != LightKind::Area; }
+};
+
+class ReferenceScene {
+  public:
+    /// `rays` must outlive the scene and stay unchanged (committed) while it is used.
+    /// `surfaces` are given with their texels' position, normal and x, y; the constructor finds
+    /// each texel's face and area from the geometry. Throws luxel::Error for a material id a
+    /// triangle names but `materials` lacks.
+    ReferenceScene(const RayScene& rays, std::vector<TraceMaterial> materials,
+                   std::vector<LightSource> lights, std::vector<ReferenceSurface> surfaces);
+
+    /// The geometry, materials and enabled lights of `world`, and the texels of every surface
+    /// of `maps` that has a light map. Both must be synced.
+    [[nodiscard]] static ReferenceScene from_world(const PhotonWorld& world,
+                                                   const IlluminationMaps& maps);
+
+    [[nodiscard]] const RayScene& rays() const { return *rays_; }
+    [[nodiscard]] std::span<const TraceMaterial> materials() const { return materials_; }
+    /// Tests edit materials (the furnace at another albedo) before integrating.
+    [[nodiscard]] std::span<TraceMaterial> materials() { return materials_; }
+    [[nodiscard]] std::span<const ReferenceLight> lights() const { return lights_; }
+    [[nodiscard]] std::span<const ReferenceSurface> surfaces() const { return surfaces_; }
+    [[nodiscard]] std::size_t texel_count() const { return texel_count_; }
+    /// The texel of global index i.
+    [[nodiscard]] const ReferenceTexel& texel(std::size_t index) const;
+    /// Every texel's area, in global texel order.
+    [[nodiscard]] std::vector<double> texel_areas() const;
+
+    /// The light whose emitting triangle `hit` is (front or back), or -1.
+    [[nodiscard]] std::int32_t emitter_of(const RayHit& hit) const;
+    /// The global texel a hit's light-map UV falls into, or -1 (surface without a light map,
+    /// or a UV outside the surface's texels).
+    [[nodiscard]] std::int64_t texel_at(std::int32_t surface, const glm::vec2& lightmap_uv) const;
+    /// Bounding spheres of every object with specular (mirror or dielectric) triangles, around
+    /// those triangles: what caustic photons are aimed at. Derived from the geometry, not from
+    /// CausticGenerator components, so untagged specular objects are not missed.
+    [[nodiscard]] std::span<const BoundingSphere> specular_spheres() const { return specular_; }
+    [[nodiscard]] BoundingSphere bounds() const { return bounds_; }
+
+  private:
+    void find_emitters();
+    void find_specular_objects();
+    void measure_texels();
+
+    const RayScene* rays_;
+    std::vector<TraceMaterial> materials_;
+    std::vector<ReferenceLight> lights_;
+    std::vector<ReferenceSurface> surfaces_;
+    std::size_t texel_count_ = 0;
+    std::vector<std::int32_t> surface_slot_;  ///< PhotonWorld surface id -> surfaces_ index
+    /// Per surface slot: page texel (y * size + x) -> global texel index.
+    std::vector<std::unordered_map<std::int64_t, std::uint32_t>> texel_lookup_;
+    /// (object << 32 | triangle) -> light index, for area lights' triangles.
+    std::unordered_map<std::uint64_t, std::int32_t> emitters_;
+    std::vector<BoundingSphere> specular_;
+    BoundingSphere bounds_;
+};
+
+}  // namespace luxel::lighting::reference

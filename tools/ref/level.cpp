@@ -1,0 +1,101 @@
+#include "level.hpp"
+
+#include <cstdlib>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "luxel/ecs/transform.hpp"
+#include "luxel/ecs/transform_system.hpp"
+#include "luxel/lighting/components.hpp"
+#include "luxel/lighting/core/animation_system.hpp"
+#include "luxel/runtime/error.hpp"
+#include "luxel/runtime/scene/gltf.hpp"
+
+namespace luxel::ref {
+
+std::filesystem::path resolve_level(const std::string& level) {
+    if (level.empty()) {
+        throw Error("--level: empty");
+    }
+    const std::filesystem::path given(level);
+    const auto extension = given.extension();
+    if (level.find('/') != std::string::npos || extension == ".glb" || extension == ".gltf") {
+        if (!std::filesystem::is_regular_file(given)) {
+            throw Error("level file " + given.string() + " does not exist");
+        }
+        return given;
+    }
+    std::vector<std::filesystem::path> tried;
+    if (const char* dir = std::getenv("LUXEL_LEVEL_DIR"); dir != nullptr && *dir != '\0') {
+        tried.push_back(std::filesystem::path(dir) / (level + ".glb"));
+    }
+    tried.push_back(std::filesystem::path(LUXEL_PREPARED_LEVEL_DIR) / (level + ".glb"));
+    tried.push_back(std::filesystem::path("assets") / "levels" / "prepared" / (level + ".glb"));
+    std::string list;
+    for (const auto& candidate : tried) {
+        if (std::filesystem::is_regular_file(candidate)) {
+            return candidate;
+        }
+        list += (list.empty() ? "" : ", ") + candidate.string();
+    }
+    throw Error("no level named '" + level + "' (looked for " + list + ")");
+}
+
+std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file, double time) {
+    auto level = std::make_unique<LoadedLevel>();
+    std::shared_ptr<const scene::Scene> source;
+    try {
+        source = std::make_shared<scene::Scene>(scene::load_gltf(file));
+    } catch (const Error& e) {
+        throw Error(file.string() + ": " + e.what());
+    }
+    lighting::InstantiateOptions options;
+    options.play_animations = true;
+    level->instance = lighting::instantiate(level->registry, source, options);
+    // Every animation and light switch at `time` (a zero step still poses time 0).
+    lighting::update_animations(level->registry, time);
+    lighting::update_light_switches(level->registry, time);
+    ecs::TransformSystem transforms(level->registry);
+    transforms.update();
+    lighting::PhotonWorldSettings settings;
+    settings.caustics.photons_per_pair = 0;  // the reference traces its own caustics
+    level->world = std::make_unique<lighting::PhotonWorld>(level->registry, settings);
+    level->world->sync();
+    level->maps = std::make_unique<lighting::IlluminationMaps>(level->registry, *level->world);
+    level->maps->sync();
+    level->scene = std::make_unique<lighting::reference::ReferenceScene>(
+        lighting::reference::ReferenceScene::from_world(*level->world, *level->maps));
+    return level;
+}
+
+std::optional<lighting::reference::ReferenceCamera> level_camera(const LoadedLevel& level,
+                                                                 int width, int height) {
+    for (ecs::Entity entity : level.instance.nodes) {
+        const auto* camera = level.registry.try_get<lighting::CameraComponent>(entity);
+        const auto* world = level.registry.try_get<ecs::WorldTransform>(entity);
+        if (camera == nullptr || world == nullptr) {
+            continue;
+        }
+        lighting::reference::ReferenceCamera out;
+        out.width = width;
+        out.height = height;
+        // The node's frame, without scale: the camera looks down its -z.
+        const glm::vec3 eye(world->matrix[3]);
+        const glm::vec3 forward = -glm::normalize(glm::vec3(world->matrix[2]));
+        const glm::vec3 up = glm::normalize(glm::vec3(world->matrix[1]));
+        out.view = glm::lookAt(eye, eye + forward, up);
+        const scene::Camera& c = camera->camera;
+        const float aspect = static_cast<float>(width) / static_cast<float>(height);
+        if (c.perspective) {
+            out.projection = glm::perspective(c.yfov, aspect, c.znear, c.zfar.value_or(1000.0f));
+        } else {
+            out.projection = glm::ortho(-c.ymag * aspect, c.ymag * aspect, -c.ymag, c.ymag, c.znear,
+                                        c.zfar.value_or(1000.0f));
+        }
+        return out;
+    }
+    return std::nullopt;
+}
+
+}  // namespace luxel::ref

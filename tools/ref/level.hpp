@@ -1,0 +1,41 @@
+#pragma once
+
+// A level loaded for the reference: instantiated at an animation time, its geometry and
+// lights mirrored by a PhotonWorld, its light-map texels by IlluminationMaps.
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "luxel/ecs/registry.hpp"
+#include "luxel/lighting/core/illumination_maps.hpp"
+#include "luxel/lighting/core/photon_world.hpp"
+#include "luxel/lighting/core/reference/reference_frame.hpp"
+#include "luxel/lighting/core/reference/reference_scene.hpp"
+#include "luxel/lighting/core/scene_instance.hpp"
+
+namespace luxel::ref {
+
+/// A level name resolves to <prepared levels>/NAME.glb ($LUXEL_LEVEL_DIR first, then the
+/// source tree's assets/levels/prepared, then ./assets/levels/prepared); anything with a
+/// slash or a .glb/.gltf extension is a path. Throws luxel::Error naming what was tried.
+[[nodiscard]] std::filesystem::path resolve_level(const std::string& level);
+
+struct LoadedLevel {
+    ecs::Registry registry;
+    lighting::SceneInstance instance;
+    std::unique_ptr<lighting::PhotonWorld> world;
+    std::unique_ptr<lighting::IlluminationMaps> maps;
+    std::unique_ptr<lighting::reference::ReferenceScene> scene;
+};
+
+/// Loads `file` and poses it at `time` seconds (animations and light switches advanced).
+[[nodiscard]] std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file,
+                                                      double time);
+
+/// The level's first camera (node order) for a width x height image, if it has one.
+[[nodiscard]] std::optional<lighting::reference::ReferenceCamera> level_camera(
+    const LoadedLevel& level, int width, int height);
+
+}  // namespace luxel::ref
