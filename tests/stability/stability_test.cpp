@@ -180,9 +180,10 @@ TEST(Budgets, ExtremeBudgetsStayFiniteAndProgress) {
         if (budget == 0.0) {
             EXPECT_EQ(units, 0u);  // paused
         } else {
-            // Even 0.01 ms makes progress: a unit that waited too long runs (at most one a
-            // frame), so every queue moves.
-            EXPECT_GT(units, 60u);
+            // Even 0.01 ms makes progress: a unit that waited 30 frames runs (at most one a
+            // frame, when it is first in line), so every queue moves; after the first 30
+            // frames that is at least one unit every few frames.
+            EXPECT_GE(units, 30u);
         }
         for_each_texel(level.lighting->maps(),
                        [&](std::uint32_t, const glm::vec3& aim, const glm::vec3& iim) {

@@ -1,6 +1,7 @@
 #include "luxel/lighting/core/lighting_system.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace luxel::lighting {
 namespace {
@@ -25,9 +26,25 @@ LightingSystem::LightingSystem(ecs::Registry& registry, JobSystem& jobs, Lightin
           std::make_unique<CpuGatherer>(photons_->ray_scene(), maps_->aim(), config.gather, &jobs)),
       gatherer_(cpu_gatherer_.get()),
       scheduler_(clock, config.scheduler),
+      clock_(&clock),
       plan_(FeaturePlan::from({})) {}
 
 LightingSystem::~LightingSystem() = default;
+
+int LightingSystem::warm_up(double now_seconds, double max_ms) {
+    const Stopwatch watch;
+    int updates = 0;
+    while (watch.elapsed_ms() < max_ms) {
+        // Stamped one blend time early: what the loading screen built shows in full at
+        // `now_seconds` instead of fading in from black.
+        update(std::numeric_limits<double>::infinity(), now_seconds - config_.maps.blend_seconds);
+        ++updates;
+        if (plan_.census().converged) {
+            break;
+        }
+    }
+    return updates;
+}
 
 void LightingSystem::set_gatherer(IrradianceGatherer* gatherer) {
     gatherer_ = gatherer != nullptr ? gatherer : cpu_gatherer_.get();
@@ -61,6 +78,7 @@ SceneCensus LightingSystem::take_census() const {
 
 const LightingStats& LightingSystem::update(double budget_ms, double now_seconds) {
     now_seconds_ = now_seconds;
+    const Stopwatch update_watch(*clock_);
     const bool had_photons = photons_->photon_map().stored_hit_count() > 0;
     photons_->sync();
     maps_->sync();
@@ -78,7 +96,14 @@ const LightingStats& LightingSystem::update(double budget_ms, double now_seconds
     queue_work();
     const std::uint64_t aim_before = maps_->counters().aim_texels;
     const std::uint64_t gathered_before = maps_->counters().texels_gathered;
-    stats_.schedule = scheduler_.run(budget_ms);
+    // The budget covers the whole update: what syncing and queueing took comes off the
+    // scheduler's share. A budget of 0 still pauses; one that syncing used up leaves a sliver,
+    // so overdue units keep their guaranteed progress.
+    double scheduler_budget = budget_ms;
+    if (budget_ms > 0.0) {
+        scheduler_budget = std::max(budget_ms - update_watch.elapsed_ms(), 1e-6);
+    }
+    stats_.schedule = scheduler_.run(scheduler_budget);
     stats_.aim_texels = maps_->counters().aim_texels - aim_before;
     stats_.texels_gathered = maps_->counters().texels_gathered - gathered_before;
     stats_.stored_hits = photons_->photon_map().stored_hit_count();
@@ -151,15 +176,34 @@ void LightingSystem::queue_work() {
         }
         queued = std::move(now);
     };
-    requeue(WorkKind::AimRebuild, plan_.aim() ? maps_->aim_requests() : std::vector<MapRequest>{},
-            queued_aim_, [this](std::uint32_t surface, double priority) {
-                const std::size_t slice = std::max<std::uint32_t>(config_.texels_per_aim_unit, 1);
-                const std::size_t texels = maps_->surfaces()[surface].texels.texels.size();
-                return WorkUnit{
-                    WorkKind::AimRebuild, surface, priority,
-                    [this, surface, slice] { maps_->rebuild_aim(surface, slice); },
-                    static_cast<double>(std::max<std::size_t>(std::min(texels, slice), 1))};
-            });
+    // AIM rebuilds are sequential by nature (one kd-tree at a time): the units are slices of
+    // "the next AIM work", each taking the maps' first request when it runs (the pass in
+    // progress, then unbuilt maps, then the largest delta_f / area; a waiting surface's delta
+    // keeps growing while its light keeps changing, which ages it). Units tied to surfaces
+    // would each continue whatever pass is in progress and lose their place in the queue.
+    const std::size_t slice = std::max<std::uint32_t>(config_.texels_per_aim_unit, 1);
+    std::size_t aim_texels = 0;
+    if (plan_.aim()) {
+        for (const MapRequest& request : maps_->aim_requests()) {
+            aim_texels += maps_->surfaces()[request.surface].texels.texels.size();
+        }
+    }
+    constexpr std::size_t kMaxAimUnits = 64;  // a frame never has room for more
+    const std::size_t aim_units = std::min((aim_texels + slice - 1) / slice, kMaxAimUnits);
+    for (std::size_t unit = 0; unit < aim_units; ++unit) {
+        scheduler_.enqueue({WorkKind::AimRebuild, unit, rank_priority(unit, aim_units),
+                            [this, slice] {
+                                const std::vector<MapRequest> requests = maps_->aim_requests();
+                                if (!requests.empty()) {
+                                    maps_->rebuild_aim(requests.front().surface, slice);
+                                }
+                            },
+                            static_cast<double>(slice)});
+    }
+    for (std::size_t unit = aim_units; unit < queued_aim_units_; ++unit) {
+        scheduler_.cancel(WorkKind::AimRebuild, unit);
+    }
+    queued_aim_units_ = aim_units;
     const std::uint32_t texels_per_unit =
         std::max<std::uint32_t>(config_.texels_per_gather_unit, 1);
     requeue(WorkKind::IimGather,

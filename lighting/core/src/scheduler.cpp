@@ -169,60 +169,73 @@ FrameReport Scheduler::run(double budget_ms) {
     std::sort(order.begin(), order.end(), goes_before);
 
     PerKind<double> kind_used{};
-    for (std::size_t i = 0; i < order.size(); ++i) {
-        const Candidate& c = order[i];
-        const double remaining = budget - to_milliseconds(clock_->now() - start);
-        if (remaining < 0.0) {
-            break;  // nothing fits any more, not even a unit predicted to cost 0
+    // Two sweeps: the first keeps each kind within its share of the budget; if a unit was held
+    // back only by its share, a second sweep lets the capped kinds use what the others left
+    // (a share limits a kind while others have work, it does not waste budget).
+    bool held_by_share = false;
+    for (int sweep = 0; sweep < 2; ++sweep) {
+        if (sweep == 1 && !held_by_share) {
+            break;
         }
-        const std::size_t k = index(c.kind);
-        auto it = queues_[k].find(c.key);
-        // Cancelled by an earlier callback, or cancelled and enqueued again (a new unit, which
-        // runs from the next frame on).
-        if (it == queues_[k].end() || it->second.sequence != c.sequence) {
-            continue;
-        }
-        Entry& entry = it->second;
-        const double predicted = cost_.predict(c.kind, entry.size);
-        const double bound = cost_.prediction_error(c.kind, entry.size);
-        const double share = settings_.max_share[k];
-        const bool fits =
-            predicted <= remaining && (share == 0.0 || kind_used[k] + predicted <= share * budget);
-        // Minimum progress: only the first unit of the frame can be forced, so a forced unit
-        // starts on an untouched budget and the frame overruns by at most its cost.
-        const bool forced = !fits && i == 0 && c.overdue;
-        if (!fits && !forced) {
-            continue;
-        }
-        std::function<void()> callback = std::move(entry.run);
-        const double size = entry.size;
-        queues_[k].erase(it);  // before the callback, which may enqueue the same key again
+        for (std::size_t i = 0; i < order.size(); ++i) {
+            const Candidate& c = order[i];
+            const double remaining = budget - to_milliseconds(clock_->now() - start);
+            // Nothing fits any more, not even a unit predicted to cost 0; but an overdue first
+            // unit still runs (guaranteed progress even when a caller's sync used the budget).
+            if (remaining < 0.0 && !(sweep == 0 && i == 0 && c.overdue)) {
+                break;
+            }
+            const std::size_t k = index(c.kind);
+            auto it = queues_[k].find(c.key);
+            // Cancelled by an earlier callback, or cancelled and enqueued again (a new unit, which
+            // runs from the next frame on).
+            if (it == queues_[k].end() || it->second.sequence != c.sequence) {
+                continue;
+            }
+            Entry& entry = it->second;
+            const double predicted = cost_.predict(c.kind, entry.size);
+            const double bound = cost_.prediction_error(c.kind, entry.size);
+            const double share = settings_.max_share[k];
+            const bool within_share =
+                sweep == 1 || share == 0.0 || kind_used[k] + predicted <= share * budget;
+            const bool fits = predicted <= remaining && within_share;
+            held_by_share = held_by_share || (predicted <= remaining && !within_share);
+            // Minimum progress: only the first unit of the frame can be forced, so a forced unit
+            // starts on an untouched budget and the frame overruns by at most its cost.
+            const bool forced = !fits && sweep == 0 && i == 0 && c.overdue;
+            if (!fits && !forced) {
+                continue;
+            }
+            std::function<void()> callback = std::move(entry.run);
+            const double size = entry.size;
+            queues_[k].erase(it);  // before the callback, which may enqueue the same key again
 
-        const Nanoseconds t0 = clock_->now();
-        callback();
-        const double actual = to_milliseconds(clock_->now() - t0);
-        cost_.record(c.kind, size, actual);
+            const Nanoseconds t0 = clock_->now();
+            callback();
+            const double actual = to_milliseconds(clock_->now() - t0);
+            cost_.record(c.kind, size, actual);
 
-        kind_used[k] += actual;
-        KindFrameReport& kr = report.kinds[k];
-        kr.units_done += 1;
-        kr.ms += actual;
-        kr.predicted_ms += predicted;
-        report.units_done += 1;
-        report.max_error_ms = std::max(report.max_error_ms, std::abs(actual - predicted));
-        report.max_error_bound_ms = std::max(report.max_error_bound_ms, bound);
-        if (forced) {
-            report.forced_units += 1;
-            report.forced_ms = actual;
+            kind_used[k] += actual;
+            KindFrameReport& kr = report.kinds[k];
+            kr.units_done += 1;
+            kr.ms += actual;
+            kr.predicted_ms += predicted;
+            report.units_done += 1;
+            report.max_error_ms = std::max(report.max_error_ms, std::abs(actual - predicted));
+            report.max_error_bound_ms = std::max(report.max_error_bound_ms, bound);
+            if (forced) {
+                report.forced_units += 1;
+                report.forced_ms = actual;
+            }
+            if (settings_.record_units) {
+                report.units.push_back(UnitRecord{c.kind, c.key, size, predicted, bound, actual,
+                                                  c.waited, c.effective, forced});
+            }
+            KindTotals& kt = totals_.kinds[k];
+            kt.units_done += 1;
+            kt.predicted_ms += predicted;
+            kt.actual_ms += actual;
         }
-        if (settings_.record_units) {
-            report.units.push_back(UnitRecord{c.kind, c.key, size, predicted, bound, actual,
-                                              c.waited, c.effective, forced});
-        }
-        KindTotals& kt = totals_.kinds[k];
-        kt.units_done += 1;
-        kt.predicted_ms += predicted;
-        kt.actual_ms += actual;
     }
 
     report.used_ms = to_milliseconds(clock_->now() - start);

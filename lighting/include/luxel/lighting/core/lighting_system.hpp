@@ -16,10 +16,22 @@
 
 namespace luxel::lighting {
 
+/// The lighting system's scheduler defaults: the budget split so that a scene whose lights keep
+/// moving (every group retraced, every AIM due, every frame) still gathers IIM texels: retraces
+/// may use 45% of a frame's budget, caustic slices 25%, AIM rebuilds 35%; gathers and probes are
+/// uncapped (shares of kinds with nothing to do go to the others).
+[[nodiscard]] inline SchedulerSettings default_lighting_schedule() {
+    SchedulerSettings settings;
+    settings.max_share[index(WorkKind::GroupRetrace)] = 0.45;
+    settings.max_share[index(WorkKind::CausticSlice)] = 0.25;
+    settings.max_share[index(WorkKind::AimRebuild)] = 0.35;
+    return settings;
+}
+
 struct LightingConfig {
     PhotonWorldSettings photons;
     IlluminationSettings maps;
-    SchedulerSettings scheduler;
+    SchedulerSettings scheduler = default_lighting_schedule();
     /// The CPU gather backend's settings (used unless set_gatherer() installs another).
     CpuGatherSettings gather{64, 1e6f};
     /// Work granularity: texels per gather and AIM unit, groups per retrace unit. Smaller units
@@ -68,6 +80,12 @@ class LightingSystem {
     /// their fade-in.
     const LightingStats& update(double budget_ms, double now_seconds);
 
+    /// What a game does behind a loading screen: updates with an unlimited budget at
+    /// `now_seconds` (the game holds still) until everything has converged or `max_ms` of
+    /// wall time has passed. Returns the updates run. The first maps then do not have to be
+    /// built a budget's worth at a time while the player watches.
+    int warm_up(double now_seconds, double max_ms);
+
     /// Replaces the gather backend (e.g. lighting/gpu's HemiPlaneGatherer); null restores the
     /// CPU one. The gatherer must outlive its use here.
     void set_gatherer(IrradianceGatherer* gatherer);
@@ -77,6 +95,8 @@ class LightingSystem {
     [[nodiscard]] const PhotonWorld& photons() const { return *photons_; }
     [[nodiscard]] PhotonWorld& photons() { return *photons_; }
     [[nodiscard]] const IlluminationMaps& maps() const { return *maps_; }
+    /// Mutable for the renderer, which takes the IIM pages' dirty rectangles as it uploads them.
+    [[nodiscard]] IlluminationMaps& maps() { return *maps_; }
     [[nodiscard]] const Scheduler& scheduler() const { return scheduler_; }
     [[nodiscard]] const LightingConfig& config() const { return config_; }
 
@@ -92,6 +112,7 @@ class LightingSystem {
     std::unique_ptr<CpuGatherer> cpu_gatherer_;
     IrradianceGatherer* gatherer_ = nullptr;
     Scheduler scheduler_;
+    const Clock* clock_;
     FeaturePlan plan_;
     LightingStats stats_;
     std::uint64_t frame_ = 0;
@@ -103,7 +124,7 @@ class LightingSystem {
     std::uint64_t probe_frame_ = 0;    ///< advances only when probes run
     std::uint64_t caustic_frame_ = 0;  ///< advances only when caustic slices run
     std::size_t queued_retrace_units_ = 0;
-    std::vector<std::uint32_t> queued_aim_;     ///< sorted surface ids
+    std::size_t queued_aim_units_ = 0;
     std::vector<std::uint32_t> queued_gather_;  ///< sorted surface ids
 };
 

@@ -36,7 +36,8 @@ struct SchedulerSettings {
     /// units go before all others, oldest first, and every frame with a positive budget starts
     /// the oldest one even if it is predicted not to fit (a "forced" unit; at most one a frame).
     std::uint32_t max_wait_frames = 30;
-    /// Optional split of the budget: the fraction of each frame's budget a kind may use.
+    /// Optional split of the budget: the fraction of each frame's budget a kind may use while
+    /// other kinds have work that fits; what they leave, a capped kind may use after all.
     /// 0 (the default) or >= 1 means no cap: all kinds share one pool. A forced unit ignores it.
     PerKind<double> max_share = {};
     CostModelSettings cost;
