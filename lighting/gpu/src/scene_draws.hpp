@@ -1,0 +1,59 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "luxel/ecs/registry.hpp"
+#include "mesh_cache.hpp"
+
+namespace luxel::lighting {
+
+class LightingSystem;
+
+/// What the G-buffer pass writes for one primitive (shaders/render/gbuffer.frag).
+struct DrawMaterial {
+    glm::vec3 albedo{0.0f};    ///< diffuse albedo, clamped to [0, 1] as the photon tracer does
+    glm::vec3 emission{0.0f};  ///< emitted radiance W/(m^2 sr), times the AreaLight's scale
+    glm::vec4 specular{0.0f};  ///< rgb: Fresnel F0 (0: not specular), a: transmission
+    glm::vec2 lightmap{-1.0f, 0.0f};  ///< IIM page layer (-1: none), 1 = holds irradiance
+    float ior = 1.5f;
+    bool double_sided = false;
+};
+
+struct DrawPrimitive {
+    const GpuPrimitive* range = nullptr;
+    DrawMaterial material;
+};
+
+/// One entity's mesh placed in the world.
+struct DrawItem {
+    ecs::Entity entity;
+    const GpuMesh* mesh = nullptr;
+    glm::mat4 model{1.0f};
+    glm::mat3 normal_matrix{1.0f};
+    Bounds bounds;          ///< world space
+    std::size_t first = 0;  ///< into DrawList::primitives
+    std::size_t count = 0;
+    bool specular = false;  ///< any primitive has a specular material
+};
+
+struct DrawList {
+    std::vector<DrawItem> items;
+    std::vector<DrawPrimitive> primitives;
+    Bounds bounds;  ///< of everything
+};
+
+/// Builds this frame's draw list from every MeshInstance entity: its mesh from the cache, its
+/// world matrix, and per primitive the material and the IIM page of its light-mapped surface
+/// (PhotonWorld numbers surfaces by (entity, primitive); the page is
+/// IlluminationMaps::aim().surface_page, the content IlluminationMaps::surfaces()).
+///
+/// `specular_pass` says whether specular materials are shaded by the specular pass (then their
+/// diffuse albedo and light map are zero: their look is the reflection); without it they are
+/// drawn as diffuse surfaces of their base colour.
+void build_draw_list(ecs::Registry& registry, const LightingSystem& lighting, MeshCache& meshes,
+                     std::uint64_t frame, bool specular_pass, DrawList& out);
+
+}  // namespace luxel::lighting

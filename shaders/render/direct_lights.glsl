@@ -1,0 +1,43 @@
+// The lights of one batch with their shadow maps, and the irradiance they deliver: shared by
+// the deferred direct pass and the forward shading of specular probe faces.
+
+#include "render/shadow.glsl"
+
+#ifndef LIGHTS_PER_BATCH
+#define LIGHTS_PER_BATCH 4
+#endif
+
+layout(std140, binding = 0) uniform LightBatch {
+    Light u_lights[LIGHTS_PER_BATCH];
+    ivec4 u_light_count;  // x: lights in this batch
+};
+
+// Light i of the batch reads cube slot i or 2D slot i, as its map's kind says.
+layout(binding = 4) uniform samplerCubeShadow u_cube_shadows[LIGHTS_PER_BATCH];
+layout(binding = 8) uniform sampler2DShadow u_map_shadows[LIGHTS_PER_BATCH];
+
+uniform int u_filtered;
+
+// sum_i E_i(p, n) * shadow_i(p) over the batch, W/m^2.
+vec3 batch_irradiance(vec3 p, vec3 n) {
+    bool filtered = u_filtered != 0;
+    vec3 irradiance = vec3(0.0);
+    for (int i = 0; i < LIGHTS_PER_BATCH; ++i) {
+        if (i >= u_light_count.x) {
+            break;
+        }
+        Light light = u_lights[i];
+        vec3 e = unshadowed_irradiance(light, p, n);
+        if (!any(greaterThan(e, vec3(0.0)))) {
+            continue;
+        }
+        float lit = 1.0;
+        if (light.intensity_shadow.w >= 0.0) {
+            lit = int(light.params.w) == SHADOW_CUBE
+                      ? cube_shadow(u_cube_shadows[i], light, p, n, filtered)
+                      : map_shadow(u_map_shadows[i], light, p, n, filtered);
+        }
+        irradiance += e * lit;
+    }
+    return irradiance;
+}

@@ -1,0 +1,44 @@
+#version 450 core
+// Writes what the lighting passes need per pixel: diffuse albedo, world normal, world position,
+// the light-map lookup (UV, page layer, content) and emitted radiance. The lighting itself is
+// computed once per pixel by the full-screen passes, so its cost does not grow with overdraw.
+
+in vec3 v_position;
+in vec3 v_normal;
+in vec2 v_texcoord0;
+in vec2 v_lightmap_uv;
+
+uniform vec3 u_albedo;         // diffuse albedo (linear, [0,1])
+uniform vec3 u_emission;       // emitted radiance W/(m^2 sr)
+uniform vec4 u_specular;       // rgb: specular colour F0 (0: none), a: transmission
+uniform vec2 u_lightmap;       // x: IIM page layer (-1: none), y: 1 = irradiance, 0 = radiance
+uniform vec3 u_camera;
+uniform int u_double_sided;
+
+layout(location = 0) out vec4 out_albedo;    // rgb albedo, a: 1 where the pixel is specular
+layout(location = 1) out vec4 out_normal;    // xyz unit world normal
+layout(location = 2) out vec4 out_position;  // xyz world position, w: 1 = covered
+layout(location = 3) out vec4 out_lightmap;  // uv, page layer, content
+layout(location = 4) out vec4 out_emission;  // rgb emitted radiance
+layout(location = 5) out vec4 out_specular;  // rgb F0, a transmission
+
+void main() {
+    vec3 n = v_normal;
+    if (!(dot(n, n) > 1e-12)) {
+        // A mesh without normals: the flat triangle normal, from screen-space derivatives.
+        n = cross(dFdx(v_position), dFdy(v_position));
+        if (dot(n, u_camera - v_position) < 0.0) {
+            n = -n;
+        }
+    }
+    n = normalize(n);
+    if (u_double_sided != 0 && dot(n, u_camera - v_position) < 0.0) {
+        n = -n;  // a two-sided surface seen from its back is lit on that side
+    }
+    out_albedo = vec4(u_albedo, any(greaterThan(u_specular.rgb, vec3(0.0))) ? 1.0 : 0.0);
+    out_normal = vec4(n, 0.0);
+    out_position = vec4(v_position, 1.0);
+    out_lightmap = vec4(v_lightmap_uv, u_lightmap);
+    out_emission = vec4(u_emission, 0.0);
+    out_specular = u_specular;
+}

@@ -1,0 +1,33 @@
+#version 450 core
+// Forward shading of one face of a specular probe (a cube map around a mirror or glass
+// object): the diffuse scene as the main view shows it, emitted + direct (first light batch,
+// with shadows) + indirect from the IIM, at the probe's reduced resolution.
+
+#include "render/direct_lights.glsl"
+#include "render/iim.glsl"
+
+in vec3 v_position;
+in vec3 v_normal;
+in vec2 v_texcoord0;
+in vec2 v_lightmap_uv;
+
+uniform vec3 u_albedo;
+uniform vec3 u_emission;
+uniform vec2 u_lightmap;  // page layer, content
+uniform vec3 u_camera;    // the probe's centre
+
+layout(location = 0) out vec4 out_radiance;
+
+void main() {
+    vec3 n = v_normal;
+    if (!(dot(n, n) > 1e-12)) {
+        n = cross(dFdx(v_position), dFdy(v_position));
+    }
+    n = normalize(n);
+    if (dot(n, u_camera - v_position) < 0.0) {
+        n = -n;  // the probe sees sheets from either side
+    }
+    vec3 l = u_emission + lambert_radiance(u_albedo, batch_irradiance(v_position, n)) +
+             iim_radiance(v_lightmap_uv, u_lightmap.x, u_lightmap.y > 0.5, u_albedo);
+    out_radiance = vec4(l, 1.0);
+}

@@ -1,0 +1,99 @@
+// Frame renderer benchmarks: GPU time per pass (timer queries) for the prepared Cornell box at
+// 512 x 512, on whatever GL the EGL context gets (llvmpipe without a GPU; the renderer string
+// is the benchmark's label). Figures and the command are in the report of issue 9.
+//   Frame/static      nothing moves: shadow maps and probes are not redrawn
+//   Frame/moving      the light moves every frame: its cube shadow map is redrawn each frame
+// Counters: milliseconds per frame of each pass (GPU), averaged over the iterations.
+
+#include <benchmark/benchmark.h>
+
+#include <array>
+#include <memory>
+#include <string>
+
+#include "luxel/ecs/transform.hpp"
+#include "luxel/lighting/gpu/frame_renderer.hpp"
+#include "luxel/runtime/scene/gltf.hpp"
+#include "render_scenes.hpp"
+
+namespace {
+
+using namespace luxel;
+using namespace luxel::lighting;
+
+constexpr int kSize = 512;
+
+void frame(benchmark::State& state, bool moving) {
+    const std::unique_ptr<GlContext> context = test::make_render_context();
+    test::RenderWorld world;
+    instantiate(world.registry,
+                std::make_shared<scene::Scene>(scene::load_gltf(test::prepared_level("cornell"))),
+                InstantiateOptions{false});
+    world.start();
+    // Lit and gathered, so every pass has its real input.
+    for (int i = 0; i < 20; ++i) {
+        world.update();
+    }
+    ecs::Entity light;
+    FrameCamera camera;
+    for (auto [entity, component] : world.registry.view<CameraComponent>()) {
+        camera = FrameCamera::from_scene(
+            component.camera, world.registry.get<ecs::WorldTransform>(entity).matrix, 1.0f);
+    }
+    for (auto [entity, point] : world.registry.view<PointLight>()) {
+        light = entity;
+    }
+    FrameSettings settings;
+    settings.width = kSize;
+    settings.height = kSize;
+    settings.wait_for_timings = true;
+    FrameRenderer renderer(world.registry, *world.lighting, settings);
+    renderer.render(camera, world.time);  // allocations and first shadow maps out of the loop
+
+    std::array<double, kRenderPassCount> sums{};
+    double total = 0.0;
+    float offset = 0.01f;
+    for (auto _ : state) {
+        if (moving) {
+            world.registry.patch<ecs::Transform>(
+                light, [&](ecs::Transform& t) { t.translation.x += offset; });
+            offset = -offset;
+            world.transforms.update();
+        }
+        const FrameTimings& timings = renderer.render(camera, world.time);
+        for (std::size_t pass = 0; pass < kRenderPassCount; ++pass) {
+            sums[pass] += timings.milliseconds[pass];
+        }
+        total += timings.total();
+    }
+    for (std::size_t pass = 0; pass < kRenderPassCount; ++pass) {
+        state.counters[std::string(name(static_cast<RenderPass>(pass))) + "_ms"] =
+            benchmark::Counter(sums[pass], benchmark::Counter::kAvgIterations);
+    }
+    state.counters["gpu_total_ms"] = benchmark::Counter(total, benchmark::Counter::kAvgIterations);
+    state.counters["shadow_maps_drawn"] =
+        static_cast<double>(renderer.counters().shadow_maps_drawn);
+    state.SetLabel(context->info().renderer);
+}
+
+void BM_FrameStatic(benchmark::State& state) {
+    frame(state, false);
+}
+void BM_FrameMovingLight(benchmark::State& state) {
+    frame(state, true);
+}
+
+BENCHMARK(BM_FrameStatic)
+    ->Name("Frame/static")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_FrameMovingLight)
+    ->Name("Frame/moving")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+
+}  // namespace
+
+BENCHMARK_MAIN();

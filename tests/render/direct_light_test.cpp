@@ -1,0 +1,184 @@
+// Direct light and shadows against analytic answers: a point light of power P over a diffuse
+// plane gives L = albedo / pi * (P / 4 pi) cos / d^2 at every pixel; a blocker between them
+// takes the direct term to zero inside its umbra and changes nothing outside; a shadow map is
+// drawn again only when its light or a caster moved.
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/constants.hpp>
+
+#include "luxel/ecs/transform.hpp"
+#include "luxel/lighting/gpu/frame_renderer.hpp"
+#include "render_scenes.hpp"
+
+namespace {
+
+using namespace luxel;
+using namespace luxel::lighting;
+
+constexpr int kSize = 128;
+const glm::vec3 kAlbedo(0.6f, 0.5f, 0.4f);
+const glm::vec3 kPower(30.0f, 20.0f, 10.0f);
+const glm::vec3 kLight(0.0f, 1.5f, 0.0f);
+
+FrameCamera test_camera() {
+    return FrameCamera::look_at({0.5f, 3.5f, 2.5f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 1.0f,
+                                1.0f);
+}
+
+FrameSettings test_settings(bool filtered = true) {
+    FrameSettings settings;
+    settings.width = kSize;
+    settings.height = kSize;
+    settings.filtered_shadows = filtered;
+    settings.wait_for_timings = true;
+    return settings;
+}
+
+/// The analytic direct radiance at a point of the plane (y = 0, normal +y).
+glm::vec3 analytic(const glm::vec3& p) {
+    const glm::vec3 to_light = kLight - p;
+    const float d2 = glm::dot(to_light, to_light);
+    const float cos_theta = to_light.y / std::sqrt(d2);
+    const glm::vec3 intensity = kPower / (4.0f * glm::pi<float>());
+    return kAlbedo / glm::pi<float>() * intensity * cos_theta / d2;
+}
+
+/// A world with the plane, the light and optionally the blocker, lit once.
+struct PlaneScene {
+    test::RenderWorld world;
+    ecs::Entity light;
+    ecs::Entity blocker;
+
+    explicit PlaneScene(bool with_blocker) {
+        world.add_mesh(
+            test::single_mesh_scene(test::horizontal_square(glm::vec3(0.0f), 2.0f), kAlbedo));
+        if (with_blocker) {
+            // A 0.4 m square halfway up: its umbra on the plane is the 0.8 m square around
+            // the origin.
+            blocker =
+                world.add_mesh(test::single_mesh_scene(
+                                   test::horizontal_square(glm::vec3(0.0f), 0.2f), glm::vec3(0.5f)),
+                               glm::vec3(0.0f, 0.75f, 0.0f));
+        }
+        light = world.add_point_light(kLight, kPower);
+        world.start();
+        world.update();
+    }
+};
+
+class DirectLight : public ::testing::Test {
+  protected:
+    void SetUp() override { context_ = test::make_render_context(); }
+    void TearDown() override { context_.reset(); }
+    std::unique_ptr<GlContext> context_;
+};
+
+TEST_F(DirectLight, PointLightOverPlaneMatchesAnalyticRadiance) {
+    PlaneScene scene(false);
+    FrameRenderer renderer(scene.world.registry, *scene.world.lighting, test_settings());
+    renderer.render(test_camera(), scene.world.time);
+    const Image direct = renderer.read(FrameImage::Direct);
+    const Image frame = renderer.read(FrameImage::Frame);
+    const auto positions = test::read_texture(renderer.position_texture(), kSize, kSize);
+    int checked = 0;
+    float worst = 0.0f;
+    for (int y = 0; y < kSize; ++y) {
+        for (int x = 0; x < kSize; ++x) {
+            // Image rows are top first, GL rows bottom first.
+            const glm::vec4 p = positions[static_cast<std::size_t>((kSize - 1 - y) * kSize + x)];
+            if (p.w == 0.0f) {
+                continue;
+            }
+            const glm::vec3 expected = analytic(glm::vec3(p));
+            const glm::vec4 got = direct.pixel(x, y);
+            for (int c = 0; c < 3; ++c) {
+                const float error = std::abs(got[c] - expected[c]) / expected[c];
+                worst = std::max(worst, error);
+                ASSERT_LT(error, 0.02f) << "pixel " << x << "," << y << " channel " << c << ": "
+                                        << got[c] << " vs analytic " << expected[c];
+                // No IIM, no emission, no caustics: the frame is the direct term.
+                EXPECT_NEAR(frame.pixel(x, y)[c], got[c], 1e-6f * expected[c]);
+            }
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, kSize * kSize / 2) << "the plane should fill most of the view";
+    RecordProperty("max_relative_error", std::to_string(worst));
+    std::printf("[ figures  ] direct vs analytic: %d pixels, max relative error %.4f%%\n", checked,
+                100.0f * worst);
+}
+
+TEST_F(DirectLight, BlockerShadowsItsUmbraAndNothingElse) {
+    for (const bool filtered : {true, false}) {
+        PlaneScene open(false);
+        PlaneScene blocked(true);
+        FrameRenderer open_renderer(open.world.registry, *open.world.lighting,
+                                    test_settings(filtered));
+        FrameRenderer blocked_renderer(blocked.world.registry, *blocked.world.lighting,
+                                       test_settings(filtered));
+        open_renderer.render(test_camera(), open.world.time);
+        blocked_renderer.render(test_camera(), blocked.world.time);
+        const Image lit = open_renderer.read(FrameImage::Direct);
+        const Image shadowed = blocked_renderer.read(FrameImage::Direct);
+        const auto positions =
+            test::read_texture(blocked_renderer.position_texture(), kSize, kSize);
+        int umbra = 0;
+        int outside = 0;
+        for (int y = 0; y < kSize; ++y) {
+            for (int x = 0; x < kSize; ++x) {
+                const glm::vec4 p =
+                    positions[static_cast<std::size_t>((kSize - 1 - y) * kSize + x)];
+                if (p.w == 0.0f || p.y > 1e-3f) {
+                    continue;  // the blocker itself, or nothing
+                }
+                const float extent = std::max(std::abs(p.x), std::abs(p.z));
+                const glm::vec3 expected = analytic(glm::vec3(p));
+                for (int c = 0; c < 3; ++c) {
+                    if (extent < 0.3f) {
+                        EXPECT_LT(shadowed.pixel(x, y)[c], 0.01f * expected[c])
+                            << "umbra pixel " << x << "," << y << " filtered " << filtered;
+                    } else if (extent > 0.55f) {
+                        EXPECT_NEAR(shadowed.pixel(x, y)[c], lit.pixel(x, y)[c],
+                                    1e-4f * expected[c])
+                            << "lit pixel " << x << "," << y << " filtered " << filtered;
+                    }
+                }
+                umbra += extent < 0.3f ? 1 : 0;
+                outside += extent > 0.55f ? 1 : 0;
+            }
+        }
+        EXPECT_GT(umbra, 100) << "the umbra should be in view";
+        EXPECT_GT(outside, 2000);
+    }
+}
+
+TEST_F(DirectLight, ShadowMapsAreRedrawnOnlyWhenLightOrCasterMoves) {
+    PlaneScene scene(true);
+    FrameRenderer renderer(scene.world.registry, *scene.world.lighting, test_settings());
+    const auto frame = [&] {
+        scene.world.update();
+        renderer.render(test_camera(), scene.world.time);
+        return renderer.counters().shadow_maps_drawn;
+    };
+    EXPECT_EQ(frame(), 1u) << "a new light's map is drawn";
+    EXPECT_EQ(frame(), 0u) << "nothing moved";
+    EXPECT_EQ(frame(), 0u);
+    scene.world.registry.patch<ecs::Transform>(scene.blocker,
+                                               [](ecs::Transform& t) { t.translation.x += 0.3f; });
+    EXPECT_EQ(frame(), 1u) << "a caster in range moved";
+    EXPECT_EQ(frame(), 0u);
+    scene.world.registry.patch<ecs::Transform>(scene.light,
+                                               [](ecs::Transform& t) { t.translation.z += 0.1f; });
+    EXPECT_EQ(frame(), 1u) << "the light moved";
+    EXPECT_EQ(frame(), 0u);
+    scene.world.registry.patch<PointLight>(scene.light, [](PointLight& l) { l.power *= 2.0f; });
+    EXPECT_EQ(frame(), 0u) << "a brighter light casts the same shadow";
+    EXPECT_EQ(renderer.shadow_map_count(), 1u);
+    EXPECT_EQ(renderer.counters().shadow_map_renders, 3u);
+}
+
+}  // namespace

@@ -1,0 +1,122 @@
+// Every built-in prepared level, rendered from its own camera after a few lighting updates
+// while its animations play: no NaN, Inf or negative value in any term of any frame, and the
+// frame is not black.
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+
+#include <gtest/gtest.h>
+
+#include "luxel/ecs/transform.hpp"
+#include "luxel/lighting/core/animation_system.hpp"
+#include "luxel/lighting/gpu/frame_renderer.hpp"
+#include "luxel/runtime/scene/gltf.hpp"
+#include "render_scenes.hpp"
+
+namespace {
+
+using namespace luxel;
+using namespace luxel::lighting;
+
+// LUXEL_RENDER_OUT=<dir> writes each level's last frame and its terms as PNG (larger, for a
+// person to look at); the check is the same.
+const char* output_dir() {
+    return std::getenv("LUXEL_RENDER_OUT");
+}
+const int kWidth = output_dir() != nullptr ? 480 : 96;
+const int kHeight = output_dir() != nullptr ? 360 : 72;
+
+FrameCamera level_camera(ecs::Registry& registry) {
+    for (auto [entity, camera] : registry.view<CameraComponent>()) {
+        const auto* world = registry.try_get<ecs::WorldTransform>(entity);
+        return FrameCamera::from_scene(camera.camera, world ? world->matrix : glm::mat4(1.0f),
+                                       static_cast<float>(kWidth) / static_cast<float>(kHeight));
+    }
+    return FrameCamera::look_at({0.0f, 1.0f, 4.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 0.9f,
+                                static_cast<float>(kWidth) / static_cast<float>(kHeight));
+}
+
+/// Checks every value; returns the sum of the rgb values.
+double check_image(const Image& image, const std::string& what) {
+    double sum = 0.0;
+    int bad = 0;
+    for (std::size_t i = 0; i < image.rgba.size(); ++i) {
+        const float v = image.rgba[i];
+        if (!std::isfinite(v) || v < 0.0f) {
+            if (++bad <= 5) {
+                ADD_FAILURE() << what << ": value " << v << " at pixel " << i / 4 << " channel "
+                              << i % 4;
+            }
+        } else if (i % 4 != 3) {
+            sum += v;
+        }
+    }
+    EXPECT_EQ(bad, 0) << what;
+    return sum;
+}
+
+class BuiltInLevels : public ::testing::TestWithParam<std::string> {
+  protected:
+    void SetUp() override { context_ = test::make_render_context(); }
+    void TearDown() override { context_.reset(); }
+    std::unique_ptr<GlContext> context_;
+};
+
+TEST_P(BuiltInLevels, FramesHoldNoNanInfOrNegative) {
+    test::RenderWorld world;
+    InstantiateOptions options;
+    options.play_animations = true;
+    instantiate(world.registry,
+                std::make_shared<scene::Scene>(scene::load_gltf(test::prepared_level(GetParam()))),
+                options);
+    world.start();
+    FrameSettings settings;
+    settings.width = kWidth;
+    settings.height = kHeight;
+    settings.cube_shadow_size = 128;
+    settings.map_shadow_size = 256;
+    settings.specular_cube_size = 32;
+    settings.specular_faces_per_frame = 2;
+    FrameRenderer renderer(world.registry, *world.lighting, settings);
+    for (int frame = 0; frame < 4; ++frame) {
+        const double dt = 1.0 / 30.0;
+        update_animations(world.registry, dt);
+        world.update(frame == 0 ? 1e9 : 50.0, dt);
+        renderer.render(level_camera(world.registry), world.time);
+        const std::string what = GetParam() + " frame " + std::to_string(frame);
+        const double total = check_image(renderer.read(FrameImage::Frame), what + " frame");
+        check_image(renderer.read(FrameImage::Direct), what + " direct");
+        check_image(renderer.read(FrameImage::Indirect), what + " indirect");
+        check_image(renderer.read(FrameImage::Specular), what + " specular");
+        EXPECT_GT(total, 0.0) << what << ": a lit level renders black";
+    }
+    if (output_dir() != nullptr) {
+        const std::filesystem::path dir(output_dir());
+        std::filesystem::create_directories(dir);
+        write_png(dir / (GetParam() + ".png"), renderer.read(FrameImage::Frame));
+        write_png(dir / (GetParam() + "-direct.png"), renderer.read(FrameImage::Direct));
+        write_png(dir / (GetParam() + "-indirect.png"), renderer.read(FrameImage::Indirect));
+        write_png(dir / (GetParam() + "-specular.png"), renderer.read(FrameImage::Specular));
+    }
+    const FrameCounters& counters = renderer.counters();
+    EXPECT_EQ(counters.shadow_maps, counters.lights) << "one shadow map per enabled light";
+    if (world.lighting->plan().reflections()) {
+        EXPECT_GT(counters.specular_probes, 0u) << "specular materials get probes";
+    }
+    std::printf("[ figures  ] %s: %zu lights, %zu shadow maps, %zu probes, %zu draws\n",
+                GetParam().c_str(), counters.lights, counters.shadow_maps, counters.specular_probes,
+                counters.draws);
+}
+
+INSTANTIATE_TEST_SUITE_P(Prepared, BuiltInLevels, ::testing::ValuesIn(test::prepared_levels()),
+                         [](const ::testing::TestParamInfo<std::string>& level) {
+                             std::string name = level.param;
+                             for (char& c : name) {
+                                 c = std::isalnum(static_cast<unsigned char>(c)) != 0 ? c : '_';
+                             }
+                             return name;
+                         });
+
+}  // namespace

@@ -1,0 +1,179 @@
+// What the FeaturePlan allows and the toggles select: a scene without lights allocates no
+// shadow maps and runs no shadow or direct pass; a light brings one map, switching it off
+// frees it; each term's toggle removes exactly that term; the linear frame reads back as EXR
+// without loss.
+
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include <gtest/gtest.h>
+
+#include "luxel/ecs/transform.hpp"
+#include "luxel/lighting/gpu/frame_renderer.hpp"
+#include "luxel/runtime/gl_objects.hpp"
+#include "luxel/runtime/image.hpp"
+#include "render_scenes.hpp"
+
+namespace {
+
+using namespace luxel;
+using namespace luxel::lighting;
+
+constexpr int kSize = 64;
+
+FrameCamera camera() {
+    return FrameCamera::look_at({0.5f, 3.5f, 2.5f}, glm::vec3(0.0f), {0.0f, 1.0f, 0.0f}, 1.0f,
+                                1.0f);
+}
+
+FrameSettings settings() {
+    FrameSettings s;
+    s.width = kSize;
+    s.height = kSize;
+    s.wait_for_timings = true;
+    return s;
+}
+
+double sum(const Image& image) {
+    double total = 0.0;
+    for (std::size_t i = 0; i < image.rgba.size(); ++i) {
+        total += i % 4 == 3 ? 0.0 : static_cast<double>(image.rgba[i]);
+    }
+    return total;
+}
+
+class Passes : public ::testing::Test {
+  protected:
+    void SetUp() override { context_ = test::make_render_context(); }
+    void TearDown() override { context_.reset(); }
+    std::unique_ptr<GlContext> context_;
+};
+
+TEST_F(Passes, NoLightsNoShadowMaps) {
+    test::RenderWorld world;
+    world.add_mesh(
+        test::single_mesh_scene(test::horizontal_square(glm::vec3(0.0f), 2.0f), glm::vec3(0.5f)));
+    world.start();
+    world.update();
+    FrameRenderer renderer(world.registry, *world.lighting, settings());
+    const FrameTimings& timings = renderer.render(camera(), world.time);
+    EXPECT_FALSE(world.lighting->plan().shadows());
+    EXPECT_EQ(renderer.shadow_map_count(), 0u);
+    EXPECT_EQ(renderer.counters().shadow_maps, 0u);
+    EXPECT_EQ(timings[RenderPass::Shadows], 0.0) << "the shadow pass must not run";
+    EXPECT_EQ(timings[RenderPass::Direct], 0.0) << "the direct pass must not run";
+    EXPECT_GT(timings[RenderPass::GBuffer], 0.0) << "timer queries measure the passes that run";
+    EXPECT_EQ(sum(renderer.read(FrameImage::Direct)), 0.0);
+
+    // A light: one map, and light on the plane.
+    const ecs::Entity light = world.add_point_light({0.0f, 1.5f, 0.0f}, glm::vec3(20.0f));
+    world.update();
+    renderer.render(camera(), world.time);
+    EXPECT_EQ(renderer.shadow_map_count(), 1u);
+    EXPECT_GT(sum(renderer.read(FrameImage::Direct)), 0.0);
+
+    // Switched off: its map is freed and the plane is dark again.
+    world.registry.patch<PointLight>(light, [](PointLight& l) { l.enabled = false; });
+    world.update();
+    renderer.render(camera(), world.time);
+    EXPECT_EQ(renderer.shadow_map_count(), 0u);
+    EXPECT_EQ(sum(renderer.read(FrameImage::Frame)), 0.0);
+}
+
+TEST_F(Passes, TogglesRemoveExactlyTheirTerm) {
+    test::RenderWorld world;
+    const ecs::Entity plane = world.add_mesh(
+        test::single_mesh_scene(test::horizontal_square(glm::vec3(0.0f), 2.0f), glm::vec3(0.5f)));
+    world.registry.emplace<LightmappedSurface>(plane, test::whole_page_layout(16, 16.0));
+    // A ceiling over the floor, so light bounces between them: indirect light on both.
+    const ecs::Entity ceiling =
+        world.add_mesh(test::single_mesh_scene(
+                           test::horizontal_square(glm::vec3(0.0f), 2.0f, false), glm::vec3(0.7f)),
+                       glm::vec3(0.0f, 2.0f, 0.0f));
+    world.registry.emplace<LightmappedSurface>(ceiling, test::whole_page_layout(16, 16.0));
+    world.add_point_light({0.0f, 1.5f, 0.0f}, glm::vec3(20.0f));
+    world.start();
+    // Enough frames for photons, an AIM and a gathered IIM.
+    for (int i = 0; i < 30; ++i) {
+        world.update();
+    }
+    FrameRenderer renderer(world.registry, *world.lighting, settings());
+    // From the side, between floor and ceiling.
+    const FrameCamera side = FrameCamera::look_at({3.5f, 1.0f, 0.5f}, {0.0f, 0.8f, 0.0f},
+                                                  {0.0f, 1.0f, 0.0f}, 1.2f, 1.0f);
+    renderer.render(side, world.time + 100.0);
+    const Image direct = renderer.read(FrameImage::Direct);
+    const Image indirect = renderer.read(FrameImage::Indirect);
+    const Image all = renderer.read(FrameImage::Frame);
+    ASSERT_GT(sum(direct), 0.0);
+    ASSERT_GT(sum(indirect), 0.0) << "the IIM should hold light after 30 updates";
+    for (std::size_t i = 0; i < all.rgba.size(); i += 4) {
+        EXPECT_NEAR(all.rgba[i], direct.rgba[i] + indirect.rgba[i], 1e-5f * all.rgba[i]);
+    }
+
+    renderer.set_terms({.direct = false});
+    renderer.render(side, world.time + 100.0);
+    const Image without_direct = renderer.read(FrameImage::Frame);
+    renderer.set_terms({.indirect = false});
+    renderer.render(side, world.time + 100.0);
+    const Image without_indirect = renderer.read(FrameImage::Frame);
+    for (std::size_t i = 0; i < all.rgba.size(); ++i) {
+        if (i % 4 == 3) {
+            continue;
+        }
+        EXPECT_NEAR(without_direct.rgba[i], indirect.rgba[i], 1e-6f + 1e-6f * all.rgba[i]);
+        EXPECT_NEAR(without_indirect.rgba[i], direct.rgba[i], 1e-6f + 1e-6f * all.rgba[i]);
+    }
+
+    // The linear frame as EXR, bit for bit.
+    const auto path = std::filesystem::path(::testing::TempDir()) / "luxel_render_frame.exr";
+    write_exr(path, all);
+    const Image back = read_exr(path);
+    ASSERT_EQ(back.rgba.size(), all.rgba.size());
+    for (std::size_t i = 0; i < all.rgba.size(); ++i) {
+        ASSERT_EQ(back.rgba[i], all.rgba[i]) << "value " << i;
+    }
+    std::filesystem::remove(path);
+}
+
+TEST_F(Passes, CausticInputIsIrradianceTimesAlbedoOverPi) {
+    test::RenderWorld world;
+    world.add_mesh(test::single_mesh_scene(test::horizontal_square(glm::vec3(0.0f), 2.0f),
+                                           glm::vec3(0.8f, 0.4f, 0.2f)));
+    world.start();
+    world.update();
+    FrameRenderer renderer(world.registry, *world.lighting, settings());
+    // A uniform caustic irradiance of 2 W/m^2 over the whole screen.
+    gl::Texture caustics = gl::Texture::create_2d(GL_RGBA32F, kSize, kSize);
+    std::vector<glm::vec4> values(static_cast<std::size_t>(kSize * kSize), glm::vec4(2.0f));
+    glTextureSubImage2D(caustics.id(), 0, 0, 0, kSize, kSize, GL_RGBA, GL_FLOAT, values.data());
+    renderer.set_caustics({caustics.id(), true});
+    renderer.render(camera(), world.time);
+    const Image frame = renderer.read(FrameImage::Frame);
+    const Image albedo = renderer.read(FrameImage::Albedo);
+    int covered = 0;
+    for (int y = 0; y < kSize; ++y) {
+        for (int x = 0; x < kSize; ++x) {
+            if (albedo.pixel(x, y).r == 0.0f) {
+                EXPECT_EQ(frame.pixel(x, y).r, 0.0f) << "no surface, no caustic";
+                continue;
+            }
+            ++covered;
+            const glm::vec3 expected = glm::vec3(0.8f, 0.4f, 0.2f) * 2.0f / 3.14159265f;
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_NEAR(frame.pixel(x, y)[c], expected[c], 2e-3f * expected[c]);
+            }
+        }
+    }
+    EXPECT_GT(covered, kSize * kSize / 2);
+    renderer.set_terms({.caustics = false});
+    renderer.render(camera(), world.time);
+    EXPECT_EQ(sum(renderer.read(FrameImage::Frame)), 0.0);
+    renderer.set_terms({});
+    renderer.set_caustics({});
+    renderer.render(camera(), world.time);
+    EXPECT_EQ(sum(renderer.read(FrameImage::Frame)), 0.0);
+}
+
+}  // namespace
