@@ -91,6 +91,31 @@ TEST(LightingSystem, AStaticSceneConvergesAndThenDoesNoWork) {
     std::printf("[ figures  ] static cornell converged in %d frames\n", frames);
 }
 
+TEST(LightingSystem, EveryLitTexelIsGatheredAfterConvergence) {
+    // Gather passes must not start (and reset delta_i) before the AIMs they read exist: a
+    // pass that did left its first slice black for good.
+    Game game("two-rooms", false);
+    ASSERT_LE(game.converge(300), 300);
+    const IlluminationMaps& maps = game.lighting->maps();
+    std::size_t texels = 0;
+    std::size_t black = 0;
+    for (std::uint32_t s = 0; s < maps.surfaces().size(); ++s) {
+        const std::int32_t page = maps.aim().surface_page[s];
+        if (page < 0) {
+            continue;
+        }
+        const auto& iim = maps.iim_pages()[static_cast<std::size_t>(page)].current;
+        for (const auto& texel : maps.surfaces()[s].texels.texels) {
+            ++texels;
+            black += iim.at(texel.x, texel.y) == glm::vec3(0.0f) ? 1 : 0;
+        }
+    }
+    ASSERT_GT(texels, 10'000u);
+    std::printf("[ figures  ] two-rooms: %zu of %zu IIM texels black after convergence\n", black,
+                texels);
+    EXPECT_LT(static_cast<double>(black), 0.002 * static_cast<double>(texels));
+}
+
 TEST(LightingSystem, NoGeneratorMeansNoCausticDataUntilOneIsAdded) {
     Game game("two-rooms", false);
     ASSERT_LE(game.converge(300), 300);

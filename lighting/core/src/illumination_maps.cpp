@@ -318,16 +318,23 @@ void IlluminationMaps::dilate(std::uint32_t surface, RadiancePage& page) const {
     }
 }
 
+bool IlluminationMaps::aims_ready() const {
+    // A pass started before every lit surface has an AIM would gather black where the AIM is
+    // missing and consume the delta_i that should have brought it back.
+    const PhotonMap& map = world_.photon_map();
+    for (std::uint32_t s = 0; s < surfaces_.size() && s < map.surface_count(); ++s) {
+        if (!surfaces_[s].aim_built && !surfaces_[s].texels.texels.empty() &&
+            map.surface(s).stored_energy.value() > 0.0) {
+            return false;
+        }
+    }
+    return true;
+}
+
 std::vector<MapRequest> IlluminationMaps::gather_requests() const {
     std::vector<MapRequest> requests;
     const PhotonMap& map = world_.photon_map();
-    // A pass started before every lit surface has an AIM would gather black where the AIM is
-    // missing and consume the delta_i that should have brought it back: wait for the AIMs.
-    bool aims_ready = true;
-    for (std::uint32_t s = 0; s < surfaces_.size() && s < map.surface_count(); ++s) {
-        aims_ready = aims_ready && (surfaces_[s].aim_built || surfaces_[s].texels.texels.empty() ||
-                                    !(map.surface(s).stored_energy.value() > 0.0));
-    }
+    const bool ready = aims_ready();
     for (std::uint32_t s = 0; s < surfaces_.size(); ++s) {
         const MapSurface& mapped = surfaces_[s];
         if (mapped.texels.texels.empty() || !registry_.valid(mapped.entity) ||
@@ -338,7 +345,7 @@ std::vector<MapRequest> IlluminationMaps::gather_requests() const {
         const double delta = photons.delta_indirect.value();
         const bool changed =
             relative(delta, photons.stored_energy.value()) > settings_.iim_threshold;
-        if (mapped.gather_in_progress || (aims_ready && (!mapped.gathered_once || changed))) {
+        if (mapped.gather_in_progress || (ready && (!mapped.gathered_once || changed))) {
             // A pass in progress finishes first: half-updated surfaces show seams.
             double priority = delta / safe_area(mapped.texels.area);
             if (mapped.gather_in_progress || !mapped.gathered_once) {
@@ -358,6 +365,11 @@ std::size_t IlluminationMaps::gather(std::uint32_t surface, std::size_t max_texe
     MapSurface& mapped = surfaces_.at(surface);
     const std::int32_t page_id = aim_.surface_page.at(surface);
     if (page_id < 0 || mapped.texels.texels.empty() || max_texels == 0) {
+        return 0;
+    }
+    if (!mapped.gather_in_progress && !aims_ready()) {
+        // Checked again here, not only when the request was made: photons stored since (by
+        // retraces earlier in the same frame) may have made a surface lit without an AIM.
         return 0;
     }
     if (!mapped.gather_in_progress) {

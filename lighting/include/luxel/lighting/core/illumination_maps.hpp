@@ -120,6 +120,9 @@ class IlluminationMaps {
     std::size_t gather(std::uint32_t surface, std::size_t max_texels, IrradianceGatherer& gatherer,
                        double now_seconds);
 
+    /// Whether every surface holding photons has had its first AIM (gather passes wait).
+    [[nodiscard]] bool aims_ready() const;
+
     /// The AIM pages both gather backends read.
     [[nodiscard]] const RadianceAtlas& aim() const { return aim_; }
     [[nodiscard]] std::span<const IimPage> iim_pages() const { return iim_pages_; }
