@@ -1,5 +1,7 @@
-// luxel-sandbox: the main job. Until the sandbox level lands it draws the built-in lit test
-// scene, headless by default, and writes the last frame as PNG (tone-mapped) and EXR (linear).
+// luxel-sandbox: the main job. Runs a level (the sandbox game level by default) the way a game
+// would: ECS game systems, LightingSystem::update within a budget, FrameRenderer. Headless by
+// default when there is no display (a scripted camera, PNG frames and a JSON report), or in a
+// GLFW window with a free camera and a Dear ImGui panel.
 
 #include <algorithm>
 #include <charconv>
@@ -20,8 +22,8 @@
 #include "luxel/runtime/log.hpp"
 #include "luxel/runtime/render_target.hpp"
 #include "luxel/runtime/shader_library.hpp"
-#include "present_pass.hpp"
-#include "test_scene.hpp"
+#include "runs.hpp"
+#include "sandbox_level.hpp"
 
 namespace {
 
@@ -31,7 +33,6 @@ struct Size {
 };
 
 constexpr int kMaxFramebufferSize = 16384;
-constexpr double kHeadlessFrameSeconds = 1.0 / 30.0;  // fixed step: headless runs are repeatable
 
 /// Parses "WxH"; returns an error message for CLI11, empty when valid.
 std::string parse_size(const std::string& text, Size& size) {
@@ -55,109 +56,98 @@ std::string parse_size(const std::string& text, Size& size) {
     return {};
 }
 
-double percentile(std::vector<double> values, double q) {
-    if (values.empty()) {
-        return 0.0;
-    }
-    std::sort(values.begin(), values.end());
-    const auto index = static_cast<std::size_t>(q * static_cast<double>(values.size() - 1) + 0.5);
-    return values[std::min(index, values.size() - 1)];
-}
-
-struct Options {
-    std::string gl = "auto";
-    std::optional<int> frames;
-    std::filesystem::path out = "out";
-    Size size;
-    int threads = 0;
-    std::string log_level;
-};
-
-int run(const Options& options) {
-    if (!options.log_level.empty()) {
-        luxel::log::set_level(luxel::log::parse_level(options.log_level));
-    }
-    luxel::JobSystem jobs(options.threads);
-
-    luxel::GlContextOptions context_options;
-    context_options.backend = luxel::parse_backend(options.gl);
-    context_options.width = options.size.width;
-    context_options.height = options.size.height;
-    context_options.window_title = "luxel sandbox";
-    auto context = luxel::create_gl_context(context_options);
-    const bool windowed = context->has_window();
-    std::cout << "GL renderer: " << context->info().renderer << " | " << context->info().version
-              << " | backend " << luxel::backend_name(context->backend()) << " | "
-              << jobs.thread_count() << " job threads\n";
-
-    const luxel::ShaderLibrary shaders;
-    const luxel::sandbox::TestScene scene(shaders);
-    const luxel::gl::RenderTarget target(options.size.width, options.size.height);
-    std::optional<luxel::sandbox::PresentPass> present;
-    if (windowed) {
-        present.emplace(shaders);
-    }
-    const luxel::ToneMapSettings tone_map;
-
-    // Headless runs a fixed number of frames; a window runs until closed unless --frames is given.
-    const int frame_limit = options.frames.value_or(windowed ? -1 : 30);
-    luxel::FrameClock frame_clock;
-    std::vector<double> frame_ms;
-    for (int frame = 0; frame_limit < 0 || frame < frame_limit; ++frame) {
-        const luxel::FrameTime time = frame_clock.tick();
-        const luxel::Stopwatch stopwatch;
-        const double scene_time =
-            windowed ? time.total_seconds : static_cast<double>(frame) * kHeadlessFrameSeconds;
-        scene.render(target, scene_time);
-        if (windowed) {
-            present->draw(target.color(), context->framebuffer_width(),
-                          context->framebuffer_height(), tone_map);
-            context->swap_buffers();
-            context->poll_events();
-            if (context->should_close()) {
-                break;
-            }
+/// "direct,indirect,caustics,specular,emission" (any subset, or "all").
+std::string parse_terms(const std::string& text, luxel::lighting::FrameTerms& terms) {
+    luxel::lighting::FrameTerms parsed{false, false, false, false, false};
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        const std::size_t comma = std::min(text.find(',', start), text.size());
+        const std::string term = text.substr(start, comma - start);
+        if (term == "all") {
+            parsed = {};
+        } else if (term == "direct") {
+            parsed.direct = true;
+        } else if (term == "indirect") {
+            parsed.indirect = true;
+        } else if (term == "caustics") {
+            parsed.caustics = true;
+        } else if (term == "specular") {
+            parsed.specular = true;
+        } else if (term == "emission") {
+            parsed.emission = true;
         } else {
-            glFinish();  // so the frame time includes the GPU work, not just its submission
+            return "unknown lighting term '" + term +
+                   "' (expected all, direct, indirect, caustics, specular, emission)";
         }
-        frame_ms.push_back(stopwatch.elapsed_ms());
+        start = comma + 1;
     }
-
-    const luxel::Image frame = target.read_color();
-    const auto png = options.out / "test_scene.png";
-    const auto exr = options.out / "test_scene.exr";
-    luxel::write_png(png, frame, tone_map);
-    luxel::write_exr(exr, frame);
-    std::printf("%zu frames at %dx%d: median %.2f ms, p95 %.2f ms per frame\nwrote %s and %s\n",
-                frame_ms.size(), options.size.width, options.size.height, percentile(frame_ms, 0.5),
-                percentile(frame_ms, 0.95), png.c_str(), exr.c_str());
-    return 0;
+    terms = parsed;
+    return {};
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{
-        "luxel sandbox: renders the built-in lit test scene (headless by default when "
-        "there is no display) and writes the last frame as PNG and EXR."};
-    Options options;
+        "luxel sandbox: runs a level with moving objects through the lighting system, headless "
+        "(the default when there is no display) or in a window."};
+    luxel::sandbox::RunOptions options;
+    std::string level_names;
+    for (const auto& name : luxel::sandbox::level_names()) {
+        level_names += (level_names.empty() ? "" : ", ") + name;
+    }
+    app.add_option("--level", options.app.level,
+                   "a built-in level (" + level_names + ") or a prepared .glb file")
+        ->capture_default_str();
     app.add_option("--gl", options.gl, "OpenGL backend")
         ->check(CLI::IsMember({"auto", "egl", "osmesa", "window"}))
         ->capture_default_str();
     app.add_option("--frames", options.frames,
-                   "frames to render (default 30 headless, until closed in a window)")
-        ->check(CLI::Range(1, 1'000'000));
-    app.add_option("--out", options.out, "output directory for PNG and EXR files")
+                   "frames to run (default 150 headless, until closed in a window)")
+        ->check(CLI::Range(1, 10'000'000));
+    app.add_option("--budget-ms", options.app.budget_ms,
+                   "lighting budget per frame in milliseconds (0 pauses lighting)")
+        ->check(CLI::Range(0.0, 10'000.0))
         ->capture_default_str();
+    app.add_option("--warm-up-ms", options.app.warm_up_ms,
+                   "lighting warm-up at load, like a loading screen (0: start unlit)")
+        ->check(CLI::Range(0.0, 1e7))
+        ->capture_default_str();
+    app.add_option("--out", options.out, "output directory for frames, screenshots and the report")
+        ->capture_default_str();
+    app.add_option("--report", options.report, "JSON report file (default <out>/report.json)");
+    app.add_option("--camera", options.camera,
+                   "headless camera: the level's scripted path, or fixed at its start")
+        ->check(CLI::IsMember({"path", "fixed"}))
+        ->capture_default_str();
+    app.add_option("--camera-at", options.camera_at,
+                   "with --camera fixed: the time (s) along the path the camera stays at")
+        ->check(CLI::Range(0.0, 1e6))
+        ->capture_default_str();
+    app.add_flag("--exr", options.exr, "also write every frame as linear EXR");
+    app.add_option("--png-every", options.png_every,
+                   "write every n-th frame as PNG (0: only the last)")
+        ->check(CLI::Range(0, 1'000'000))
+        ->capture_default_str();
+    app.add_option_function<std::string>(
+        "--terms",
+        [&](const std::string& text) {
+            if (auto error = parse_terms(text, options.terms); !error.empty()) {
+                throw CLI::ValidationError("--terms", error);
+            }
+        },
+        "lighting terms to draw, comma-separated: direct, indirect, caustics, specular, "
+        "emission, or all (default all)");
+    Size size;
     app.add_option_function<std::string>(
         "--size",
         [&](const std::string& text) {
-            if (auto error = parse_size(text, options.size); !error.empty()) {
+            if (auto error = parse_size(text, size); !error.empty()) {
                 throw CLI::ValidationError("--size", error);
             }
         },
         "framebuffer size WxH (default 640x360)");
-    app.add_option("--threads", options.threads, "job threads (0 = all cores)")
+    app.add_option("--threads", options.app.threads, "job threads (0 = all cores)")
         ->check(CLI::Range(0, 1024))
         ->capture_default_str();
     app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error or off");
@@ -166,8 +156,23 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
     }
+    options.app.width = size.width;
+    options.app.height = size.height;
     try {
-        return run(options);
+        if (!options.log_level.empty()) {
+            luxel::log::set_level(luxel::log::parse_level(options.log_level));
+        }
+        // Fail on a bad level before starting GL: the message should be about the level.
+        (void)luxel::sandbox::resolve_level(options.app.level);
+        luxel::JobSystem jobs(options.app.threads);
+        luxel::GlContextOptions context_options;
+        context_options.backend = luxel::parse_backend(options.gl);
+        context_options.width = size.width;
+        context_options.height = size.height;
+        context_options.window_title = "luxel sandbox";
+        auto context = luxel::create_gl_context(context_options);
+        return context->has_window() ? luxel::sandbox::run_window(options, jobs, *context)
+                                     : luxel::sandbox::run_headless(options, jobs, *context);
     } catch (const luxel::Error& e) {
         std::cerr << "luxel-sandbox: error: " << e.what() << "\n";
         return 1;

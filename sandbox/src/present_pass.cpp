@@ -7,7 +7,7 @@ PresentPass::PresentPass(const ShaderLibrary& shaders)
                               {ShaderStage::Fragment, "post/tone_map.frag"}})),
       empty_vertex_array_(gl::VertexArray::create()) {}
 
-void PresentPass::draw(const gl::Texture& hdr, int width, int height,
+void PresentPass::draw(GLuint hdr_texture, int width, int height,
                        const ToneMapSettings& settings) const {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, width, height);
@@ -17,7 +17,7 @@ void PresentPass::draw(const gl::Texture& hdr, int width, int height,
     program_.set("u_exposure", settings.exposure);
     program_.set("u_operator", static_cast<int>(settings.op));
     program_.use();
-    glBindTextureUnit(0, hdr.id());
+    glBindTextureUnit(0, hdr_texture);
     glBindVertexArray(empty_vertex_array_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);

@@ -12,7 +12,7 @@ namespace luxel::sandbox {
 class PresentPass {
   public:
     explicit PresentPass(const ShaderLibrary& shaders);
-    void draw(const gl::Texture& hdr, int width, int height, const ToneMapSettings& settings) const;
+    void draw(GLuint hdr_texture, int width, int height, const ToneMapSettings& settings) const;
 
   private:
     gl::Program program_;

@@ -1,0 +1,107 @@
+#include "sandbox_app.hpp"
+
+#include "luxel/lighting/core/animation_system.hpp"
+#include "luxel/runtime/clock.hpp"
+#include "luxel/runtime/log.hpp"
+#include "luxel/runtime/scene/gltf.hpp"
+
+namespace luxel::sandbox {
+
+std::string level_display_name(const std::string& name_or_path) {
+    const auto& names = level_names();
+    if (std::find(names.begin(), names.end(), name_or_path) != names.end()) {
+        return name_or_path;
+    }
+    return std::filesystem::path(name_or_path).stem().string();
+}
+
+SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const ShaderLibrary& shaders)
+    : level_name_(level_display_name(settings.level)),
+      level_file_(resolve_level(settings.level)),
+      shaders_(&shaders),
+      path_({}, 1.0f),
+      budget_ms_(settings.budget_ms),
+      width_(settings.width),
+      height_(settings.height) {
+    const Stopwatch loading;
+    scene_ = std::make_shared<scene::Scene>(scene::load_gltf(level_file_));
+    instance_ = lighting::instantiate(registry_, scene_);
+    const std::size_t bounces = add_bounces(registry_, instance_, *scene_);
+    transforms_.update();
+    path_ = camera_path_for(level_name_, *scene_);
+    lighting_ = std::make_unique<lighting::LightingSystem>(registry_, jobs);
+    lighting::FrameSettings frame;
+    frame.width = width_;
+    frame.height = height_;
+    renderer_ = std::make_unique<lighting::FrameRenderer>(registry_, *lighting_, frame, shaders);
+    // The loading screen: the first photon maps, AIMs and IIMs are built at once, so the game
+    // starts lit and the per-frame budget only has to follow changes.
+    const Stopwatch warming;
+    const int updates = lighting_->warm_up(0.0, settings.warm_up_ms);
+    warm_up_ms_ = warming.elapsed_ms();
+    log::info("lighting warmed up in " + std::to_string(updates) + " updates, " +
+              std::to_string(static_cast<int>(warm_up_ms_)) + " ms" +
+              (lighting_->plan().census().converged ? "" : " (not converged: time limit)"));
+    log::info("level '" + level_name_ + "' from " + level_file_.string() + ": " +
+              std::to_string(scene_->nodes.size()) + " nodes, " +
+              std::to_string(scene_->animations.size()) + " animations, " +
+              std::to_string(bounces) + " bounced by the game, loaded in " +
+              std::to_string(static_cast<int>(loading.elapsed_ms())) + " ms");
+}
+
+SandboxApp::FrameResult SandboxApp::frame(double time, double dt,
+                                          const lighting::FrameCamera& camera, bool frozen) {
+    FrameResult result;
+    // 1. Game systems move entities: glTF animations, light switches, the bounce system.
+    if (!frozen) {
+        lighting::update_animations(registry_, dt);
+        lighting::update_light_switches(registry_, dt);
+        update_bounces(registry_, time);
+    }
+    transforms_.update();
+
+    // 2-4. Lighting: sync through the ECS change lists, scheduled work within the budget.
+    const Stopwatch lighting_watch;
+    const lighting::LightingStats& stats = lighting_->update(budget_ms_, time);
+    result.lighting_ms = lighting_watch.elapsed_ms();
+
+    // 5. Render. The caustic pass exists only while the FeaturePlan has caustic data; it
+    // splats against the depth of the frame just drawn and is composited into the next one
+    // (one frame late: the renderer draws its G-buffer and composites in one call).
+    const bool want_caustics = lighting_->plan().caustic_data();
+    if (want_caustics && !caustics_) {
+        caustics_.emplace(lighting::CausticPassSettings{}, glm::ivec2(width_, height_), *shaders_);
+    } else if (!want_caustics && caustics_) {
+        renderer_->set_caustics({});
+        caustics_.reset();
+    }
+    const lighting::FrameTimings& timings = renderer_->render(camera, time);
+    if (caustics_) {
+        caustics_->upload(lighting_->photons().caustics());
+        lighting::CausticCamera caustic_camera;
+        caustic_camera.view = camera.view;
+        caustic_camera.projection = camera.projection;
+        caustic_camera.viewport = {width_, height_};
+        caustics_->render(caustic_camera, renderer_->depth_texture());
+        renderer_->set_caustics({caustics_->irradiance_texture(), true});
+    }
+
+    RunReport::Frame& report = result.report;
+    report.lighting_ms = result.lighting_ms;
+    report.budget_ms = budget_ms_;
+    for (std::size_t pass = 0; pass < lighting::kRenderPassCount; ++pass) {
+        report.pass_ms[std::string(lighting::name(static_cast<lighting::RenderPass>(pass)))] =
+            timings.milliseconds[pass];
+    }
+    report.counters["photons_traced"] = static_cast<double>(stats.photons_traced);
+    report.counters["caustic_photons_traced"] = static_cast<double>(stats.caustic_photons_traced);
+    report.counters["aim_texels"] = static_cast<double>(stats.aim_texels);
+    report.counters["texels_gathered"] = static_cast<double>(stats.texels_gathered);
+    report.counters["work_units"] = static_cast<double>(stats.schedule.units_done);
+    report.counters["units_pending"] = static_cast<double>(stats.schedule.pending_after());
+    report.counters["stored_hits"] = static_cast<double>(stats.stored_hits);
+    report.counters["passes_active"] = static_cast<double>(lighting_->plan().active_count());
+    return result;
+}
+
+}  // namespace luxel::sandbox
