@@ -59,6 +59,13 @@ int run(int argc, char** argv) {
     app.add_option("--photons", options.photons,
                    "caustic photons in all, over every (delta light, specular object) pair")
         ->capture_default_str();
+    app.add_option("--indirect", options.indirect,
+                   "indirect component: photons (texel-binned photon estimate, fast where a "
+                   "light is close to a wall) or paths (NEE at every diffuse vertex)")
+        ->capture_default_str();
+    app.add_option("--indirect-photons", options.indirect_photons,
+                   "photons for the indirect component in all (--indirect photons)")
+        ->capture_default_str();
     app.add_option("--seed", options.seed, "random seed (the result is fixed by it)")
         ->capture_default_str();
     app.add_option("--max-vertices", options.max_vertices, "longest path (scattering events)")
@@ -113,6 +120,10 @@ int run(int argc, char** argv) {
     settings.caustics.seed = options.seed;
     settings.paths.max_vertices = options.max_vertices;
     settings.paths.caustic_bounce = !options.no_caustic_bounce;
+    settings.indirect =
+        options.indirect == "paths" ? IndirectMethod::Paths : IndirectMethod::Photons;
+    settings.indirect_photons.seed = options.seed;
+    settings.indirect_photons.max_vertices = options.max_vertices;
     ReferenceIntegrator integrator(scene, settings);
     FrameSettings frame_settings;
     frame_settings.seed = options.seed;
@@ -130,6 +141,8 @@ int run(int argc, char** argv) {
         const auto samples = static_cast<std::uint32_t>(share(options.spp, options.passes, pass));
         // Without --lightmaps the integrator only traces the photons the frame needs.
         integrator.set_pass_size(lightmaps ? samples : 0, photons.photons_per_pass);
+        integrator.set_indirect_photons_per_pass(
+            lightmaps ? share(options.indirect_photons, options.passes, pass) : 0);
         integrator.run_pass(jobs);
         if (frame && samples > 0) {
             frame->set_samples_per_pass(samples);

@@ -87,6 +87,9 @@ void validate(const Options& options) {
     if (options.spp == 0) {
         throw Error("--spp: need at least one sample");
     }
+    if (options.indirect != "photons" && options.indirect != "paths") {
+        throw Error("--indirect " + options.indirect + ": expected photons or paths");
+    }
     if (options.passes == 0) {
         throw Error("--passes: need at least one pass");
     }

@@ -34,6 +34,9 @@ struct Options {
     std::filesystem::path lightmaps;  ///< --lightmaps: .json, or .exr pages
     std::filesystem::path preview;    ///< --png: tone-mapped preview of the frame
     bool no_caustic_bounce = false;
+    /// --indirect: "photons" (IndirectPhotons, texel-binned) or "paths" (NEE at every vertex).
+    std::string indirect = "photons";
+    std::uint64_t indirect_photons = 20'000'000;  ///< in all, over the passes
 };
 
 /// Parses --camera's value; throws luxel::Error naming the flag and what is wrong.

@@ -197,6 +197,9 @@ void PathEstimator::trace(glm::vec3 origin, glm::vec3 direction, glm::dvec3 beta
         if (!normals.front) {
             return;  // one-sided: the back of a diffuse surface absorbs
         }
+        if (!settings_.indirect) {
+            return;
+        }
         first_segment = false;
         any_diffuse = true;
         const glm::dvec3 albedo(material.albedo);

@@ -25,10 +25,18 @@ ReferenceIntegrator::ReferenceIntegrator(const ReferenceScene& scene, ReferenceS
     : scene_(&scene),
       settings_(settings),
       caustics_(scene, settings.caustics),
-      moments_(scene.texel_count() * kComponentCount) {}
+      indirect_(scene, settings.indirect_photons),
+      moments_(scene.texel_count() * kComponentCount) {
+    if (settings_.indirect == IndirectMethod::Photons) {
+        settings_.paths.indirect = false;
+    }
+}
 
 void ReferenceIntegrator::run_pass(JobSystem& jobs) {
     caustics_.run_pass(jobs);
+    if (settings_.indirect == IndirectMethod::Photons) {
+        indirect_.run_pass(jobs);
+    }
     const std::vector<glm::dvec3> caustic_field = caustics_.irradiance_all();
     const PathEstimator estimator(*scene_, settings_.paths, caustic_field);
     const std::size_t texels = scene_->texel_count();
@@ -68,6 +76,11 @@ void ReferenceIntegrator::set_pass_size(std::uint32_t samples_per_pass,
     caustics_.set_photons_per_pass(caustic_photons_per_pass);
 }
 
+void ReferenceIntegrator::set_indirect_photons_per_pass(std::uint64_t photons) {
+    settings_.indirect_photons.photons_per_pass = photons;
+    indirect_.set_photons_per_pass(photons);
+}
+
 glm::dvec3 ReferenceIntegrator::irradiance(Component component, std::size_t texel) const {
     if (texel >= scene_->texel_count()) {
         return glm::dvec3(0.0);
@@ -76,6 +89,9 @@ glm::dvec3 ReferenceIntegrator::irradiance(Component component, std::size_t texe
                                    : glm::dvec3(0.0);
     if (component == Component::Caustic) {
         mean += caustics_.irradiance(texel);
+    }
+    if (component == Component::Indirect && settings_.indirect == IndirectMethod::Photons) {
+        mean += indirect_.irradiance(texel);
     }
     return mean;
 }
@@ -93,6 +109,10 @@ glm::dvec3 ReferenceIntegrator::standard_error(Component component, std::size_t 
     glm::dvec3 error = sample_standard_error(m.sum, m.sum_squares, samples_);
     if (component == Component::Caustic) {
         const glm::dvec3 photons = caustics_.standard_error(texel);
+        error = glm::sqrt(error * error + photons * photons);
+    }
+    if (component == Component::Indirect && settings_.indirect == IndirectMethod::Photons) {
+        const glm::dvec3 photons = indirect_.standard_error(texel);
         error = glm::sqrt(error * error + photons * photons);
     }
     return error;

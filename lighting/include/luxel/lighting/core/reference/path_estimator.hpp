@@ -39,6 +39,10 @@ struct PathSettings {
     /// Whether a diffuse vertex on a light-mapped surface adds the caustic photon estimate of
     /// its texel (delta-light caustics reflected onward, see PathEstimator).
     bool caustic_bounce = true;
+    /// Whether paths go on past their first diffuse vertex. Off, a texel sample holds only
+    /// the direct component and area-light caustics: ReferenceIntegrator turns it off when
+    /// IndirectPhotons estimate the indirect component.
+    bool indirect = true;
 };
 
 /// Counters of the estimator (summed by the caller; the estimator itself is const).

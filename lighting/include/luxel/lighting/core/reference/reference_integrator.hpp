@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 
 #include "luxel/lighting/core/reference/caustic_reference.hpp"
+#include "luxel/lighting/core/reference/indirect_photons.hpp"
 #include "luxel/lighting/core/reference/path_estimator.hpp"
 #include "luxel/lighting/core/reference/reference_scene.hpp"
 #include "luxel/runtime/jobs.hpp"
@@ -14,11 +15,20 @@
 /// split into direct, indirect and caustic, with its own standard error.
 namespace luxel::lighting::reference {
 
+/// How the indirect component is estimated. Paths: from each texel, NEE at every diffuse
+/// vertex (slow where a light sits close to a surface: its hot spot is found only by rare
+/// samples). Photons: IndirectPhotons, a texel-binned photon estimate (each texel's mean over
+/// its area), whose error does not depend on where the light is.
+enum class IndirectMethod : std::uint8_t { Paths, Photons };
+
 struct ReferenceSettings {
     /// Path samples per texel and pass (each: NEE at the texel plus one path).
     std::uint32_t samples_per_pass = 16;
     CausticReferenceSettings caustics;
     PathSettings paths;
+    IndirectMethod indirect = IndirectMethod::Paths;
+    /// Photons: the photons per pass (paths.indirect is turned off).
+    IndirectPhotonSettings indirect_photons;
     std::uint32_t seed = 1;  ///< the path samples' seed (caustics.seed is the photons')
 };
 
@@ -40,12 +50,16 @@ class ReferenceIntegrator {
     /// Changes the size of the passes to come (a tool spreading a total over passes); 0
     /// samples runs only the caustic photons.
     void set_pass_size(std::uint32_t samples_per_pass, std::uint64_t caustic_photons_per_pass);
+    /// IndirectMethod::Photons: the indirect photons of the passes to come.
+    void set_indirect_photons_per_pass(std::uint64_t photons);
 
     [[nodiscard]] std::uint32_t passes() const { return passes_; }
     /// Path samples per texel so far.
     [[nodiscard]] std::uint64_t samples() const { return samples_; }
     [[nodiscard]] const ReferenceScene& scene() const { return *scene_; }
     [[nodiscard]] const CausticReference& caustics() const { return caustics_; }
+    [[nodiscard]] const IndirectPhotons& indirect_photons() const { return indirect_; }
+    [[nodiscard]] const ReferenceSettings& settings() const { return settings_; }
     [[nodiscard]] const PathCounters& path_counters() const { return counters_; }
 
     /// Mean irradiance of a component at a texel (global index), W/m^2 per channel.
@@ -77,6 +91,7 @@ class ReferenceIntegrator {
     const ReferenceScene* scene_;
     ReferenceSettings settings_;
     CausticReference caustics_;
+    IndirectPhotons indirect_;
     std::vector<Moments> moments_;  ///< texel-major, kComponentCount per texel
     std::uint32_t passes_ = 0;
     std::uint64_t samples_ = 0;

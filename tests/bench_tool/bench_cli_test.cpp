@@ -1,0 +1,178 @@
+// The luxel-bench executable: errors that name the flag or level at fault, a tiny run that
+// writes every output with consistent columns, and the reference cache reused by a second run.
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "luxel/runtime/image.hpp"
+#include "temp_dir.hpp"
+
+namespace {
+
+struct CommandResult {
+    int exit_code = -1;
+    std::string output;  ///< stdout and stderr together
+};
+
+CommandResult luxel_bench(const std::string& arguments) {
+    const std::string command =
+        std::string("'") + LUXEL_BENCH_EXECUTABLE + "' " + arguments + " 2>&1";
+    CommandResult run;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (pipe == nullptr) {
+        return run;
+    }
+    std::array<char, 4096> chunk{};
+    while (std::fgets(chunk.data(), static_cast<int>(chunk.size()), pipe) != nullptr) {
+        run.output += chunk.data();
+    }
+    const int status = pclose(pipe);
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return run;
+}
+
+std::string quoted(const std::filesystem::path& path) {
+    std::string text("'");
+    text += path.string();
+    text += "'";
+    return text;
+}
+
+std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path) {
+    std::vector<std::vector<std::string>> rows;
+    std::ifstream in(path);
+    std::string line;
+    while (std::getline(in, line)) {
+        // RFC 4180 cells: quoted ones may hold commas and doubled quotes.
+        std::vector<std::string> cells(1);
+        bool quoted_cell = false;
+        for (std::size_t i = 0; i < line.size(); ++i) {
+            const char c = line[i];
+            if (quoted_cell && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+                cells.back() += '"';
+                ++i;
+            } else if (c == '"') {
+                quoted_cell = !quoted_cell;
+            } else if (c == ',' && !quoted_cell) {
+                cells.emplace_back();
+            } else {
+                cells.back() += c;
+            }
+        }
+        rows.push_back(cells);
+    }
+    return rows;
+}
+
+std::size_t count(const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) {
+        ++n;
+    }
+    return n;
+}
+
+TEST(BenchCli, ABadFlagIsRejectedByName) {
+    const CommandResult run = luxel_bench("--level cornell --bogus 3");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("--bogus"), std::string::npos) << run.output;
+}
+
+TEST(BenchCli, AMissingLevelIsNamed) {
+    luxel::testing::TempDir dir("luxel-bench-cli");
+    CommandResult run = luxel_bench("--level no-such-level --out " + quoted(dir / "out"));
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("no-such-level"), std::string::npos) << run.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "runs.csv"));
+    run = luxel_bench("--frames 3");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("--level"), std::string::npos) << run.output;
+}
+
+TEST(BenchCli, BadValuesAreExplained) {
+    CommandResult run = luxel_bench("--level cornell --sweep photons=77y40");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("--sweep photons"), std::string::npos) << run.output;
+    run = luxel_bench("--level cornell --sweep colour=1,2");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("unknown knob"), std::string::npos) << run.output;
+    run = luxel_bench("--level cornell --budgets 4,-1");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("--budgets"), std::string::npos) << run.output;
+    run = luxel_bench("--level cornell --change 'no such node:1,0,0' --frames 1");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("no such node"), std::string::npos) << run.output;
+    run = luxel_bench("--level cornell --change cube:1,0");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("--change"), std::string::npos) << run.output;
+}
+
+TEST(BenchCli, ATinyRunWritesEveryOutputAndASecondReusesTheReference) {
+    luxel::testing::TempDir dir("luxel-bench-run");
+    const std::filesystem::path out = dir / "out";
+    const std::string arguments =
+        "--level cornell --budgets 8 --frames 4 --after 3 --checkpoint 2 --ref-photons 100000 "
+        "--ref-caustic-photons 50000 --ref-spp 1 --sweep rays=16 --threads 2 --out " +
+        quoted(out);
+    const CommandResult first = luxel_bench(arguments);
+    ASSERT_EQ(first.exit_code, 0) << first.output;
+    EXPECT_EQ(count(first.output, "computing reference"), 2u) << first.output;
+
+    const auto runs = read_csv(out / "runs.csv");
+    ASSERT_EQ(runs.size(), 3u);  // header, paper @ 8 ms, rays=16 @ 8 ms
+    const std::vector<std::string> must{"method",          "budget_ms",        "ms_median",
+                                        "ms_p95",          "indirect_relrmse", "caustic_relrmse",
+                                        "recovery_frames", "ref_se_indirect"};
+    for (const std::string& column : must) {
+        EXPECT_NE(std::find(runs[0].begin(), runs[0].end(), column), runs[0].end()) << column;
+    }
+    for (std::size_t r = 1; r < runs.size(); ++r) {
+        EXPECT_EQ(runs[r].size(), runs[0].size()) << "row " << r;
+        for (const std::string& cell : runs[r]) {
+            EXPECT_FALSE(cell.empty()) << "row " << r;
+        }
+    }
+    EXPECT_EQ(runs[1][1], "paper");
+    EXPECT_EQ(runs[2][1], "rays=16");
+    for (const char* name : {"checkpoints.csv", "after_change.csv"}) {
+        const auto rows = read_csv(out / name);
+        ASSERT_GT(rows.size(), 1u) << name;
+        for (const auto& row : rows) {
+            EXPECT_EQ(row.size(), rows[0].size()) << name;
+        }
+    }
+    EXPECT_EQ(read_csv(out / "after_change.csv").size(), 1u + 2u * 3u);
+
+    std::ifstream json_file(out / "results.json");
+    const nlohmann::json json = nlohmann::json::parse(json_file);
+    ASSERT_EQ(json["runs"].size(), 2u);
+    EXPECT_EQ(json["runs"][0]["frame_ms"].size(), 4u + 3u);
+    EXPECT_EQ(json["level"], "cornell");
+
+    for (const char* png : {"indirect_vs_ms.png", "caustic_vs_ms.png", "after_change.png"}) {
+        const luxel::Image8 image = luxel::read_png(out / png);
+        EXPECT_EQ(image.width, 900) << png;
+        EXPECT_EQ(image.height, 560) << png;
+    }
+    std::ifstream summary(out / "summary.md");
+    const std::string text((std::istreambuf_iterator<char>(summary)),
+                           std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("| paper | 8.0 |"), std::string::npos) << text;
+    EXPECT_NE(text.find("Goals"), std::string::npos) << text;
+
+    // The same references again: read from OUT/cache, not computed.
+    const CommandResult second = luxel_bench(arguments);
+    ASSERT_EQ(second.exit_code, 0) << second.output;
+    EXPECT_EQ(count(second.output, "computing reference"), 0u) << second.output;
+    EXPECT_EQ(count(second.output, "from cache"), 4u) << second.output;
+}
+
+}  // namespace

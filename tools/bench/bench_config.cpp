@@ -1,0 +1,88 @@
+#include "bench_config.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+namespace luxel::bench {
+namespace {
+
+std::uint32_t whole(const std::string& text) {
+    return static_cast<std::uint32_t>(std::stoul(text));
+}
+
+void pair(const std::string& text, std::uint32_t& a, std::uint32_t& b) {
+    const std::size_t x = text.find('x');
+    a = whole(text.substr(0, x));
+    b = whole(text.substr(x + 1));
+}
+
+}  // namespace
+
+lighting::LightingConfig BenchConfig::lighting() const {
+    lighting::LightingConfig config;
+    config.photons.selective.groups = groups;
+    config.photons.selective.per_group = per_group;
+    config.photons.caustics.photons_per_pair = caustic_photons;
+    config.photons.caustics.slices = caustic_slices;
+    config.maps.density.nearest = aim_n;
+    config.gather.rays_per_texel = rays;
+    config.texels_per_gather_unit = texels_per_unit;
+    return config;
+}
+
+std::string BenchConfig::knobs() const {
+    std::ostringstream out;
+    out << "photons=" << groups << "x" << per_group << " aim_n=" << aim_n << " rays=" << rays
+        << " texels_per_unit=" << texels_per_unit << " caustics=" << caustic_photons << "x"
+        << caustic_slices;
+    return out.str();
+}
+
+std::vector<BenchConfig> make_configs(const Options& options) {
+    std::vector<double> budgets = options.budgets;
+    for (const Sweep& sweep : options.sweeps) {
+        if (sweep.knob == "budget") {
+            for (const std::string& v : sweep.values) {
+                budgets.push_back(std::stod(v));
+            }
+        }
+    }
+    std::sort(budgets.begin(), budgets.end());
+    budgets.erase(std::unique(budgets.begin(), budgets.end()), budgets.end());
+
+    std::vector<BenchConfig> variants{BenchConfig{}};
+    for (const Sweep& sweep : options.sweeps) {
+        for (const std::string& value : sweep.values) {
+            BenchConfig c;
+            if (sweep.knob == "photons") {
+                pair(value, c.groups, c.per_group);
+            } else if (sweep.knob == "caustics") {
+                pair(value, c.caustic_photons, c.caustic_slices);
+            } else if (sweep.knob == "aim_n") {
+                c.aim_n = whole(value);
+            } else if (sweep.knob == "rays") {
+                c.rays = whole(value);
+            } else if (sweep.knob == "texels_per_unit") {
+                c.texels_per_unit = whole(value);
+            } else {
+                continue;  // budget: handled above
+            }
+            if (c.knobs() == BenchConfig{}.knobs()) {
+                continue;
+            }
+            c.method = sweep.knob + "=" + value;
+            variants.push_back(c);
+        }
+    }
+    std::vector<BenchConfig> configs;
+    for (const BenchConfig& variant : variants) {
+        for (double budget : budgets) {
+            BenchConfig c = variant;
+            c.budget_ms = budget;
+            configs.push_back(c);
+        }
+    }
+    return configs;
+}
+
+}  // namespace luxel::bench

@@ -1,0 +1,37 @@
+#pragma once
+
+// The configurations luxel-bench runs: the paper's, and one-knob variations of it.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "bench_options.hpp"
+#include "luxel/lighting/core/lighting_system.hpp"
+
+namespace luxel::bench {
+
+/// One real-time configuration at one budget. `method` names the curve it belongs to (all its
+/// budgets), e.g. "paper" or "rays=16".
+struct BenchConfig {
+    std::string method = "paper";
+    double budget_ms = 4.0;
+    std::uint32_t groups = 77;  ///< the paper: 77 groups x 40 photons
+    std::uint32_t per_group = 40;
+    std::uint32_t aim_n = 50;                ///< N nearest photons of the AIM estimate
+    std::uint32_t rays = 64;                 ///< gather rays per texel (CPU backend)
+    std::uint32_t texels_per_unit = 20;      ///< the paper gathers 20 texels per frame
+    std::uint32_t caustic_photons = 10'000;  ///< per (generator, light) pair; the paper's
+    std::uint32_t caustic_slices = 8;        ///< ... over 8 frames
+
+    [[nodiscard]] lighting::LightingConfig lighting() const;
+    /// "groups=77 per_group=40 ..." for logs and the Markdown table.
+    [[nodiscard]] std::string knobs() const;
+};
+
+/// The paper's configuration at every budget, then each sweep's values (one knob changed from
+/// the paper's) at every budget; `budget` sweeps add budgets instead. Values equal to the
+/// paper's are not repeated.
+[[nodiscard]] std::vector<BenchConfig> make_configs(const Options& options);
+
+}  // namespace luxel::bench

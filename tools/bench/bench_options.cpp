@@ -1,0 +1,133 @@
+#include "bench_options.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "luxel/runtime/error.hpp"
+
+namespace luxel::bench {
+namespace {
+
+std::vector<std::string> split(const std::string& text, char separator) {
+    std::vector<std::string> parts;
+    std::string part;
+    std::istringstream stream(text);
+    while (std::getline(stream, part, separator)) {
+        parts.push_back(part);
+    }
+    if (!text.empty() && text.back() == separator) {
+        parts.emplace_back();
+    }
+    return parts;
+}
+
+double number(const std::string& text, const std::string& what) {
+    std::size_t used = 0;
+    double value = 0.0;
+    try {
+        value = std::stod(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used == 0 || used != text.size() || !std::isfinite(value)) {
+        throw Error(what + ": '" + text + "' is not a number");
+    }
+    return value;
+}
+
+/// "AxB" with positive integers.
+void check_pair(const std::string& value, const std::string& what) {
+    const auto parts = split(value, 'x');
+    if (parts.size() != 2) {
+        throw Error(what + ": '" + value + "' is not AxB");
+    }
+    for (const std::string& p : parts) {
+        const double v = number(p, what);
+        if (v < 1.0 || v != std::floor(v)) {
+            throw Error(what + ": '" + value + "' needs whole numbers >= 1");
+        }
+    }
+}
+
+}  // namespace
+
+Sweep parse_sweep(const std::string& text) {
+    const std::size_t equals = text.find('=');
+    if (equals == std::string::npos || equals == 0 || equals + 1 >= text.size()) {
+        throw Error("--sweep " + text + ": expected KNOB=V1,V2,...");
+    }
+    Sweep sweep{text.substr(0, equals), split(text.substr(equals + 1), ',')};
+    const std::string what = "--sweep " + sweep.knob;
+    for (const std::string& value : sweep.values) {
+        if (sweep.knob == "photons" || sweep.knob == "caustics") {
+            check_pair(value, what);
+        } else if (sweep.knob == "budget") {
+            if (!(number(value, what) > 0.0)) {
+                throw Error(what + ": budgets must be > 0 ms");
+            }
+        } else if (sweep.knob == "aim_n" || sweep.knob == "rays" ||
+                   sweep.knob == "texels_per_unit") {
+            const double v = number(value, what);
+            if (v < 1.0 || v != std::floor(v)) {
+                throw Error(what + ": '" + value + "' is not a whole number >= 1");
+            }
+        } else {
+            throw Error("--sweep " + sweep.knob +
+                        ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, caustics)");
+        }
+    }
+    return sweep;
+}
+
+Change parse_change(const std::string& text) {
+    const std::size_t colon = text.rfind(':');
+    if (colon == std::string::npos || colon == 0) {
+        throw Error("--change " + text + ": expected NODE:dx,dy,dz, auto or none");
+    }
+    const auto parts = split(text.substr(colon + 1), ',');
+    if (parts.size() != 3) {
+        throw Error("--change " + text + ": the offset needs three numbers dx,dy,dz");
+    }
+    Change change;
+    change.node = text.substr(0, colon);
+    for (int i = 0; i < 3; ++i) {
+        change.offset[i] =
+            static_cast<float>(number(parts[static_cast<std::size_t>(i)], "--change"));
+    }
+    return change;
+}
+
+std::vector<double> parse_budgets(const std::string& text) {
+    std::vector<double> budgets;
+    for (const std::string& part : split(text, ',')) {
+        const double v = number(part, "--budgets");
+        if (!(v > 0.0)) {
+            throw Error("--budgets: " + part + " is not a budget > 0 ms");
+        }
+        budgets.push_back(v);
+    }
+    if (budgets.empty()) {
+        throw Error("--budgets: need at least one budget");
+    }
+    return budgets;
+}
+
+void validate(const Options& options) {
+    if (options.frames < 1) {
+        throw Error("--frames: need at least one frame");
+    }
+    if (options.checkpoint < 1) {
+        throw Error("--checkpoint: need at least one frame between checkpoints");
+    }
+    if (!(options.dt > 0.0) || !std::isfinite(options.dt)) {
+        throw Error("--dt: must be > 0 seconds");
+    }
+    if (!std::isfinite(options.time) || options.time < 0.0) {
+        throw Error("--time: must be a time >= 0");
+    }
+    if (options.reference.spp < 1) {
+        throw Error("--ref-spp: need at least one sample");
+    }
+}
+
+}  // namespace luxel::bench

@@ -1,0 +1,197 @@
+#include "bench_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "luxel/ecs/transform.hpp"
+#include "luxel/ecs/transform_system.hpp"
+#include "luxel/lighting/core/animation_system.hpp"
+#include "luxel/lighting/core/lighting_system.hpp"
+#include "luxel/lighting/core/reference/reference_scene.hpp"
+#include "luxel/lighting/core/scene_instance.hpp"
+#include "luxel/runtime/clock.hpp"
+#include "luxel/runtime/error.hpp"
+#include "luxel/runtime/scene/gltf.hpp"
+#include "map_error.hpp"
+#include "reference_cache.hpp"
+
+namespace luxel::bench {
+namespace {
+
+/// The node "auto" moves: the Cornell box's cube, when the level has one.
+constexpr const char* kAutoNode = "moving cube";
+constexpr float kAutoOffset = 0.3f;  ///< metres along +x: the cube slides 0.7 m in its animation
+
+double percentile(std::vector<double> values, double p) {
+    if (values.empty()) {
+        return 0.0;
+    }
+    std::sort(values.begin(), values.end());
+    // Nearest rank: the smallest value with at least p of the values at or below it.
+    const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(values.size())));
+    return values[std::min(values.size() - 1, rank > 0 ? rank - 1 : 0)];
+}
+
+std::string describe(const Change& change) {
+    std::ostringstream out;
+    out << change.node << ":" << change.offset.x << "," << change.offset.y << ","
+        << change.offset.z;
+    return out.str();
+}
+
+}  // namespace
+
+Bench::Bench(const Options& options, const std::filesystem::path& level_file)
+    : options_(&options), file_(level_file) {
+    try {
+        source_ = std::make_shared<scene::Scene>(scene::load_gltf(level_file));
+    } catch (const Error& e) {
+        throw Error(level_file.string() + ": " + e.what());
+    }
+    if (options.parsed_change) {
+        change_ = options.parsed_change;
+    } else if (options.change == "auto") {
+        for (const scene::Node& node : source_->nodes) {
+            if (node.name == kAutoNode) {
+                change_ = Change{kAutoNode, {kAutoOffset, 0.0f, 0.0f}};
+            }
+        }
+    }
+    if (change_) {
+        const bool found =
+            std::any_of(source_->nodes.begin(), source_->nodes.end(),
+                        [&](const scene::Node& n) { return n.name == change_->node; });
+        if (!found) {
+            throw Error("--change: " + file_.string() + " has no node named '" + change_->node +
+                        "'");
+        }
+    }
+    std::ostringstream pose;
+    pose << "level=" << level_file.filename().string()
+         << ";bytes=" << std::filesystem::file_size(level_file) << ";time=" << options.time;
+    pose_ = pose.str();
+    jobs_ = std::make_unique<JobSystem>(options.threads);
+}
+
+Bench::~Bench() = default;
+
+RunResult Bench::run(const BenchConfig& config) {
+    const Options& options = *options_;
+    RunResult result;
+    result.config = config;
+    ecs::Registry registry;
+    lighting::InstantiateOptions instantiate_options;
+    instantiate_options.play_animations = true;
+    // Posed at --time as luxel-ref poses it, then frozen: only the scripted change moves.
+    const lighting::SceneInstance instance =
+        lighting::instantiate(registry, source_, instantiate_options);
+    lighting::update_animations(registry, options.time);
+    lighting::update_light_switches(registry, options.time);
+    ecs::TransformSystem transforms(registry);
+    transforms.update();
+    lighting::LightingSystem lighting(registry, *jobs_, config.lighting());
+    double now = 0.0;
+    std::unique_ptr<lighting::reference::ReferenceScene> scene;
+    std::vector<double> active_ms;
+    const auto frame = [&](double budget) {
+        now += options.dt;
+        transforms.update();
+        Stopwatch clock;
+        const lighting::LightingStats& stats = lighting.update(budget, now);
+        const double ms = clock.elapsed_ms();
+        result.frame_ms.push_back(ms);
+        if (stats.schedule.units_done > 0) {
+            active_ms.push_back(ms);
+            return true;
+        }
+        return false;
+    };
+    const auto dump = [&](const RealTimeMaps& maps, const ReferenceMaps& reference,
+                          const char* phase) {
+        if (options.dump_maps) {
+            std::ostringstream name;
+            name << config.method << "_" << config.budget_ms << "ms_" << phase << ".json";
+            write_maps_json(options.out / "maps" / name.str(), *scene, maps, reference);
+        }
+    };
+    const std::filesystem::path cache = options.out / "cache";
+
+    if (frame(config.budget_ms)) {
+        result.static_work_frames = 1;
+    }
+    scene = std::make_unique<lighting::reference::ReferenceScene>(
+        lighting::reference::ReferenceScene::from_world(lighting.photons(), lighting.maps()));
+    const ReferenceMaps before =
+        reference_for(cache, pose_ + ";change=none", *scene, options.reference, *jobs_);
+    result.reference_se = before.relative_standard_error;
+    result.reference_seconds += before.from_cache ? 0.0 : before.seconds;
+    const auto measure = [&](const ReferenceMaps& reference, std::uint32_t at, bool after) {
+        const RealTimeMaps maps = read_real_time(lighting, *scene, now);
+        if ((!after && at == options.frames) || (after && at == options.after)) {
+            dump(maps, reference, after ? "after" : "static");
+        }
+        const MapErrors errors = map_errors(maps, reference);
+        result.caustic_photons = maps.caustic_photons;
+        result.caustic_unbinned = maps.caustic_unbinned;
+        result.checkpoints.push_back({at, after, errors.indirect, errors.caustic});
+        return errors;
+    };
+    for (std::uint32_t f = 1; f <= options.frames; ++f) {
+        if (f > 1 && frame(config.budget_ms)) {
+            result.static_work_frames = f;
+        }
+        if (f % options.checkpoint == 0 || f == options.frames) {
+            const MapErrors errors = measure(before, f, false);
+            result.indirect = errors.indirect;
+            result.caustic = errors.caustic;
+        }
+    }
+    std::fprintf(stderr, "luxel-bench: %s @ %g ms: converged indirect %.4f, caustic %.4f\n",
+                 config.method.c_str(), config.budget_ms, result.indirect, result.caustic);
+
+    if (change_) {
+        result.changed = true;
+        const ecs::Entity entity = instance.find(change_->node);
+        registry.patch<ecs::Transform>(
+            entity, [&](ecs::Transform& t) { t.translation += change_->offset; });
+        transforms.update();
+        // A zero budget syncs the move into the photon world and the maps without doing any
+        // lighting work: the reference of the new pose needs the moved geometry.
+        lighting.update(0.0, now);
+        scene = std::make_unique<lighting::reference::ReferenceScene>(
+            lighting::reference::ReferenceScene::from_world(lighting.photons(), lighting.maps()));
+        const ReferenceMaps after = reference_for(cache, pose_ + ";change=" + describe(*change_),
+                                                  *scene, options.reference, *jobs_);
+        result.reference_se_after = after.relative_standard_error;
+        result.reference_seconds += after.from_cache ? 0.0 : after.seconds;
+        result.indirect_at_change = measure(after, 0, true).indirect;
+        for (std::uint32_t f = 1; f <= options.after; ++f) {
+            frame(config.budget_ms);
+            const MapErrors errors = measure(after, f, true);
+            result.after_indirect.push_back(errors.indirect);
+            result.indirect_after = errors.indirect;
+            if (result.recovery_frames < 0 && errors.indirect < 2.0 * result.indirect) {
+                result.recovery_frames = static_cast<int>(f);
+            }
+        }
+        // Only every checkpoint-th frame after the change is kept in the checkpoint table
+        // (the per-frame curve is after_indirect).
+        std::erase_if(result.checkpoints, [&](const Checkpoint& c) {
+            return c.after_change && c.frame % options.checkpoint != 0 && c.frame != 0 &&
+                   c.frame != options.after;
+        });
+        std::fprintf(stderr,
+                     "luxel-bench: %s @ %g ms: after the move indirect %.4f -> %.4f, back under "
+                     "2x converged in %d frames\n",
+                     config.method.c_str(), config.budget_ms, result.indirect_at_change,
+                     result.indirect_after, result.recovery_frames);
+    }
+    result.active_frames = active_ms.size();
+    result.ms_median = percentile(active_ms, 0.5);
+    result.ms_p95 = percentile(active_ms, 0.95);
+    return result;
+}
+
+}  // namespace luxel::bench

@@ -1,0 +1,76 @@
+#pragma once
+
+// One configuration of the real-time path run through a level and measured against the
+// reference: static until converged, then the scripted change.
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench_config.hpp"
+#include "bench_options.hpp"
+#include "luxel/runtime/jobs.hpp"
+#include "luxel/runtime/scene/scene.hpp"
+
+namespace luxel::bench {
+
+struct Checkpoint {
+    std::uint32_t frame = 0;  ///< frames since the start of its phase
+    bool after_change = false;
+    double indirect = 0.0;  ///< light-map relRMSE
+    double caustic = 0.0;
+};
+
+struct RunResult {
+    BenchConfig config;
+    std::vector<double> frame_ms;  ///< real lighting ms of every frame (static, then after)
+    /// Median and 95th percentile over the active frames: those in which the scheduler ran
+    /// work (a converged static scene costs nothing and would pull the median to zero).
+    double ms_median = 0.0;
+    double ms_p95 = 0.0;
+    std::size_t active_frames = 0;
+    /// The last static frame that ran lighting work (1-based; 0: none).
+    std::uint32_t static_work_frames = 0;
+    double indirect = 0.0;  ///< at the end of the static phase ("converged")
+    double caustic = 0.0;
+    bool changed = false;
+    double indirect_at_change = 0.0;  ///< after the move, before any lighting work
+    double indirect_after = 0.0;      ///< at the end of the frames after the change
+    /// Frames after the change until the indirect error is under twice `indirect`; -1: not
+    /// within the frames run.
+    int recovery_frames = -1;
+    std::vector<double> after_indirect;  ///< per frame after the change (frame 1 first)
+    std::vector<Checkpoint> checkpoints;
+    /// The references' own relative standard errors: direct, indirect, caustic.
+    std::array<double, 3> reference_se{};
+    std::array<double, 3> reference_se_after{};
+    double reference_seconds = 0.0;  ///< computing (not loading) the references this run
+    std::size_t caustic_photons = 0;
+    std::size_t caustic_unbinned = 0;
+};
+
+/// Holds the level and the jobs for all runs of one luxel-bench invocation.
+class Bench {
+  public:
+    /// Loads the level file; throws luxel::Error if it cannot.
+    Bench(const Options& options, const std::filesystem::path& level_file);
+    ~Bench();
+
+    [[nodiscard]] RunResult run(const BenchConfig& config);
+    /// The change that runs after the static phase (resolved from --change), if any.
+    [[nodiscard]] const std::optional<Change>& change() const { return change_; }
+
+  private:
+    const Options* options_;
+    std::filesystem::path file_;
+    std::shared_ptr<const scene::Scene> source_;
+    std::optional<Change> change_;
+    std::string pose_;  ///< the cache key's level and pose part
+    std::unique_ptr<JobSystem> jobs_;
+};
+
+}  // namespace luxel::bench

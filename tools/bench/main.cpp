@@ -1,0 +1,129 @@
+// luxel-bench: the real-time path's light-map error against the reference, next to its cost
+// (DESIGN.md §4, issue 11).
+//   luxel-bench --level NAME|PATH [--budgets 1,2,4,8] [--frames N] [--after N] [--out DIR]
+//               [--sweep KNOB=V1,V2 ...] [--change NODE:dx,dy,dz|auto|none] [--ref-* ...]
+// Writes CSV, JSON, PNG plots and summary.md into DIR; references are cached in DIR/cache.
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <new>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "bench_config.hpp"
+#include "bench_options.hpp"
+#include "bench_run.hpp"
+#include "level.hpp"
+#include "luxel/runtime/clock.hpp"
+#include "luxel/runtime/error.hpp"
+#include "report.hpp"
+
+namespace {
+
+using namespace luxel;
+
+int run(int argc, char** argv) {
+    CLI::App app{
+        "luxel-bench: runs a level through the real-time lighting path under each "
+        "configuration and budget, and measures its light maps against the reference "
+        "integrator (indirect and caustic relRMSE), its lighting ms per frame, and the frames "
+        "it takes to recover after a scripted change."};
+    bench::Options options;
+    std::string budgets;
+    std::vector<std::string> sweeps;
+    app.add_option("--level", options.level,
+                   "a prepared level's name (assets/levels/prepared/NAME.glb) or a .glb path")
+        ->required();
+    app.add_option("--budgets", budgets, "lighting budgets in ms per frame (default 1,2,4,8)");
+    app.add_option("--frames", options.frames, "static frames per configuration")
+        ->capture_default_str();
+    app.add_option("--after", options.after, "frames after the scripted change")
+        ->capture_default_str();
+    app.add_option("--checkpoint", options.checkpoint, "static frames between error checkpoints")
+        ->capture_default_str();
+    app.add_option("--out", options.out, "output directory (references cached in OUT/cache)")
+        ->capture_default_str();
+    app.add_option("--sweep", sweeps,
+                   "KNOB=V1,V2,... (budget, photons GxM, aim_n, rays, texels_per_unit, "
+                   "caustics NxK); repeatable, each varies one knob from the paper's "
+                   "configuration");
+    app.add_option("--change", options.change,
+                   "NODE:dx,dy,dz moved after the static frames; auto: 'moving cube' by 0.3 m "
+                   "in x when the level has it; none")
+        ->capture_default_str();
+    app.add_option("--time", options.time, "animation pose in seconds (frozen)")
+        ->capture_default_str();
+    app.add_option("--dt", options.dt, "seconds per frame (the IIM fade-in runs on it)")
+        ->capture_default_str();
+    app.add_option("--ref-photons", options.reference.indirect_photons,
+                   "reference: photons for the indirect component")
+        ->capture_default_str();
+    app.add_option("--ref-caustic-photons", options.reference.caustic_photons,
+                   "reference: caustic photons")
+        ->capture_default_str();
+    app.add_option("--ref-spp", options.reference.spp, "reference: path samples per texel")
+        ->capture_default_str();
+    app.add_option("--ref-seed", options.reference.seed, "reference: seed")->capture_default_str();
+    app.add_flag("--dump-maps", options.dump_maps,
+                 "also write every run's per-texel light maps and reference to OUT/maps/");
+    app.add_option("--threads", options.threads, "worker threads (0: all)")->capture_default_str();
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+    if (!budgets.empty()) {
+        options.budgets = bench::parse_budgets(budgets);
+    }
+    for (const std::string& s : sweeps) {
+        options.sweeps.push_back(bench::parse_sweep(s));
+    }
+    if (options.change != "auto" && options.change != "none") {
+        options.parsed_change = bench::parse_change(options.change);
+    }
+    bench::validate(options);
+
+    const std::filesystem::path file = ref::resolve_level(options.level);
+    std::string command = "luxel-bench";
+    for (int i = 1; i < argc; ++i) {
+        command += std::string(" ") + argv[i];
+    }
+    bench::Bench bench(options, file);
+    const std::vector<bench::BenchConfig> configs = bench::make_configs(options);
+    std::fprintf(stderr, "luxel-bench: %s, %zu configurations\n", file.string().c_str(),
+                 configs.size());
+    Stopwatch clock;
+    std::vector<bench::RunResult> runs;
+    for (const bench::BenchConfig& config : configs) {
+        std::fprintf(stderr, "luxel-bench: run %zu/%zu: %s @ %g ms (%s)\n", runs.size() + 1,
+                     configs.size(), config.method.c_str(), config.budget_ms,
+                     config.knobs().c_str());
+        runs.push_back(bench.run(config));
+    }
+    bench::ReportInfo info;
+    info.level = file.stem().string();
+    info.command = command;
+    info.change = bench.change();
+    info.options = &options;
+    const auto files = bench::write_report(info, runs);
+    std::fprintf(stderr, "luxel-bench: wrote %zu files to %s in %.1f s\n", files.size(),
+                 options.out.string().c_str(), clock.elapsed_ms() / 1000.0);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const luxel::Error& e) {
+        std::cerr << "luxel-bench: error: " << e.what() << "\n";
+    } catch (const std::bad_alloc&) {
+        std::cerr << "luxel-bench: error: out of memory\n";
+    } catch (const std::exception& e) {
+        std::cerr << "luxel-bench: error: " << e.what() << "\n";
+    }
+    return 1;
+}

@@ -1,0 +1,113 @@
+#include "map_error.hpp"
+
+#include <fstream>
+
+#include <glm/gtc/constants.hpp>
+#include <nlohmann/json.hpp>
+
+#include "luxel/lighting/core/reference/error_metrics.hpp"
+#include "luxel/runtime/error.hpp"
+
+namespace luxel::bench {
+namespace {
+
+using lighting::reference::ReferenceScene;
+
+/// Finds the texel under a caustic photon: a short ray through its position along its travel
+/// direction recovers the hit's light-map UV, which the photon does not keep.
+std::int64_t texel_of(const lighting::CausticPhoton& photon, const ReferenceScene& scene) {
+    const glm::vec3 d = photon.incident_direction();
+    const float reach = 1e-3f * std::max(1.0f, glm::length(photon.position));
+    const auto hit = scene.rays().intersect(photon.position - reach * d, d, 2.0f * reach);
+    if (!hit || hit->surface != photon.surface) {
+        return -1;
+    }
+    return scene.texel_at(hit->surface, hit->lightmap_uv);
+}
+
+}  // namespace
+
+RealTimeMaps read_real_time(const lighting::LightingSystem& lighting, const ReferenceScene& scene,
+                            double now_seconds) {
+    const lighting::IlluminationMaps& maps = lighting.maps();
+    RealTimeMaps out;
+    out.indirect.assign(scene.texel_count(), glm::dvec3(0.0));
+    out.caustic.assign(scene.texel_count(), glm::dvec3(0.0));
+    const double blend = maps.settings().blend_seconds;
+    for (const auto& surface : scene.surfaces()) {
+        const lighting::MapSurface& map = maps.surfaces()[surface.surface];
+        const std::int32_t page = maps.aim().surface_page[surface.surface];
+        if (page < 0) {
+            continue;
+        }
+        const lighting::IimPage& iim = maps.iim_pages()[static_cast<std::size_t>(page)];
+        glm::dvec3 scale(1.0);
+        if (map.content == lighting::IimContent::Radiance) {
+            for (int c = 0; c < 3; ++c) {
+                const double albedo = map.albedo[c];
+                scale[c] = albedo > 0.0 ? glm::pi<double>() / albedo : 0.0;
+            }
+        }
+        for (std::size_t i = 0; i < surface.texels.size(); ++i) {
+            const auto& texel = surface.texels[i];
+            const glm::vec3 shown = iim.shown(texel.x, texel.y, now_seconds, blend);
+            out.indirect[surface.first_texel + i] = glm::dvec3(shown) * scale;
+        }
+    }
+    for (const lighting::CausticPair& pair : lighting.photons().caustics()) {
+        for (std::uint32_t k = 0; k < pair.photons.slice_count(); ++k) {
+            for (const lighting::CausticPhoton& photon : pair.photons.slice(k)) {
+                ++out.caustic_photons;
+                const std::int64_t t = photon.surface >= 0 ? texel_of(photon, scene) : -1;
+                const double area = t >= 0 ? scene.texel(static_cast<std::size_t>(t)).area : 0.0;
+                if (!(area > 0.0)) {
+                    ++out.caustic_unbinned;
+                    continue;
+                }
+                out.caustic[static_cast<std::size_t>(t)] += glm::dvec3(photon.power) / area;
+            }
+        }
+    }
+    return out;
+}
+
+MapErrors map_errors(const RealTimeMaps& maps, const ReferenceMaps& reference) {
+    if (maps.indirect.size() != reference.area.size()) {
+        throw Error("luxel-bench: the light maps have " + std::to_string(maps.indirect.size()) +
+                    " texels, the reference " + std::to_string(reference.area.size()));
+    }
+    MapErrors errors;
+    errors.indirect =
+        lighting::reference::relative_rmse(maps.indirect, reference.indirect(), reference.area);
+    errors.caustic =
+        lighting::reference::relative_rmse(maps.caustic, reference.caustic(), reference.area);
+    return errors;
+}
+
+void write_maps_json(const std::filesystem::path& path, const ReferenceScene& scene,
+                     const RealTimeMaps& maps, const ReferenceMaps& reference) {
+    const auto rgb = [](const glm::dvec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
+    nlohmann::json texels = nlohmann::json::array();
+    for (const auto& surface : scene.surfaces()) {
+        for (std::size_t i = 0; i < surface.texels.size(); ++i) {
+            const std::size_t t = surface.first_texel + i;
+            texels.push_back({{"surface", surface.surface},
+                              {"x", surface.texels[i].x},
+                              {"y", surface.texels[i].y},
+                              {"area", reference.area[t]},
+                              {"indirect", rgb(maps.indirect[t])},
+                              {"ref_indirect", rgb(reference.indirect()[t])},
+                              {"caustic", rgb(maps.caustic[t])},
+                              {"ref_caustic", rgb(reference.caustic()[t])},
+                              {"ref_direct", rgb(reference.value[0][t])}});
+        }
+    }
+    std::filesystem::create_directories(path.parent_path());
+    std::ofstream out(path);
+    out << nlohmann::json{{"texels", texels}}.dump() << "\n";
+    if (!out) {
+        throw Error("cannot write " + path.string());
+    }
+}
+
+}  // namespace luxel::bench

@@ -1,0 +1,46 @@
+#pragma once
+
+// The real-time light maps as irradiance per reference texel, and their error (DESIGN.md §4).
+
+#include <cstddef>
+#include <filesystem>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "luxel/lighting/core/lighting_system.hpp"
+#include "luxel/lighting/core/reference/reference_scene.hpp"
+#include "reference_cache.hpp"
+
+namespace luxel::bench {
+
+/// What the real-time path holds for each reference texel (global order), W/m^2.
+struct RealTimeMaps {
+    /// The IIM as shown at the time asked (fade-in included), as irradiance: Radiance-content
+    /// texels hold albedo * E / pi and are divided back.
+    std::vector<glm::dvec3> indirect;
+    /// Caustic photons binned into the texel under each (power / texel area): the reference's
+    /// own binning, so both are texel-area means.
+    std::vector<glm::dvec3> caustic;
+    std::size_t caustic_photons = 0;
+    std::size_t caustic_unbinned = 0;  ///< on a surface without a light map, or lost
+};
+
+[[nodiscard]] RealTimeMaps read_real_time(const lighting::LightingSystem& lighting,
+                                          const lighting::reference::ReferenceScene& scene,
+                                          double now_seconds);
+
+struct MapErrors {
+    double indirect = 0.0;  ///< relRMSE, texel areas as weights
+    double caustic = 0.0;
+};
+
+[[nodiscard]] MapErrors map_errors(const RealTimeMaps& maps, const ReferenceMaps& reference);
+
+/// Per texel: surface, x, y, area, and real-time and reference indirect and caustic (and the
+/// reference's direct), for looking at where an error comes from (--dump-maps).
+void write_maps_json(const std::filesystem::path& path,
+                     const lighting::reference::ReferenceScene& scene, const RealTimeMaps& maps,
+                     const ReferenceMaps& reference);
+
+}  // namespace luxel::bench

@@ -1,0 +1,328 @@
+#include "report.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "luxel/runtime/error.hpp"
+#include "plot.hpp"
+
+namespace luxel::bench {
+namespace {
+
+/// The issue's goals for cornell (converged light maps).
+constexpr double kIndirectGoal = 0.05;
+constexpr double kCausticGoal = 0.15;
+constexpr double kRecoveryBudgetMs = 4.0;
+constexpr int kRecoveryGoalFrames = 30;
+
+std::string number(double v, int decimals = 4) {
+    if (!std::isfinite(v)) {
+        return v > 0 ? "inf" : "nan";
+    }
+    std::ostringstream out;
+    out.setf(std::ios::fixed);
+    out.precision(decimals);
+    out << v;
+    return out.str();
+}
+
+std::string change_text(const std::optional<Change>& change) {
+    if (!change) {
+        return "none";
+    }
+    std::ostringstream out;
+    out << change->node << ":" << change->offset.x << "," << change->offset.y << ","
+        << change->offset.z;
+    return out.str();
+}
+
+std::vector<std::string> row(const ReportInfo& info, const RunResult& r) {
+    const BenchConfig& c = r.config;
+    return {info.level,
+            c.method,
+            number(c.budget_ms, 2),
+            std::to_string(c.groups),
+            std::to_string(c.per_group),
+            std::to_string(c.aim_n),
+            std::to_string(c.rays),
+            std::to_string(c.texels_per_unit),
+            std::to_string(c.caustic_photons),
+            std::to_string(c.caustic_slices),
+            std::to_string(r.frame_ms.size()),
+            std::to_string(r.active_frames),
+            std::to_string(r.static_work_frames),
+            number(r.ms_median, 3),
+            number(r.ms_p95, 3),
+            number(r.indirect),
+            number(r.caustic),
+            r.changed ? change_text(info.change) : "none",
+            number(r.indirect_at_change),
+            number(r.indirect_after),
+            std::to_string(r.recovery_frames),
+            number(r.reference_se[0], 5),
+            number(r.reference_se[1], 5),
+            number(r.reference_se[2], 5),
+            number(r.reference_se_after[1], 5),
+            std::to_string(r.caustic_photons),
+            std::to_string(r.caustic_unbinned)};
+}
+
+void write_csv(const std::filesystem::path& path, const std::vector<std::string>& header,
+               const std::vector<std::vector<std::string>>& rows) {
+    std::ofstream out(path);
+    const auto line = [&](const std::vector<std::string>& cells) {
+        for (std::size_t i = 0; i < cells.size(); ++i) {
+            out << (i ? "," : "");
+            // RFC 4180: a cell holding a comma or a quote is quoted, its quotes doubled (the
+            // change "moving cube:0.3,0,0" has commas).
+            if (cells[i].find_first_of(",\"") == std::string::npos) {
+                out << cells[i];
+                continue;
+            }
+            out << '"';
+            for (const char c : cells[i]) {
+                out << (c == '"' ? "\"\"" : std::string(1, c));
+            }
+            out << '"';
+        }
+        out << "\n";
+    };
+    line(header);
+    for (const auto& r : rows) {
+        line(r);
+    }
+    if (!out) {
+        throw Error("cannot write " + path.string());
+    }
+}
+
+std::string run_name(const RunResult& r) {
+    return r.config.method + " @ " + number(r.config.budget_ms, 1) + " ms";
+}
+
+/// Error against median ms, one curve per method, with the Pareto front over all runs.
+PlotSpec error_plot(const std::vector<RunResult>& runs, bool caustic, const ReportInfo& info) {
+    PlotSpec spec;
+    spec.title = info.level + (caustic ? ": caustic" : ": indirect") +
+                 " light-map error against ms per frame";
+    spec.x_label = "lighting ms per frame (median, real clock)";
+    spec.y_label = caustic ? "caustic relRMSE %" : "indirect relRMSE %";
+    std::map<std::string, std::size_t> index;
+    std::vector<glm::dvec2> all;
+    for (const RunResult& r : runs) {
+        auto [it, added] = index.try_emplace(r.config.method, spec.series.size());
+        if (added) {
+            spec.series.push_back({r.config.method, {}, false});
+        }
+        const glm::dvec2 p(r.ms_median, 100.0 * (caustic ? r.caustic : r.indirect));
+        spec.series[it->second].points.push_back(p);
+        all.push_back(p);
+    }
+    for (Series& s : spec.series) {
+        std::sort(s.points.begin(), s.points.end(),
+                  [](const glm::dvec2& a, const glm::dvec2& b) { return a.x < b.x; });
+    }
+    spec.front = pareto_front(all);
+    if (info.level == "cornell") {
+        spec.lines.push_back({100.0 * (caustic ? kCausticGoal : kIndirectGoal), "goal"});
+    }
+    return spec;
+}
+
+PlotSpec after_plot(const std::vector<RunResult>& runs, const ReportInfo& info) {
+    PlotSpec spec;
+    spec.title = info.level + ": indirect error after moving " +
+                 (info.change ? info.change->node : std::string("nothing"));
+    spec.x_label = "frames after the change";
+    spec.y_label = "indirect relRMSE %";
+    // The paper's configuration at every budget, then other methods at the budget nearest
+    // 4 ms: at most ten curves stay readable.
+    for (const RunResult& r : runs) {
+        if (!r.changed || spec.series.size() >= 10) {
+            continue;
+        }
+        const bool paper = r.config.method == "paper";
+        if (!paper && std::abs(r.config.budget_ms - kRecoveryBudgetMs) > 1e-9) {
+            continue;
+        }
+        Series s{run_name(r), {{0.0, 100.0 * r.indirect_at_change}}, !paper};
+        for (std::size_t f = 0; f < r.after_indirect.size(); ++f) {
+            s.points.push_back({static_cast<double>(f + 1), 100.0 * r.after_indirect[f]});
+        }
+        spec.series.push_back(std::move(s));
+        if (paper && std::abs(r.config.budget_ms - kRecoveryBudgetMs) < 1e-9) {
+            spec.lines.push_back({200.0 * r.indirect, "2x converged, paper @ 4 ms"});
+        }
+    }
+    return spec;
+}
+
+std::string goal_line(const std::string& what, double value, double goal, bool lower_is_met) {
+    const bool met = lower_is_met ? value <= goal : value >= goal;
+    return "- " + what + ": " + number(100.0 * value, 2) + "% (goal <= " + number(100.0 * goal, 0) +
+           "%): **" + (met ? "met" : "missed") + "**\n";
+}
+
+}  // namespace
+
+const std::vector<std::string>& run_columns() {
+    static const std::vector<std::string> columns{"level",
+                                                  "method",
+                                                  "budget_ms",
+                                                  "groups",
+                                                  "per_group",
+                                                  "aim_n",
+                                                  "rays",
+                                                  "texels_per_unit",
+                                                  "caustic_photons",
+                                                  "caustic_slices",
+                                                  "frames",
+                                                  "active_frames",
+                                                  "static_work_frames",
+                                                  "ms_median",
+                                                  "ms_p95",
+                                                  "indirect_relrmse",
+                                                  "caustic_relrmse",
+                                                  "change",
+                                                  "indirect_at_change",
+                                                  "indirect_after",
+                                                  "recovery_frames",
+                                                  "ref_se_direct",
+                                                  "ref_se_indirect",
+                                                  "ref_se_caustic",
+                                                  "ref_se_indirect_after",
+                                                  "caustic_photons_stored",
+                                                  "caustic_unbinned"};
+    return columns;
+}
+
+std::vector<std::filesystem::path> write_report(const ReportInfo& info,
+                                                const std::vector<RunResult>& runs) {
+    const std::filesystem::path& out = info.options->out;
+    std::filesystem::create_directories(out);
+    std::vector<std::filesystem::path> files;
+
+    std::vector<std::vector<std::string>> rows;
+    std::vector<std::vector<std::string>> checkpoints;
+    std::vector<std::vector<std::string>> after;
+    nlohmann::json json;
+    json["level"] = info.level;
+    json["command"] = info.command;
+    json["change"] = change_text(info.change);
+    const ReferenceSpec& ref = info.options->reference;
+    json["reference"] = {{"indirect_photons", ref.indirect_photons},
+                         {"caustic_photons", ref.caustic_photons},
+                         {"spp", ref.spp},
+                         {"seed", ref.seed}};
+    for (const RunResult& r : runs) {
+        rows.push_back(row(info, r));
+        nlohmann::json run;
+        const auto cells = rows.back();
+        for (std::size_t i = 0; i < cells.size(); ++i) {
+            run[run_columns()[i]] = cells[i];
+        }
+        run["frame_ms"] = r.frame_ms;
+        run["after_indirect"] = r.after_indirect;
+        for (const Checkpoint& c : r.checkpoints) {
+            checkpoints.push_back({r.config.method, number(r.config.budget_ms, 2),
+                                   c.after_change ? "after" : "static", std::to_string(c.frame),
+                                   number(c.indirect), number(c.caustic)});
+            run["checkpoints"].push_back({{"frame", c.frame},
+                                          {"after_change", c.after_change},
+                                          {"indirect", c.indirect},
+                                          {"caustic", c.caustic}});
+        }
+        for (std::size_t f = 0; f < r.after_indirect.size(); ++f) {
+            after.push_back({r.config.method, number(r.config.budget_ms, 2), std::to_string(f + 1),
+                             number(r.after_indirect[f])});
+        }
+        json["runs"].push_back(run);
+    }
+    write_csv(out / "runs.csv", run_columns(), rows);
+    write_csv(out / "checkpoints.csv",
+              {"method", "budget_ms", "phase", "frame", "indirect_relrmse", "caustic_relrmse"},
+              checkpoints);
+    write_csv(out / "after_change.csv", {"method", "budget_ms", "frame", "indirect_relrmse"},
+              after);
+    {
+        std::ofstream file(out / "results.json");
+        file << json.dump(2) << "\n";
+    }
+    files.insert(files.end(), {out / "runs.csv", out / "checkpoints.csv", out / "after_change.csv",
+                               out / "results.json"});
+    write_plot(out / "indirect_vs_ms.png", error_plot(runs, false, info));
+    write_plot(out / "caustic_vs_ms.png", error_plot(runs, true, info));
+    files.push_back(out / "indirect_vs_ms.png");
+    files.push_back(out / "caustic_vs_ms.png");
+    if (info.change) {
+        write_plot(out / "after_change.png", after_plot(runs, info));
+        files.push_back(out / "after_change.png");
+    }
+
+    std::ostringstream md;
+    md << "# luxel-bench: " << info.level << "\n\n```\n" << info.command << "\n```\n\n";
+    md << "Reference: " << ref.indirect_photons << " indirect photons, " << ref.caustic_photons
+       << " caustic photons, " << ref.spp << " spp (direct), seed " << ref.seed
+       << ". Change: " << change_text(info.change) << ".\n\n";
+    md << "| method | budget ms | ms median | ms p95 | indirect | caustic | after change | "
+          "recovery frames | ref. SE ind. / caus. |\n|---|---|---|---|---|---|---|---|---|\n";
+    for (const RunResult& r : runs) {
+        md << "| " << r.config.method << " | " << number(r.config.budget_ms, 1) << " | "
+           << number(r.ms_median, 2) << " | " << number(r.ms_p95, 2) << " | "
+           << number(100.0 * r.indirect, 2) << "% | " << number(100.0 * r.caustic, 2) << "% | "
+           << (r.changed ? number(100.0 * r.indirect_at_change, 1) + "% -> " +
+                               number(100.0 * r.indirect_after, 1) + "%"
+                         : "-")
+           << " | "
+           << (!r.changed               ? std::string("-")
+               : r.recovery_frames >= 0 ? std::to_string(r.recovery_frames)
+                                        : std::string("not within"))
+           << " | " << number(100.0 * r.reference_se[1], 2) << "% / "
+           << number(100.0 * r.reference_se[2], 2) << "% |\n";
+    }
+    md << "\nReference adequacy (its relative standard error at most 1/10 of the error it "
+          "judges):\n";
+    for (const RunResult& r : runs) {
+        const bool ok_i = r.reference_se[1] <= 0.1 * r.indirect;
+        const bool ok_c = r.reference_se[2] <= 0.1 * r.caustic;
+        if (!ok_i || !ok_c) {
+            md << "- " << run_name(r) << ": " << (ok_i ? "" : "indirect ")
+               << (ok_c ? "" : "caustic ") << "reference not converged enough\n";
+        }
+    }
+    md << "- (rows not listed: adequate)\n";
+    if (info.level == "cornell") {
+        md << "\nGoals (issue 11), paper's configuration:\n";
+        for (const RunResult& r : runs) {
+            if (r.config.method != "paper") {
+                continue;
+            }
+            md << "\n" << run_name(r) << ":\n";
+            md << goal_line("indirect, converged", r.indirect, kIndirectGoal, true);
+            md << goal_line("caustic, converged", r.caustic, kCausticGoal, true);
+            if (r.changed) {
+                const bool met = r.recovery_frames >= 0 && r.recovery_frames <= kRecoveryGoalFrames;
+                md << "- recovery after the move: "
+                   << (r.recovery_frames >= 0 ? std::to_string(r.recovery_frames) + " frames"
+                                              : "not within the frames run")
+                   << " (goal <= 30 at 4 ms): **" << (met ? "met" : "missed") << "**\n";
+            }
+        }
+    }
+    md << "\n![indirect](indirect_vs_ms.png)\n![caustic](caustic_vs_ms.png)\n";
+    if (info.change) {
+        md << "![after change](after_change.png)\n";
+    }
+    {
+        std::ofstream file(out / "summary.md");
+        file << md.str();
+    }
+    files.push_back(out / "summary.md");
+    return files;
+}
+
+}  // namespace luxel::bench

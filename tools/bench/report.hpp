@@ -1,0 +1,31 @@
+#pragma once
+
+// luxel-bench's outputs: CSV, JSON, PNG plots and a Markdown summary of all runs.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench_options.hpp"
+#include "bench_run.hpp"
+
+namespace luxel::bench {
+
+struct ReportInfo {
+    std::string level;
+    std::string command;  ///< the command line, for the summary
+    std::optional<Change> change;
+    const Options* options = nullptr;
+};
+
+/// Writes into options.out: runs.csv (one row per configuration), checkpoints.csv,
+/// after_change.csv, results.json (everything), indirect_vs_ms.png, caustic_vs_ms.png,
+/// after_change.png and summary.md. Returns the files written.
+std::vector<std::filesystem::path> write_report(const ReportInfo& info,
+                                                const std::vector<RunResult>& runs);
+
+/// The columns of runs.csv, in order (tests check every row has them all).
+[[nodiscard]] const std::vector<std::string>& run_columns();
+
+}  // namespace luxel::bench
