@@ -27,14 +27,15 @@ lighting::LightingConfig BenchConfig::lighting() const {
     config.maps.density.nearest = aim_n;
     config.gather.rays_per_texel = rays;
     config.texels_per_gather_unit = texels_per_unit;
+    config.maps.iim_filter_radius = static_cast<int>(filter);
     return config;
 }
 
 std::string BenchConfig::knobs() const {
     std::ostringstream out;
     out << "photons=" << groups << "x" << per_group << " aim_n=" << aim_n << " rays=" << rays
-        << " texels_per_unit=" << texels_per_unit << " caustics=" << caustic_photons << "x"
-        << caustic_slices;
+        << " texels_per_unit=" << texels_per_unit << " filter=" << filter
+        << " caustics=" << caustic_photons << "x" << caustic_slices;
     return out.str();
 }
 
@@ -64,6 +65,8 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.rays = whole(value);
             } else if (sweep.knob == "texels_per_unit") {
                 c.texels_per_unit = whole(value);
+            } else if (sweep.knob == "filter") {
+                c.filter = whole(value);
             } else {
                 continue;  // budget: handled above
             }

@@ -71,9 +71,15 @@ Sweep parse_sweep(const std::string& text) {
             if (v < 1.0 || v != std::floor(v)) {
                 throw Error(what + ": '" + value + "' is not a whole number >= 1");
             }
+        } else if (sweep.knob == "filter") {
+            const double v = number(value, what);
+            if (v < 0.0 || v > 16.0 || v != std::floor(v)) {
+                throw Error(what + ": '" + value + "' is not a whole number of texels in 0..16");
+            }
         } else {
             throw Error("--sweep " + sweep.knob +
-                        ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, caustics)");
+                        ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, filter, "
+                        "caustics)");
         }
     }
     return sweep;

@@ -46,7 +46,7 @@ int run(int argc, char** argv) {
     app.add_option("--out", options.out, "output directory (references cached in OUT/cache)")
         ->capture_default_str();
     app.add_option("--sweep", sweeps,
-                   "KNOB=V1,V2,... (budget, photons GxM, aim_n, rays, texels_per_unit, "
+                   "KNOB=V1,V2,... (budget, photons GxM, aim_n, rays, texels_per_unit, filter, "
                    "caustics NxK); repeatable, each varies one knob from the paper's "
                    "configuration");
     app.add_option("--change", options.change,

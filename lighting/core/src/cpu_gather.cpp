@@ -9,6 +9,7 @@
 
 #include "luxel/lighting/core/halton.hpp"
 #include "luxel/lighting/core/light_source.hpp"
+#include "luxel/lighting/core/photon_tracer.hpp"
 #include "luxel/runtime/jobs.hpp"
 
 namespace luxel::lighting {
@@ -94,6 +95,7 @@ glm::vec3 CpuGatherer::gather_one(const GatherTexel& texel) const {
     const double cos_rotation = std::cos(kTwoPi * rotation.y);
     const double sin_rotation = std::sin(kTwoPi * rotation.y);
     const std::vector<PatternPoint>& pattern = tabulated_pattern(rays);
+    const auto seed = static_cast<std::uint32_t>(rotation.x * 4294967295.0);
     // Summed in double: thousands of rays per texel, and the mean must not depend on order.
     glm::dvec3 sum(0.0);
     for (std::uint32_t i = 0; i < rays; ++i) {
@@ -107,18 +109,44 @@ glm::vec3 CpuGatherer::gather_one(const GatherTexel& texel) const {
             static_cast<float>(r * (point.sin_phi * cos_rotation + point.cos_phi * sin_rotation));
         const auto z = static_cast<float>(std::sqrt(std::max(0.0, 1.0 - u)));
         const glm::vec3 direction = glm::normalize(x * tangent + y * bitangent + z * normal);
-        const auto hit = scene_->intersect(origin, direction, settings_.max_distance);
-        // The AIM holds the radiance leaving a surface's front; a back face is the inside of
-        // a wall or object and sends nothing.
-        if (!hit || glm::dot(hit->geometric_normal, direction) >= 0.0f) {
-            continue;
-        }
-        const glm::vec3 radiance = atlas_->sample(hit->surface, hit->lightmap_uv);
+        const glm::vec3 radiance = trace(origin, direction, i, seed);
         if (finite_vector(radiance)) {
             sum += glm::dvec3(glm::max(radiance, glm::vec3(0.0f)));
         }
     }
     return glm::vec3(sum * (glm::pi<double>() / static_cast<double>(rays)));
+}
+
+glm::vec3 CpuGatherer::trace(glm::vec3 origin, glm::vec3 direction, std::uint32_t ray,
+                             std::uint32_t seed) const {
+    glm::vec3 weight(1.0f);
+    for (std::uint32_t interaction = 0; interaction <= settings_.max_specular; ++interaction) {
+        const auto hit = scene_->intersect(origin, direction, settings_.max_distance);
+        if (!hit) {
+            return glm::vec3(0.0f);
+        }
+        const TraceMaterial* material = materials_ != nullptr && hit->material < materials_->size()
+                                            ? &(*materials_)[hit->material]
+                                            : nullptr;
+        if (material == nullptr || material->scattering == Scattering::Diffuse) {
+            // The AIM holds the radiance leaving a surface's front; a back face is the inside
+            // of a wall or object and sends nothing.
+            if (glm::dot(hit->geometric_normal, direction) >= 0.0f) {
+                return glm::vec3(0.0f);
+            }
+            return weight * atlas_->sample(hit->surface, hit->lightmap_uv);
+        }
+        // A mirror or glass has no AIM of its own: it shows what it reflects or refracts (the
+        // room seen through a glass sphere, and the light that focuses through it after a
+        // diffuse bounce). Fresnel picks one branch per ray, as photons do.
+        const FacingNormals normals = facing_normals(*hit, direction);
+        scatter_specular(*material, *hit, normals, photon_sample(ray, 4 + interaction, seed),
+                         origin, direction, weight);
+        if (!(weight.r > 0.0f || weight.g > 0.0f || weight.b > 0.0f)) {
+            return glm::vec3(0.0f);
+        }
+    }
+    return glm::vec3(0.0f);  // trapped between specular surfaces
 }
 
 void CpuGatherer::gather(std::span<const GatherTexel> texels, std::span<glm::vec3> irradiance) {

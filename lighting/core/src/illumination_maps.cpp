@@ -372,70 +372,112 @@ std::size_t IlluminationMaps::gather(std::uint32_t surface, std::size_t max_texe
         // retraces earlier in the same frame) may have made a surface lit without an AIM.
         return 0;
     }
+    const std::size_t total = mapped.texels.texels.size();
     if (!mapped.gather_in_progress) {
         // Changes from now on need another pass; those before are what this pass sees.
         mapped.gather_in_progress = true;
         mapped.gather_cursor = 0;
+        mapped.pass_irradiance.assign(total, glm::vec3(0.0f));
         world_.photon_map().reset_indirect_delta(surface);
         ++counters_.gather_passes;
     }
-    const std::size_t total = mapped.texels.texels.size();
     const std::size_t first = mapped.gather_cursor;
     const std::size_t count = std::min(max_texels, total - first);
     const std::vector<GatherTexel> all = world_texels(surface);
     const std::span<const GatherTexel> batch(all.data() + first, count);
-    std::vector<glm::vec3> irradiance(count, glm::vec3(0.0f));
-    gatherer.gather(batch, irradiance);
+    gatherer.gather(batch, std::span<glm::vec3>(mapped.pass_irradiance.data() + first, count));
+    mapped.gather_cursor = first + count;
+    counters_.texels_gathered += count;
+    if (mapped.gather_cursor >= total) {
+        commit_pass(surface, now_seconds);
+    }
+    return count;
+}
 
-    IimPage& page = iim_pages_[static_cast<std::size_t>(page_id)];
+/// Filters a completed pass over the surface's texels and fades it in. The filter is a tent of
+/// radius iim_filter_radius texels over the surface's own texels (never across to another
+/// surface, which may be across a crease): final gathering's noise is per texel while indirect
+/// light varies slowly, so a small filter removes most of the noise for little bias.
+void IlluminationMaps::commit_pass(std::uint32_t surface, double now_seconds) {
+    MapSurface& mapped = surfaces_[surface];
+    const auto page_id = static_cast<std::size_t>(aim_.surface_page[surface]);
+    IimPage& page = iim_pages_[page_id];
+    const auto& texels = mapped.texels.texels;
     int x0 = page.current.size;
     int y0 = page.current.size;
     int x1 = -1;
     int y1 = -1;
-    for (std::size_t i = 0; i < count; ++i) {
-        const SurfaceTexel& texel = mapped.texels.texels[first + i];
-        const glm::vec3 e = sanitized(irradiance[i]);
-        const glm::vec3 value = mapped.content == IimContent::Irradiance
-                                    ? e
-                                    : mapped.albedo * e * glm::one_over_pi<float>();
-        page.commit(texel.x, texel.y, value, now_seconds, settings_.blend_seconds);
+    for (const SurfaceTexel& texel : texels) {
         x0 = std::min(x0, texel.x);
         y0 = std::min(y0, texel.y);
         x1 = std::max(x1, texel.x);
         y1 = std::max(y1, texel.y);
     }
-    mapped.gather_cursor = first + count;
-    if (mapped.gather_cursor >= total) {
-        mapped.gather_in_progress = false;
-        mapped.gathered_once = true;
-        // The pass is complete: fill the padding so bilinear lookups at the border hold.
-        const auto& owners = owners_[static_cast<std::size_t>(page_id)];
-        const int size = page.current.size;
-        for (const SurfaceTexel& texel : mapped.texels.texels) {
-            for (int dy = -1; dy <= 1; ++dy) {
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const int x = texel.x + dx;
-                    const int y = texel.y + dy;
-                    if (x < 0 || y < 0 || x >= size || y >= size ||
-                        owners[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) +
-                               static_cast<std::size_t>(x)] >= 0) {
-                        continue;
-                    }
-                    page.commit(x, y, page.current.at(texel.x, texel.y), now_seconds,
-                                settings_.blend_seconds);
-                    x0 = std::min(x0, x);
-                    y0 = std::min(y0, y);
-                    x1 = std::max(x1, x);
-                    y1 = std::max(y1, y);
+    // Texel index by position within the surface's bounds.
+    const int width = x1 - x0 + 1;
+    const int height = y1 - y0 + 1;
+    std::vector<std::int32_t> index(
+        static_cast<std::size_t>(width) * static_cast<std::size_t>(height), -1);
+    for (std::size_t i = 0; i < texels.size(); ++i) {
+        index[static_cast<std::size_t>(texels[i].y - y0) * static_cast<std::size_t>(width) +
+              static_cast<std::size_t>(texels[i].x - x0)] = static_cast<std::int32_t>(i);
+    }
+    const int radius = std::max(settings_.iim_filter_radius, 0);
+    for (std::size_t i = 0; i < texels.size(); ++i) {
+        glm::dvec3 sum(0.0);
+        double weights = 0.0;
+        for (int dy = -radius; dy <= radius; ++dy) {
+            for (int dx = -radius; dx <= radius; ++dx) {
+                const int x = texels[i].x - x0 + dx;
+                const int y = texels[i].y - y0 + dy;
+                if (x < 0 || y < 0 || x >= width || y >= height) {
+                    continue;
                 }
+                const std::int32_t j =
+                    index[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                          static_cast<std::size_t>(x)];
+                if (j < 0) {
+                    continue;
+                }
+                const double w =
+                    static_cast<double>((radius + 1 - std::abs(dx)) * (radius + 1 - std::abs(dy)));
+                sum +=
+                    w * glm::dvec3(sanitized(mapped.pass_irradiance[static_cast<std::size_t>(j)]));
+                weights += w;
+            }
+        }
+        const glm::vec3 e = weights > 0.0 ? glm::vec3(sum / weights) : glm::vec3(0.0f);
+        const glm::vec3 value = mapped.content == IimContent::Irradiance
+                                    ? e
+                                    : mapped.albedo * e * glm::one_over_pi<float>();
+        page.commit(texels[i].x, texels[i].y, value, now_seconds, settings_.blend_seconds);
+    }
+    // Fill the padding so bilinear lookups at the border hold.
+    const auto& owners = owners_[page_id];
+    const int size = page.current.size;
+    for (const SurfaceTexel& texel : texels) {
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                const int x = texel.x + dx;
+                const int y = texel.y + dy;
+                if (x < 0 || y < 0 || x >= size || y >= size ||
+                    owners[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) +
+                           static_cast<std::size_t>(x)] >= 0) {
+                    continue;
+                }
+                page.commit(x, y, page.current.at(texel.x, texel.y), now_seconds,
+                            settings_.blend_seconds);
             }
         }
     }
-    if (x1 >= x0) {
-        page.current.mark_dirty({x0, y0, x1 - x0 + 1, y1 - y0 + 1});
-    }
-    counters_.texels_gathered += count;
-    return count;
+    const int left = std::max(x0 - 1, 0);
+    const int top = std::max(y0 - 1, 0);
+    page.current.mark_dirty(
+        {left, top, std::min(x1 + 2, size) - left, std::min(y1 + 2, size) - top});
+    mapped.gather_in_progress = false;
+    mapped.gathered_once = true;
+    mapped.pass_irradiance.clear();
+    mapped.pass_irradiance.shrink_to_fit();
 }
 
 }  // namespace luxel::lighting

@@ -27,7 +27,10 @@ LightingSystem::LightingSystem(ecs::Registry& registry, JobSystem& jobs, Lightin
       gatherer_(cpu_gatherer_.get()),
       scheduler_(clock, config.scheduler),
       clock_(&clock),
-      plan_(FeaturePlan::from({})) {}
+      plan_(FeaturePlan::from({})) {
+    // Gather rays follow mirrors and glass with the photon world's own optics.
+    cpu_gatherer_->set_materials(&photons_->materials());
+}
 
 LightingSystem::~LightingSystem() = default;
 

@@ -1,8 +1,10 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "luxel/lighting/core/gather.hpp"
+#include "luxel/lighting/core/photon_tracer.hpp"
 #include "luxel/lighting/core/radiance_atlas.hpp"
 #include "luxel/lighting/core/ray_scene.hpp"
 
@@ -16,6 +18,8 @@ struct CpuGatherSettings {
     std::uint32_t rays_per_texel = 256;
     /// Rays that travel further than this (metres) see nothing: the scene's outside is black.
     float max_distance = 1e6f;
+    /// Mirror and glass interactions a ray follows before it gives up (with materials).
+    std::uint32_t max_specular = 8;
 };
 
 /// The CPU backend: from each texel centre, cosine-weighted Halton directions (bases 2, 3;
@@ -30,6 +34,10 @@ class CpuGatherer final : public IrradianceGatherer {
     /// With `jobs`, texels are gathered in parallel.
     CpuGatherer(const RayScene& scene, const RadianceAtlas& atlas, CpuGatherSettings settings = {},
                 JobSystem* jobs = nullptr);
+    /// With the scene's material table (RayHit::material indexes it), rays follow mirrors and
+    /// glass to the diffuse surface they show; without, specular surfaces read as their AIM
+    /// (none: black).
+    void set_materials(const std::vector<TraceMaterial>* materials) { materials_ = materials; }
 
     [[nodiscard]] std::string_view name() const override { return "cpu"; }
     void gather(std::span<const GatherTexel> texels, std::span<glm::vec3> irradiance) override;
@@ -42,7 +50,11 @@ class CpuGatherer final : public IrradianceGatherer {
     [[nodiscard]] const CpuGatherSettings& settings() const { return settings_; }
 
   private:
+    [[nodiscard]] glm::vec3 trace(glm::vec3 origin, glm::vec3 direction, std::uint32_t ray,
+                                  std::uint32_t seed) const;
+
     const RayScene* scene_;
+    const std::vector<TraceMaterial>* materials_ = nullptr;
     const RadianceAtlas* atlas_;
     CpuGatherSettings settings_;
     JobSystem* jobs_;

@@ -46,6 +46,9 @@ struct IlluminationSettings {
     double iim_threshold = 0.05;
     /// Seconds over which an updated IIM texel fades in (0: at once).
     double blend_seconds = 0.5;
+    /// A completed gather pass is filtered over the surface's own texels with a tent of this
+    /// radius (texels; 0: none) before it fades in: docs/RESULTS.md measures the trade.
+    int iim_filter_radius = 2;
 };
 
 /// A piece of work the scheduler can order: a surface and its priority (delta / area, W/m^2).
@@ -68,6 +71,9 @@ struct MapSurface {
     bool gathered_once = false;
     /// The next texel of a gather pass in progress; texels.texels.size() when none is.
     std::size_t gather_cursor = 0;
+    /// The pass in progress's irradiance per texel; it is filtered and committed (faded in)
+    /// when the pass completes, so a surface never shows half a pass.
+    std::vector<glm::vec3> pass_irradiance;
     bool gather_in_progress = false;
 };
 
@@ -115,8 +121,9 @@ class IlluminationMaps {
     /// no AIM yet.
     [[nodiscard]] std::vector<MapRequest> gather_requests() const;
     /// Gathers up to `max_texels` texels of the surface's pass (starting one, and resetting
-    /// delta_i, if none is in progress), commits them into the IIM at `now_seconds`, and
-    /// returns how many were gathered.
+    /// delta_i, if none is in progress) and returns how many were gathered. When the pass
+    /// completes, it is filtered (iim_filter_radius) and committed into the IIM at
+    /// `now_seconds`, to fade in over the blend time.
     std::size_t gather(std::uint32_t surface, std::size_t max_texels, IrradianceGatherer& gatherer,
                        double now_seconds);
 
@@ -139,6 +146,7 @@ class IlluminationMaps {
 
     void add_surface(std::uint32_t surface);
     void refresh_transform(std::uint32_t surface);
+    void commit_pass(std::uint32_t surface, double now_seconds);
     /// Fills the padding texels around `surface`'s texels on `page` with the mean of their
     /// owned neighbours, so bilinear lookups at a chart's border do not fetch black.
     void dilate(std::uint32_t surface, RadiancePage& page) const;
