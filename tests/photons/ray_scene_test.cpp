@@ -164,3 +164,35 @@ TEST_P(RayOffsetAtScale, LeavingRaysNeverHitTheirOwnSurface) {
 INSTANTIATE_TEST_SUITE_P(Scales, RayOffsetAtScale, ::testing::Values(1e-3f, 1.0f, 1e4f));
 
 }  // namespace
+
+namespace {
+
+/// Two unit quads back to back in the plane x = 0: one facing -x, one facing +x (a
+/// zero-thickness wall between two rooms), with surface ids 1 and 2.
+luxel::lighting::TriangleMesh back_to_back_wall() {
+    luxel::lighting::TriangleMesh mesh;
+    mesh.positions = {{0, -1, -1}, {0, 1, -1}, {0, 1, 1}, {0, -1, 1}};
+    // Facing -x: (0,1,0)x(0,0,1) order reversed; facing +x: the other winding.
+    mesh.indices = {0, 2, 1, 0, 3, 2, 0, 1, 2, 0, 2, 3};
+    mesh.surface_ids = {1, 1, 2, 2};
+    mesh.material_ids = {0, 0, 0, 0};
+    return mesh;
+}
+
+TEST(RaySceneCoincidentFaces, EachSideSeesTheFaceTurnedTowardsIt) {
+    luxel::lighting::RayScene scene;
+    scene.add_object(back_to_back_wall(), glm::mat4(1.0f), false);
+    scene.commit();
+    for (int i = 0; i < 50; ++i) {
+        const float y = -0.9f + 0.036f * static_cast<float>(i);
+        const auto from_west = scene.intersect({-2.0f, y, 0.1f}, {1.0f, 0.0f, 0.0f});
+        const auto from_east = scene.intersect({2.0f, y, -0.1f}, {-1.0f, 0.0f, 0.0f});
+        ASSERT_TRUE(from_west && from_east);
+        // Whichever Embree reports first, the face the ray meets from its own side wins.
+        EXPECT_LT(glm::dot(from_west->geometric_normal, glm::vec3(1, 0, 0)), 0.0f);
+        EXPECT_GT(glm::dot(from_east->geometric_normal, glm::vec3(1, 0, 0)), 0.0f);
+        EXPECT_NE(from_west->surface, from_east->surface);
+    }
+}
+
+}  // namespace

@@ -128,7 +128,8 @@ struct RayScene::Impl {
         rtcSetDeviceErrorFunction(device.get(), report_embree_error, nullptr);
         top.reset(rtcNewScene(device.get()));
         // The top level is rebuilt whenever something moves: favour build speed.
-        rtcSetSceneFlags(top.get(), RTC_SCENE_FLAG_DYNAMIC);
+        rtcSetSceneFlags(top.get(),
+                         RTC_SCENE_FLAG_DYNAMIC | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
         rtcSetSceneBuildQuality(top.get(), RTC_BUILD_QUALITY_LOW);
     }
 
@@ -147,6 +148,7 @@ struct RayScene::Impl {
             static_instance = RTC_INVALID_GEOMETRY_ID;
         }
         static_scene.reset(rtcNewScene(device.get()));
+        rtcSetSceneFlags(static_scene.get(), RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
         rtcSetSceneBuildQuality(static_scene.get(), RTC_BUILD_QUALITY_HIGH);
         static_geometry_owner.clear();
         for (const auto& [id, object] : objects) {
@@ -209,6 +211,7 @@ ObjectId RayScene::add_object(TriangleMesh mesh, const glm::mat4& transform, boo
     const ObjectId id = impl_->next_id++;
     if (dynamic) {
         object.own_scene.reset(rtcNewScene(impl_->device.get()));
+        rtcSetSceneFlags(object.own_scene.get(), RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
         attach_triangles(impl_->device.get(), object.own_scene.get(), object.mesh.positions,
                          object.mesh.indices);
         rtcCommitScene(object.own_scene.get());
@@ -274,10 +277,51 @@ void RayScene::commit() {
     }
 }
 
+namespace {
+
+/// A context filter that lets only front faces (the side a triangle winds towards) be hit.
+void reject_back_faces(const RTCFilterFunctionNArguments* args) {
+    for (unsigned lane = 0; lane < args->N; ++lane) {
+        if (args->valid[lane] == 0) {
+            continue;
+        }
+        const float facing =
+            RTCHitN_Ng_x(args->hit, args->N, lane) * RTCRayN_dir_x(args->ray, args->N, lane) +
+            RTCHitN_Ng_y(args->hit, args->N, lane) * RTCRayN_dir_y(args->ray, args->N, lane) +
+            RTCHitN_Ng_z(args->hit, args->N, lane) * RTCRayN_dir_z(args->ray, args->N, lane);
+        if (facing > 0.0f) {
+            args->valid[lane] = 0;
+        }
+    }
+}
+
+}  // namespace
+
 std::optional<RayHit> RayScene::intersect(const glm::vec3& origin, const glm::vec3& direction,
                                           float max_distance) const {
+    auto hit = intersect_any_face(origin, direction, max_distance, false);
+    // Two faces back to back in one plane (a zero-thickness wall seen from either room) are
+    // hit at the same distance, and Embree may report either. When it reports the back face,
+    // look again for a front face at that distance: the side the ray came from is the one it
+    // sees. Only back-face hits (glass interiors, the backs of walls) pay for the second ray.
+    if (hit && glm::dot(hit->geometric_normal, direction) > 0.0f) {
+        const float reach = hit->distance * (1.0f + 1e-4f) + 1e-30f;
+        if (auto front = intersect_any_face(origin, direction, reach, true);
+            front && front->distance >= hit->distance * (1.0f - 1e-4f)) {
+            return front;
+        }
+    }
+    return hit;
+}
+
+std::optional<RayHit> RayScene::intersect_any_face(const glm::vec3& origin,
+                                                   const glm::vec3& direction, float max_distance,
+                                                   bool front_faces_only) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
+    if (front_faces_only) {
+        context.filter = reject_back_faces;
+    }
     RTCRayHit query{};
     query.ray.org_x = origin.x;
     query.ray.org_y = origin.y;

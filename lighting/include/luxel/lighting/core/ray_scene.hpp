@@ -76,7 +76,8 @@ class RayScene {
     void commit();
 
     /// Closest hit along origin + t direction for t in (0, max_distance]. `direction` need not
-    /// be unit; distances are in units of |direction|. Thread-safe between commits.
+    /// be unit; distances are in units of |direction|. Of two faces coincident at the closest
+    /// distance (back to back in one plane), the one facing the ray. Thread-safe between commits.
     [[nodiscard]] std::optional<RayHit> intersect(
         const glm::vec3& origin, const glm::vec3& direction,
         float max_distance = std::numeric_limits<float>::infinity()) const;
@@ -100,6 +101,11 @@ class RayScene {
     [[nodiscard]] glm::mat4 transform(ObjectId object) const;
 
   private:
+    [[nodiscard]] std::optional<RayHit> intersect_any_face(const glm::vec3& origin,
+                                                           const glm::vec3& direction,
+                                                           float max_distance,
+                                                           bool front_faces_only) const;
+
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
