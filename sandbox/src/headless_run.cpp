@@ -45,6 +45,7 @@ int run_headless(const RunOptions& options, JobSystem& jobs, GlContext& context)
 
     const int frames = options.frames.value_or(150);
     AutoExposure exposure;
+    float last_exposure = 1.0f;
     const float aspect =
         static_cast<float>(options.app.width) / static_cast<float>(options.app.height);
     std::cout << "luxel-sandbox: level '" << app.level_name() << "', " << frames
@@ -67,7 +68,9 @@ int run_headless(const RunOptions& options, JobSystem& jobs, GlContext& context)
         if (png || options.exr) {
             const Image linear = app.renderer().read(lighting::FrameImage::Frame);
             ToneMapSettings tone;
-            tone.exposure = exposure.update(linear);
+            tone.exposure = options.exposure > 0.0 ? static_cast<float>(options.exposure)
+                                                   : exposure.update(linear);
+            last_exposure = tone.exposure;
             if (png) {
                 write_png(options.out / frame_name(frame, "png"), linear, tone);
             }
@@ -81,6 +84,7 @@ int run_headless(const RunOptions& options, JobSystem& jobs, GlContext& context)
         }
     }
     std::cerr << "\n";
+    report.set_info("exposure", last_exposure);
     const std::filesystem::path report_file = options.report.value_or(options.out / "report.json");
     report.write(report_file);
     std::cout << report.summary() << "frames in " << options.out.string() << ", report in "

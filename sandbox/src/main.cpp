@@ -124,6 +124,10 @@ int main(int argc, char** argv) {
                    "with --camera fixed: the time (s) along the path the camera stays at")
         ->check(CLI::Range(0.0, 1e6))
         ->capture_default_str();
+    app.add_option("--exposure", options.exposure,
+                   "display exposure for PNG and the window (0: automatic)")
+        ->check(CLI::Range(0.0, 1e9))
+        ->capture_default_str();
     app.add_flag("--exr", options.exr, "also write every frame as linear EXR");
     app.add_option("--png-every", options.png_every,
                    "write every n-th frame as PNG (0: only the last)")

@@ -15,8 +15,10 @@ struct RunOptions {
     std::optional<int> frames;  ///< default: 150 headless, until closed in a window
     std::filesystem::path out = "out";
     std::optional<std::filesystem::path> report;  ///< default: <out>/report.json
-    bool exr = false;                             ///< also write each frame as EXR
-    int png_every = 1;                            ///< write every n-th frame as PNG (0: last only)
+    bool exr = false;
+    /// Display exposure for PNG and the window; 0: automatic (metered per frame).
+    double exposure = 0.0;  ///< also write each frame as EXR
+    int png_every = 1;      ///< write every n-th frame as PNG (0: last only)
     std::string log_level;
     /// Headless camera: "path" follows the level's scripted path; "fixed" stays at its start
     /// (tests compare frames where only the objects move).
