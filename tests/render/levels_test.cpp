@@ -110,6 +110,39 @@ TEST_P(BuiltInLevels, FramesHoldNoNanInfOrNegative) {
                 counters.draws);
 }
 
+TEST(RenderStability, ACameraInsideAWallRendersFiniteFrames) {
+    // Issue 12: the camera inside the Cornell box's back wall (z = -1), and exactly on it,
+    // looking along it and through it: what it sees is the backs of faces and the room beyond;
+    // nothing may be NaN, infinite or negative.
+    auto context = test::make_render_context();
+    test::RenderWorld world;
+    instantiate(world.registry,
+                std::make_shared<scene::Scene>(scene::load_gltf(test::prepared_level("cornell"))));
+    world.start();
+    world.update(1e9);
+    FrameSettings settings;
+    settings.width = kWidth;
+    settings.height = kHeight;
+    settings.cube_shadow_size = 128;
+    settings.map_shadow_size = 256;
+    settings.specular_cube_size = 32;
+    FrameRenderer renderer(world.registry, *world.lighting, settings);
+    const float aspect = static_cast<float>(kWidth) / static_cast<float>(kHeight);
+    const struct {
+        glm::vec3 eye;
+        glm::vec3 target;
+    } views[] = {{{0.0f, 1.0f, -1.02f}, {0.0f, 1.0f, 0.0f}},     // behind the wall, looking in
+                 {{0.0f, 1.0f, -1.0f}, {0.0f, 1.0f, 1.0f}},      // exactly in its plane
+                 {{0.3f, 1.0f, -1.0f}, {1.0f, 1.0f, -1.0f}},     // along it
+                 {{0.0f, 1.0f, -1.001f}, {0.0f, 1.0f, -3.0f}}};  // out of the box
+    for (const auto& view : views) {
+        renderer.render(FrameCamera::look_at(view.eye, view.target, {0.0f, 1.0f, 0.0f}, 1.0f,
+                                             aspect, 0.001f, 100.0f),
+                        world.time);
+        check_image(renderer.read(FrameImage::Frame), "camera in the wall");
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Prepared, BuiltInLevels, ::testing::ValuesIn(test::prepared_levels()),
                          [](const ::testing::TestParamInfo<std::string>& level) {
                              std::string name = level.param;
