@@ -1,49 +1,25 @@
 // The luxel-bench executable: errors that name the flag or level at fault, a tiny run that
 // writes every output with consistent columns, and the reference cache reused by a second run.
 
-#include <array>
 #include <cstdio>
 #include <fstream>
 #include <string>
 #include <vector>
 
-#include <sys/wait.h>
-
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "luxel/runtime/image.hpp"
+#include "run_command.hpp"
 #include "temp_dir.hpp"
 
 namespace {
 
-struct CommandResult {
-    int exit_code = -1;
-    std::string output;  ///< stdout and stderr together
-};
+using luxel::testing::CommandResult;
+using luxel::testing::quoted;
 
 CommandResult luxel_bench(const std::string& arguments) {
-    const std::string command =
-        std::string("'") + LUXEL_BENCH_EXECUTABLE + "' " + arguments + " 2>&1";
-    CommandResult run;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) {
-        return run;
-    }
-    std::array<char, 4096> chunk{};
-    while (std::fgets(chunk.data(), static_cast<int>(chunk.size()), pipe) != nullptr) {
-        run.output += chunk.data();
-    }
-    const int status = pclose(pipe);
-    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return run;
-}
-
-std::string quoted(const std::filesystem::path& path) {
-    std::string text("'");
-    text += path.string();
-    text += "'";
-    return text;
+    return luxel::testing::run_command(LUXEL_BENCH_EXECUTABLE, arguments);
 }
 
 std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path) {

@@ -1,12 +1,9 @@
 // The luxel-prep executable: its command line, report, page pictures, errors that name the
 // file or flag at fault, and output that does not depend on --threads.
 
-#include <array>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
-
-#include <sys/wait.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -14,36 +11,18 @@
 #include "luxel/runtime/image.hpp"
 #include "luxel/runtime/scene/gltf.hpp"
 #include "prep_test_support.hpp"
+#include "run_command.hpp"
 #include "temp_dir.hpp"
 
 namespace {
 
 using namespace luxel;
 
-struct CommandResult {
-    int exit_code = -1;
-    std::string output;  ///< stdout and stderr together
-};
+using luxel::testing::CommandResult;
+using luxel::testing::quoted;
 
 CommandResult luxel_prep(const std::string& arguments) {
-    const std::string command =
-        std::string("'") + LUXEL_PREP_EXECUTABLE + "' " + arguments + " 2>&1";
-    CommandResult run;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) {
-        return run;
-    }
-    std::array<char, 4096> chunk{};
-    while (std::fgets(chunk.data(), static_cast<int>(chunk.size()), pipe) != nullptr) {
-        run.output += chunk.data();
-    }
-    const int status = pclose(pipe);
-    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return run;
-}
-
-std::string quoted(const std::filesystem::path& path) {
-    return "'" + path.string() + "'";
+    return luxel::testing::run_command(LUXEL_PREP_EXECUTABLE, arguments);
 }
 
 std::vector<char> read_bytes(const std::filesystem::path& file) {

@@ -1,51 +1,26 @@
 // The luxel-ref executable: errors that name the flag or file at fault, and a tiny run that
 // writes a valid EXR frame and JSON light maps.
 
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-
-#include <sys/wait.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "luxel/runtime/image.hpp"
+#include "run_command.hpp"
 #include "temp_dir.hpp"
 
 namespace {
 
 using namespace luxel;
 
-struct CommandResult {
-    int exit_code = -1;
-    std::string output;  ///< stdout and stderr together
-};
+using luxel::testing::CommandResult;
+using luxel::testing::quoted;
 
 CommandResult luxel_ref(const std::string& arguments) {
-    const std::string command =
-        std::string("'") + LUXEL_REF_EXECUTABLE + "' " + arguments + " 2>&1";
-    CommandResult run;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) {
-        return run;
-    }
-    std::array<char, 4096> chunk{};
-    while (std::fgets(chunk.data(), static_cast<int>(chunk.size()), pipe) != nullptr) {
-        run.output += chunk.data();
-    }
-    const int status = pclose(pipe);
-    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return run;
-}
-
-std::string quoted(const std::filesystem::path& path) {
-    // Appended, not "'" + string: GCC 12 warns (-Wrestrict) on that insert falsely.
-    std::string text("'");
-    text += path.string();
-    text += "'";
-    return text;
+    return luxel::testing::run_command(LUXEL_REF_EXECUTABLE, arguments);
 }
 
 TEST(RefCli, ABadFlagIsRejectedByName) {
