@@ -346,10 +346,17 @@ std::vector<MapRequest> IlluminationMaps::gather_requests() const {
         const bool changed =
             relative(delta, photons.stored_energy.value()) > settings_.iim_threshold;
         if (mapped.gather_in_progress || (ready && (!mapped.gathered_once || changed))) {
-            // A pass in progress finishes first: half-updated surfaces show seams.
+            // Passes in progress first, the furthest along first, so passes finish one after
+            // another instead of all crawling together (a pass shows only when complete); then
+            // surfaces never gathered; then the largest delta_i / area.
             double priority = delta / safe_area(mapped.texels.area);
-            if (mapped.gather_in_progress || !mapped.gathered_once) {
-                priority = std::numeric_limits<double>::max();
+            if (!mapped.gathered_once) {
+                priority = std::numeric_limits<double>::max() / 4.0;
+            }
+            if (mapped.gather_in_progress) {
+                const double done = static_cast<double>(mapped.gather_cursor) /
+                                    static_cast<double>(mapped.texels.texels.size());
+                priority = std::numeric_limits<double>::max() / 2.0 * (1.0 + done);
             }
             requests.push_back({s, priority});
         }

@@ -161,24 +161,6 @@ void LightingSystem::queue_work() {
         scheduler_.cancel(WorkKind::CausticSlice, 0);
     }
 
-    // AIM rebuilds and IIM gathers, per surface, in the maps' order.
-    const auto requeue = [this](WorkKind kind, const std::vector<MapRequest>& requests,
-                                std::vector<std::uint32_t>& queued, auto make_unit) {
-        std::vector<std::uint32_t> now;
-        now.reserve(requests.size());
-        for (std::size_t rank = 0; rank < requests.size(); ++rank) {
-            const std::uint32_t surface = requests[rank].surface;
-            scheduler_.enqueue(make_unit(surface, rank_priority(rank, requests.size())));
-            now.push_back(surface);
-        }
-        std::sort(now.begin(), now.end());
-        for (std::uint32_t surface : queued) {
-            if (!std::binary_search(now.begin(), now.end(), surface)) {
-                scheduler_.cancel(kind, surface);
-            }
-        }
-        queued = std::move(now);
-    };
     // AIM rebuilds are sequential by nature (one kd-tree at a time): the units are slices of
     // "the next AIM work", each taking the maps' first request when it runs (the pass in
     // progress, then unbuilt maps, then the largest delta_f / area; a waiting surface's delta
@@ -209,16 +191,32 @@ void LightingSystem::queue_work() {
     queued_aim_units_ = aim_units;
     const std::uint32_t texels_per_unit =
         std::max<std::uint32_t>(config_.texels_per_gather_unit, 1);
-    requeue(WorkKind::IimGather,
-            plan_.iim_gather() ? maps_->gather_requests() : std::vector<MapRequest>{},
-            queued_gather_, [this, texels_per_unit](std::uint32_t surface, double priority) {
-                return WorkUnit{WorkKind::IimGather, surface, priority,
-                                [this, surface, texels_per_unit] {
-                                    maps_->gather(surface, texels_per_unit, *gatherer_,
-                                                  now_seconds_);
-                                },
-                                static_cast<double>(texels_per_unit)};
-            });
+    // Gathers, like AIM rebuilds, are slices of "the next gather work" (the maps' first request:
+    // the pass furthest along), so passes complete one after another.
+    std::size_t gather_texels = 0;
+    if (plan_.iim_gather()) {
+        for (const MapRequest& request : maps_->gather_requests()) {
+            gather_texels += maps_->surfaces()[request.surface].texels.texels.size();
+        }
+    }
+    constexpr std::size_t kMaxGatherUnits = 256;  // a frame never has room for more
+    const std::size_t gather_units =
+        std::min((gather_texels + texels_per_unit - 1) / texels_per_unit, kMaxGatherUnits);
+    for (std::size_t unit = 0; unit < gather_units; ++unit) {
+        scheduler_.enqueue({WorkKind::IimGather, unit, rank_priority(unit, gather_units),
+                            [this, texels_per_unit] {
+                                const std::vector<MapRequest> requests = maps_->gather_requests();
+                                if (!requests.empty()) {
+                                    maps_->gather(requests.front().surface, texels_per_unit,
+                                                  *gatherer_, now_seconds_);
+                                }
+                            },
+                            static_cast<double>(texels_per_unit)});
+    }
+    for (std::size_t unit = gather_units; unit < queued_gather_units_; ++unit) {
+        scheduler_.cancel(WorkKind::IimGather, unit);
+    }
+    queued_gather_units_ = gather_units;
 }
 
 }  // namespace luxel::lighting

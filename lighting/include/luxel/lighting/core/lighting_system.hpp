@@ -125,7 +125,7 @@ class LightingSystem {
     std::uint64_t caustic_frame_ = 0;  ///< advances only when caustic slices run
     std::size_t queued_retrace_units_ = 0;
     std::size_t queued_aim_units_ = 0;
-    std::vector<std::uint32_t> queued_gather_;  ///< sorted surface ids
+    std::size_t queued_gather_units_ = 0;
 };
 
 }  // namespace luxel::lighting
