@@ -24,7 +24,9 @@ class AutoExposure {
             for (int x = 0; x < frame.width; x += 4) {
                 const glm::vec4 p = frame.pixel(x, y);
                 const double luminance = 0.2126 * p.r + 0.7152 * p.g + 0.0722 * p.b;
-                if (std::isfinite(luminance) && luminance >= 0.0) {
+                // Black pixels are the sky or the void beyond an open level, not a dark
+                // surface: metering them would expose the lit part to white.
+                if (std::isfinite(luminance) && luminance > 1e-6) {
                     log_sum += std::log(1e-4 + luminance);
                     ++count;
                 }
