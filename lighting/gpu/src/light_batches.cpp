@@ -17,7 +17,7 @@ struct GpuLightBatch {
     std::array<std::int32_t, 4> count{};
 };
 
-gl::Texture placeholder(GLenum target) {
+gl::Texture unused_shadow_map(GLenum target) {
     gl::Texture texture = gl::Texture::create(target);
     glTextureStorage2D(texture.id(), 1, GL_DEPTH_COMPONENT32F, 1, 1);
     glTextureParameteri(texture.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
@@ -30,8 +30,8 @@ gl::Texture placeholder(GLenum target) {
 
 LightBatches::LightBatches()
     : block_(gl::Buffer::create(sizeof(GpuLightBatch))),
-      dummy_cube_(placeholder(GL_TEXTURE_CUBE_MAP)),
-      dummy_map_(placeholder(GL_TEXTURE_2D)) {}
+      unused_cube_(unused_shadow_map(GL_TEXTURE_CUBE_MAP)),
+      unused_map_(unused_shadow_map(GL_TEXTURE_2D)) {}
 
 void LightBatches::bind(const std::vector<FrameLight>& lights, std::size_t batch,
                         const ShadowMaps& shadows) {
@@ -41,8 +41,8 @@ void LightBatches::bind(const std::vector<FrameLight>& lights, std::size_t batch
         first < lights.size() ? std::min(kLightsPerBatch, lights.size() - first) : 0;
     data.count[0] = static_cast<std::int32_t>(count);
     for (std::size_t slot = 0; slot < kLightsPerBatch; ++slot) {
-        GLuint cube = dummy_cube_.id();
-        GLuint map_2d = dummy_map_.id();
+        GLuint cube = unused_cube_.id();
+        GLuint map_2d = unused_map_.id();
         if (slot < count) {
             const FrameLight& light = lights[first + slot];
             GpuLight& gpu = data.lights[slot];

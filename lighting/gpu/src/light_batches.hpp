@@ -24,13 +24,13 @@ class LightBatches {
         return (lights + kLightsPerBatch - 1) / kLightsPerBatch;
     }
     /// Uploads batch `batch` of `lights` and binds it with its shadow maps. Slots a light does
-    /// not use get 1 x 1 placeholder maps, so every sampler always has a complete texture.
+    /// not use get 1 x 1 unused maps, so every sampler always has a complete texture.
     void bind(const std::vector<FrameLight>& lights, std::size_t batch, const ShadowMaps& shadows);
 
   private:
     gl::Buffer block_;
-    gl::Texture dummy_cube_;
-    gl::Texture dummy_map_;
+    gl::Texture unused_cube_;
+    gl::Texture unused_map_;
 };
 
 }  // namespace luxel::lighting

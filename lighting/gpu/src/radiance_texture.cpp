@@ -17,7 +17,7 @@ void RadianceTexture::allocate(const RadianceAtlas& atlas) {
     glTextureParameteri(texture_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(texture_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(texture_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    // Unused corners of smaller pages and the placeholder layer read as black.
+    // Unused corners of smaller pages and the empty layer (no page yet) read as black.
     const float zero[3] = {0.0f, 0.0f, 0.0f};
     glClearTexImage(texture_.id(), 0, GL_RGB, GL_FLOAT, zero);
     gl::check_error("RadianceTexture allocate");
