@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "cube_scene.hpp"
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/core/animation_system.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
@@ -130,29 +131,12 @@ TEST(LightingSystem, NoGeneratorMeansNoCausticDataUntilOneIsAdded) {
     EXPECT_NE(game.lighting->plan().reason(Pass::Caustics).find("generator"), std::string::npos);
 
     // A glass cube on the west room's floor, at run time.
-    auto glass = std::make_shared<scene::Scene>();
     scene::Material material;
     material.transmission = 1.0f;
     material.ior = 1.5f;
     material.base_color = glm::vec4(1.0f);
     material.roughness = 0.0f;
-    glass->materials.push_back(material);
-    scene::Primitive cube;
-    const float h = 0.2f;
-    const glm::vec3 c[8] = {{-h, -h, -h}, {h, -h, -h}, {h, h, -h}, {-h, h, -h},
-                            {-h, -h, h},  {h, -h, h},  {h, h, h},  {-h, h, h}};
-    const int faces[6][4] = {{3, 2, 1, 0}, {4, 5, 6, 7}, {0, 4, 7, 3},
-                             {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}};
-    for (const auto& face : faces) {
-        const auto base = static_cast<std::uint32_t>(cube.positions.size());
-        for (int k = 0; k < 4; ++k) {
-            cube.positions.push_back(c[face[k]]);
-        }
-        cube.indices.insert(cube.indices.end(),
-                            {base, base + 1, base + 2, base, base + 2, base + 3});
-    }
-    cube.material = 0;
-    glass->meshes.push_back({"glass cube", {cube}});
+    const auto glass = luxel::testing::cube_scene(0.2f, material, "glass cube");
     const ecs::Entity entity = game.registry.create();
     game.registry.emplace<MeshInstance>(entity, glass, 0);
     game.registry.emplace<CausticGenerator>(entity, 1.5f, 1.0f, glm::vec3(1.0f));

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "cube_scene.hpp"
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/components.hpp"
 #include "luxel/lighting/core/animation_system.hpp"
@@ -24,27 +25,7 @@ std::shared_ptr<const scene::Scene> load_level(const std::string& name) {
 
 /// A 0.4 m diffuse cube as a one-mesh scene, for adding a moving object to a level.
 std::shared_ptr<const scene::Scene> cube_scene() {
-    auto s = std::make_shared<scene::Scene>();
-    scene::Material grey;
-    grey.metallic = 0.0f;
-    grey.base_color = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);
-    s->materials.push_back(grey);
-    scene::Primitive p;
-    const float h = 0.2f;
-    const glm::vec3 c[8] = {{-h, -h, -h}, {h, -h, -h}, {h, h, -h}, {-h, h, -h},
-                            {-h, -h, h},  {h, -h, h},  {h, h, h},  {-h, h, h}};
-    const int faces[6][4] = {{3, 2, 1, 0}, {4, 5, 6, 7}, {0, 4, 7, 3},
-                             {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}};
-    for (const auto& face : faces) {
-        const auto base = static_cast<std::uint32_t>(p.positions.size());
-        for (int k = 0; k < 4; ++k) {
-            p.positions.push_back(c[face[k]]);
-        }
-        p.indices.insert(p.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
-    }
-    p.material = 0;
-    s->meshes.push_back({"cube", {p}});
-    return s;
+    return luxel::testing::cube_scene(0.2f, luxel::testing::diffuse_material(0.6f));
 }
 
 struct Level {

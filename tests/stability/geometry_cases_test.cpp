@@ -6,6 +6,7 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "cube_scene.hpp"
 #include "luxel/lighting/core/surface_texels.hpp"
 #include "stability_support.hpp"
 
@@ -25,26 +26,7 @@ void switch_off_level_lights(ecs::Registry& registry) {
 
 /// A closed 0.3 m cube, faces outward: seen from inside, every face is a back face.
 std::shared_ptr<const scene::Scene> closed_cube() {
-    auto s = std::make_shared<scene::Scene>();
-    scene::Material grey;
-    grey.base_color = glm::vec4(0.6f, 0.6f, 0.6f, 1.0f);
-    s->materials.push_back(grey);
-    scene::Primitive p;
-    const float h = 0.15f;
-    const glm::vec3 c[8] = {{-h, -h, -h}, {h, -h, -h}, {h, h, -h}, {-h, h, -h},
-                            {-h, -h, h},  {h, -h, h},  {h, h, h},  {-h, h, h}};
-    const int faces[6][4] = {{3, 2, 1, 0}, {4, 5, 6, 7}, {0, 4, 7, 3},
-                             {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}};
-    for (const auto& face : faces) {
-        const auto base = static_cast<std::uint32_t>(p.positions.size());
-        for (int k = 0; k < 4; ++k) {
-            p.positions.push_back(c[face[k]]);
-        }
-        p.indices.insert(p.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
-    }
-    p.material = 0;
-    s->meshes.push_back({"closed cube", {p}});
-    return s;
+    return luxel::testing::cube_scene(0.15f, luxel::testing::diffuse_material(0.6f));
 }
 
 TEST(Geometry, ALightInsideAClosedBoxLeaksNothing) {
