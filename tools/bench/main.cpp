@@ -18,6 +18,7 @@
 #include "level.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
+#include "luxel/runtime/tool_main.hpp"
 #include "report.hpp"
 
 namespace {
@@ -116,14 +117,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const luxel::Error& e) {
-        std::cerr << "luxel-bench: error: " << e.what() << "\n";
-    } catch (const std::bad_alloc&) {
-        std::cerr << "luxel-bench: error: out of memory\n";
-    } catch (const std::exception& e) {
-        std::cerr << "luxel-bench: error: " << e.what() << "\n";
-    }
-    return 1;
+    return luxel::run_tool("luxel-bench", run, argc, argv);
 }

@@ -55,6 +55,23 @@ void add_switch(scene::Node& node, float period_seconds, float on_seconds, float
         {"period", period_seconds}, {"on", on_seconds}, {"phase", phase_seconds}};
 }
 
+/// A wall in the plane x = `x` spanning z in [-half_depth, half_depth] and y in [0, height],
+/// with a doorway |z| < door_half, y < door_height, in three pieces around it. It faces -x when
+/// `faces_negative_x`, else +x.
+scene::Primitive doorway_wall(float x, bool faces_negative_x, float half_depth, float door_half,
+                              float door_height, float height) {
+    auto face = [&](float z_low, float z_high, float y_low, float y_high) {
+        const glm::vec3 up(0.0f, y_high - y_low, 0.0f);
+        return faces_negative_x ? make_quad({x, y_low, z_low}, {0, 0, z_high - z_low}, up, 4, 4)
+                                : make_quad({x, y_low, z_high}, {0, 0, z_low - z_high}, up, 4, 4);
+    };
+    scene::Primitive wall;
+    append(wall, face(door_half, half_depth, 0.0f, height));
+    append(wall, face(-half_depth, -door_half, 0.0f, height));
+    append(wall, face(-door_half, door_half, door_height, height));
+    return wall;
+}
+
 }  // namespace
 
 scene::Scene make_cornell(const std::string& name, int floor_cells) {
@@ -158,16 +175,9 @@ scene::Scene make_two_rooms() {
         }
         // This room's face of the shared wall, in three pieces around the doorway; it faces -x
         // in the west room and +x in the east room.
-        scene::Primitive shared;
-        auto face = [&](float z_low, float z_high, float y_low, float y_high) {
-            const glm::vec3 up(0.0f, y_high - y_low, 0.0f);
-            return side == 0 ? make_quad({0, y_low, z_low}, {0, 0, z_high - z_low}, up, 4, 4)
-                             : make_quad({0, y_low, z_high}, {0, 0, z_low - z_high}, up, 4, 4);
-        };
-        append(shared, face(door_half, depth, 0.0f, height));
-        append(shared, face(-depth, -door_half, 0.0f, height));
-        append(shared, face(-door_half, door_half, door_height, height));
-        level.add_mesh_node(prefix + "shared wall", std::move(shared), walls);
+        level.add_mesh_node(prefix + "shared wall",
+                            doorway_wall(0.0f, side == 0, depth, door_half, door_height, height),
+                            walls);
     }
 
     // The door hangs on a hinge at (0, 0, -0.5) and swings open by 100 degrees and back.
@@ -273,20 +283,6 @@ scene::Scene make_sandbox() {
     const int shade = level.add_diffuse("lamp shade", glm::vec3(0.9f, 0.85f, 0.7f));
     const int sculpture_glass = level.add_material(glass("sculpture glass", 1.5f));
 
-    // A room's inner wall facing along `inward` (+1: faces +x, -1: faces -x) at x, with a
-    // doorway |z| < door_half, y < door_height.
-    auto doorway_wall = [&](float x, float facing) {
-        scene::Primitive wall;
-        auto face = [&](float z_low, float z_high, float y_low, float y_high) {
-            const glm::vec3 up(0.0f, y_high - y_low, 0.0f);
-            return facing < 0.0f ? make_quad({x, y_low, z_low}, {0, 0, z_high - z_low}, up, 4, 4)
-                                 : make_quad({x, y_low, z_high}, {0, 0, z_low - z_high}, up, 4, 4);
-        };
-        append(wall, face(door_half, depth, 0.0f, height));
-        append(wall, face(-depth, -door_half, 0.0f, height));
-        append(wall, face(-door_half, door_half, door_height, height));
-        return wall;
-    };
     auto room = [&](const std::string& prefix, float x0, float x1, int walls, bool west) {
         const float width = x1 - x0;
         level.add_mesh_node(prefix + "floor",
@@ -303,12 +299,16 @@ scene::Scene make_sandbox() {
             level.add_mesh_node(prefix + "end wall",
                                 make_quad({x0, 0, depth}, {0, 0, -2 * depth}, {0, height, 0}, 8, 6),
                                 walls);
-            level.add_mesh_node(prefix + "doorway wall", doorway_wall(x1, -1.0f), walls);
+            level.add_mesh_node(prefix + "doorway wall",
+                                doorway_wall(x1, true, depth, door_half, door_height, height),
+                                walls);
         } else {
             level.add_mesh_node(prefix + "end wall",
                                 make_quad({x1, 0, -depth}, {0, 0, 2 * depth}, {0, height, 0}, 8, 6),
                                 walls);
-            level.add_mesh_node(prefix + "doorway wall", doorway_wall(x0, 1.0f), walls);
+            level.add_mesh_node(prefix + "doorway wall",
+                                doorway_wall(x0, false, depth, door_half, door_height, height),
+                                walls);
         }
     };
     room("west ", -4.0f, 0.0f, sage, true);

@@ -5,9 +5,9 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <system_error>
 #include <iostream>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include <CLI/CLI.hpp>

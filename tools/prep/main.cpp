@@ -20,6 +20,7 @@
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/jobs.hpp"
 #include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/runtime/tool_main.hpp"
 
 namespace {
 
@@ -109,14 +110,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const luxel::Error& e) {
-        std::cerr << "luxel-prep: error: " << e.what() << "\n";
-    } catch (const std::bad_alloc&) {
-        std::cerr << "luxel-prep: error: out of memory\n";
-    } catch (const std::exception& e) {
-        std::cerr << "luxel-prep: error: " << e.what() << "\n";
-    }
-    return 1;
+    return luxel::run_tool("luxel-prep", run, argc, argv);
 }

@@ -22,6 +22,7 @@
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/image.hpp"
 #include "luxel/runtime/jobs.hpp"
+#include "luxel/runtime/tool_main.hpp"
 #include "options.hpp"
 
 namespace {
@@ -192,14 +193,5 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(argc, argv);
-    } catch (const luxel::Error& e) {
-        std::cerr << "luxel-ref: error: " << e.what() << "\n";
-    } catch (const std::bad_alloc&) {
-        std::cerr << "luxel-ref: error: out of memory\n";
-    } catch (const std::exception& e) {
-        std::cerr << "luxel-ref: error: " << e.what() << "\n";
-    }
-    return 1;
+    return luxel::run_tool("luxel-ref", run, argc, argv);
 }
