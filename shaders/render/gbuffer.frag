@@ -8,7 +8,10 @@ in vec3 v_normal;
 in vec2 v_texcoord0;
 in vec2 v_lightmap_uv;
 
-uniform vec3 u_albedo;         // diffuse albedo (linear, [0,1])
+uniform vec3 u_albedo;         // diffuse albedo factor (linear, [0,1])
+// The base-colour texture (GL_SRGB8_ALPHA8: sampling returns linear values), or a 1x1 white
+// one for untextured primitives; unit 15 is lighting/gpu's kBaseColorTextureUnit.
+layout(binding = 15) uniform sampler2D u_base_color;
 uniform vec3 u_emission;       // emitted radiance W/(m^2 sr)
 uniform vec4 u_specular;       // rgb: specular colour F0 (0: none), a: transmission
 uniform vec2 u_lightmap;       // x: IIM page layer (-1: none), y: 1 = irradiance, 0 = radiance
@@ -35,7 +38,9 @@ void main() {
     if (u_double_sided != 0 && dot(n, u_camera - v_position) < 0.0) {
         n = -n;  // a two-sided surface seen from its back is lit on that side
     }
-    out_albedo = vec4(u_albedo, any(greaterThan(u_specular.rgb, vec3(0.0))) ? 1.0 : 0.0);
+    // glTF: base colour = factor x texture (alpha ignored: every material is drawn opaque).
+    vec3 albedo = u_albedo * texture(u_base_color, v_texcoord0).rgb;
+    out_albedo = vec4(albedo, any(greaterThan(u_specular.rgb, vec3(0.0))) ? 1.0 : 0.0);
     out_normal = vec4(n, 0.0);
     out_position = vec4(v_position, 1.0);
     out_lightmap = vec4(v_lightmap_uv, u_lightmap);

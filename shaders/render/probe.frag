@@ -11,7 +11,10 @@ in vec3 v_normal;
 in vec2 v_texcoord0;
 in vec2 v_lightmap_uv;
 
-uniform vec3 u_albedo;
+uniform vec3 u_albedo;  // diffuse albedo factor
+// The base-colour texture or a 1x1 white one, as in render/gbuffer.frag (unit 15 is clear of
+// the shadow maps and IIM pages bound here).
+layout(binding = 15) uniform sampler2D u_base_color;
 uniform vec3 u_emission;
 uniform vec2 u_lightmap;  // page layer, content
 uniform vec3 u_camera;    // the probe's centre
@@ -27,7 +30,8 @@ void main() {
     if (dot(n, u_camera - v_position) < 0.0) {
         n = -n;  // the probe sees sheets from either side
     }
-    vec3 l = u_emission + lambert_radiance(u_albedo, batch_irradiance(v_position, n)) +
-             iim_radiance(v_lightmap_uv, u_lightmap.x, u_lightmap.y > 0.5, u_albedo);
+    vec3 albedo = u_albedo * texture(u_base_color, v_texcoord0).rgb;
+    vec3 l = u_emission + lambert_radiance(albedo, batch_irradiance(v_position, n)) +
+             iim_radiance(v_lightmap_uv, u_lightmap.x, u_lightmap.y > 0.5, albedo);
     out_radiance = vec4(l, 1.0);
 }

@@ -2,9 +2,28 @@
 
 #include <algorithm>
 
+#include <stb_image_write.h>
+
 #include "luxel/ecs/transform.hpp"
 
 namespace luxel::test {
+namespace {
+
+void append_bytes(void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<std::uint8_t>*>(context);
+    const auto* bytes = static_cast<const std::uint8_t*>(data);
+    out->insert(out->end(), bytes, bytes + size);
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_png(int width, int height, const std::vector<std::uint8_t>& rgba) {
+    std::vector<std::uint8_t> out;
+    if (stbi_write_png_to_func(append_bytes, &out, width, height, 4, rgba.data(), width * 4) == 0) {
+        out.clear();  // decoding it then fails with an error naming the image
+    }
+    return out;
+}
 
 std::unique_ptr<GlContext> make_render_context() {
     GlContextOptions options;
@@ -36,7 +55,9 @@ std::shared_ptr<scene::Scene> single_mesh_scene(scene::Primitive primitive, cons
     material.base_color = glm::vec4(albedo, 1.0f);
     material.metallic = 0.0f;
     if (textured) {
-        result->images.push_back({"white", "image/png", {}});
+        // A real 1x1 white PNG: the renderer and the photon tracer decode it, and white
+        // leaves the factor as the albedo.
+        result->images.push_back({"white", "image/png", encode_png(1, 1, {255, 255, 255, 255})});
         material.base_color_image = 0;
     }
     result->materials.push_back(material);

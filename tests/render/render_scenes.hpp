@@ -4,6 +4,7 @@
 // hand-built scenes (a lit plane, a blocker, light-mapped planes) in an ECS registry driven by
 // a real LightingSystem, and read-back of G-buffer textures.
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -35,6 +36,10 @@ namespace luxel::test {
 [[nodiscard]] std::shared_ptr<scene::Scene> single_mesh_scene(scene::Primitive primitive,
                                                               const glm::vec3& albedo,
                                                               bool textured = false);
+
+/// RGBA8 pixels (rows top first) encoded as a PNG in memory with stb_image_write.
+[[nodiscard]] std::vector<std::uint8_t> encode_png(int width, int height,
+                                                   const std::vector<std::uint8_t>& rgba);
 
 /// A light-map layout of one surface (primitive 0) covering a whole page of `page_size`.
 [[nodiscard]] scene::LightmapLayout whole_page_layout(int page_size, double area);

@@ -8,6 +8,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "luxel/ecs/hierarchy.hpp"
+#include "luxel/runtime/scene/image_decode.hpp"
 
 namespace luxel::lighting {
 namespace {
@@ -98,8 +99,9 @@ void IlluminationMaps::add_surface(std::uint32_t surface) {
         if (primitive.material >= 0) {
             const scene::Material& material =
                 instance->source->materials.at(static_cast<std::size_t>(primitive.material));
-            // The albedo the photon tracer bounces with, so the AIM and the photons agree.
-            mapped.albedo = glm::clamp(glm::vec3(material.base_color), 0.0f, 1.0f);
+            // The albedo the photon tracer bounces with (textured: factor x the texture's
+            // mean), so the AIM and the photons agree.
+            mapped.albedo = scene::mean_diffuse_albedo(*instance->source, material);
             mapped.content =
                 material.base_color_image >= 0 ? IimContent::Irradiance : IimContent::Radiance;
         }

@@ -6,6 +6,7 @@
 #include "luxel/ecs/hierarchy.hpp"
 #include "luxel/ecs/transform.hpp"
 #include "luxel/runtime/log.hpp"
+#include "luxel/runtime/scene/image_decode.hpp"
 
 namespace luxel::lighting {
 
@@ -17,9 +18,12 @@ struct PhotonWorld::LightRecord {
 
 namespace {
 
-TraceMaterial trace_material_of(const scene::Material& material) {
+/// Where a scene material becomes the material photons (and the CPU gather and the reference,
+/// which share this table) see. A textured material bounces with factor x the texture's mean
+/// linear colour: scene::mean_diffuse_albedo says why the mean is enough.
+TraceMaterial trace_material_of(const scene::Scene& scene, const scene::Material& material) {
     TraceMaterial traced;
-    traced.albedo = glm::clamp(glm::vec3(material.base_color), 0.0f, 1.0f);
+    traced.albedo = scene::mean_diffuse_albedo(scene, material);
     traced.ior = material.ior;
     if (material.transmission > 0.0f) {
         traced.scattering = Scattering::Dielectric;
@@ -105,7 +109,7 @@ std::uint32_t PhotonWorld::material_index(const scene::Scene* source, int materi
     const auto index = static_cast<std::uint32_t>(materials_.size());
     materials_.push_back(
         material >= 0 && source != nullptr
-            ? trace_material_of(source->materials.at(static_cast<std::size_t>(material)))
+            ? trace_material_of(*source, source->materials.at(static_cast<std::size_t>(material)))
             : TraceMaterial{});
     material_ids_.emplace(key, index);
     return index;

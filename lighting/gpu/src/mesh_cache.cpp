@@ -15,7 +15,26 @@ struct Vertex {
 };
 static_assert(sizeof(Vertex) == 40);
 
-GpuMesh upload(const std::shared_ptr<const scene::Scene>& source, const scene::Mesh& mesh) {
+/// The base-colour texture a primitive samples, or null: none without a textured material or
+/// without TEXCOORD_0 to sample it with.
+std::shared_ptr<const gl::Texture> base_color_of(const std::shared_ptr<const scene::Scene>& source,
+                                                 const scene::Primitive& primitive,
+                                                 MaterialTextures& textures) {
+    if (primitive.material < 0 ||
+        static_cast<std::size_t>(primitive.material) >= source->materials.size() ||
+        primitive.texcoords0.size() != primitive.positions.size() || primitive.positions.empty()) {
+        return nullptr;
+    }
+    const scene::Material& material =
+        source->materials[static_cast<std::size_t>(primitive.material)];
+    if (material.base_color_image < 0) {
+        return nullptr;
+    }
+    return textures.get(source, material.base_color_image);
+}
+
+GpuMesh upload(const std::shared_ptr<const scene::Scene>& source, const scene::Mesh& mesh,
+               MaterialTextures& textures) {
     std::vector<Vertex> vertices;
     std::vector<std::uint32_t> indices;
     GpuMesh gpu;
@@ -26,6 +45,7 @@ GpuMesh upload(const std::shared_ptr<const scene::Scene>& source, const scene::M
         range.first_index = indices.size();
         range.index_count = static_cast<GLsizei>(primitive.indices.size());
         range.material = primitive.material;
+        range.base_color = base_color_of(source, primitive, textures);
         const std::size_t count = primitive.positions.size();
         const bool normals = primitive.normals.size() == count;
         const bool uv0 = primitive.texcoords0.size() == count;
@@ -94,7 +114,7 @@ const GpuMesh& MeshCache::get(const MeshInstance& instance, std::uint64_t frame)
     const auto key = std::make_pair(instance.source.get(), instance.mesh);
     auto found = meshes_.find(key);
     if (found == meshes_.end()) {
-        found = meshes_.emplace(key, upload(instance.source, instance.geometry())).first;
+        found = meshes_.emplace(key, upload(instance.source, instance.geometry(), textures_)).first;
         ++uploads_;
     }
     found->second.last_used = frame;
@@ -105,6 +125,7 @@ void MeshCache::evict(std::uint64_t frame) {
     std::erase_if(meshes_, [&](const auto& entry) {
         return entry.second.last_used + kEvictAfterFrames < frame;
     });
+    textures_.evict();
 }
 
 }  // namespace luxel::lighting

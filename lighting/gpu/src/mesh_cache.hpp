@@ -10,6 +10,7 @@
 
 #include "luxel/lighting/components.hpp"
 #include "luxel/runtime/gl_objects.hpp"
+#include "material_textures.hpp"
 
 namespace luxel::lighting {
 
@@ -41,6 +42,9 @@ struct GpuPrimitive {
     std::size_t first_index = 0;
     GLsizei index_count = 0;
     int material = -1;
+    /// The material's base-colour texture, shared with every primitive using the image; null
+    /// when the material has none or the primitive has no TEXCOORD_0 (the factor alone).
+    std::shared_ptr<const gl::Texture> base_color;
 };
 
 /// A scene mesh on the GPU: one interleaved vertex buffer and one index buffer for all its
@@ -58,13 +62,16 @@ struct GpuMesh {
 
 /// GPU buffers per (scene, mesh): many entities instancing one mesh share one upload. Meshes
 /// are immutable (MeshInstance shares a const Scene), so an entry never needs re-uploading;
-/// entries unused for `kEvictAfterFrames` frames are freed.
+/// entries unused for `kEvictAfterFrames` frames are freed, and with them the base-colour
+/// textures (MaterialTextures, one per (scene, image)) that no remaining mesh uses.
 class MeshCache {
   public:
     /// The mesh of `instance`, uploaded on first use, marked used in `frame`.
     const GpuMesh& get(const MeshInstance& instance, std::uint64_t frame);
-    /// Frees meshes no entity has drawn for a while.
+    /// Frees meshes no entity has drawn for a while, and textures no mesh uses any more.
     void evict(std::uint64_t frame);
+    /// The 1x1 white texture untextured primitives sample.
+    GLuint white_texture() { return textures_.white(); }
 
     [[nodiscard]] std::size_t size() const { return meshes_.size(); }
     [[nodiscard]] std::uint64_t uploads() const { return uploads_; }
@@ -72,6 +79,7 @@ class MeshCache {
   private:
     static constexpr std::uint64_t kEvictAfterFrames = 120;
     std::map<std::pair<const scene::Scene*, int>, GpuMesh> meshes_;
+    MaterialTextures textures_;
     std::uint64_t uploads_ = 0;
 };
 

@@ -78,6 +78,11 @@ void build_draw_list(ecs::Registry& registry, const LightingSystem& lighting, Me
             draw.range = &item.mesh->primitives[p];
             draw.material =
                 material_of(*instance.source, draw.range->material, emission_scale, specular_pass);
+            // Specular materials draw no diffuse albedo (it is zero), so they need no texture.
+            draw.material.base_color_texture =
+                draw.range->base_color && draw.material.albedo != glm::vec3(0.0f)
+                    ? draw.range->base_color->id()
+                    : meshes.white_texture();
             item.specular = item.specular || draw.material.specular.r > 0.0f;
             const auto found = surface_of.find(std::make_pair(entity, static_cast<int>(p)));
             if (found != surface_of.end() && found->second < surface_page.size() &&

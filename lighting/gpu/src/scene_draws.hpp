@@ -14,9 +14,12 @@ class LightingSystem;
 
 /// What the G-buffer pass writes for one primitive (shaders/render/gbuffer.frag).
 struct DrawMaterial {
-    glm::vec3 albedo{0.0f};    ///< diffuse albedo, clamped to [0, 1] as the photon tracer does
-    glm::vec3 emission{0.0f};  ///< emitted radiance W/(m^2 sr), times the AreaLight's scale
-    glm::vec4 specular{0.0f};  ///< rgb: Fresnel F0 (0: not specular), a: transmission
+    glm::vec3 albedo{0.0f};  ///< diffuse albedo factor, clamped to [0, 1]
+    /// Sampled with TEXCOORD_0 and multiplied into `albedo` per pixel: the base-colour texture,
+    /// or MeshCache's 1x1 white one (never 0, so every draw can bind it unconditionally).
+    GLuint base_color_texture = 0;
+    glm::vec3 emission{0.0f};         ///< emitted radiance W/(m^2 sr), times the AreaLight's scale
+    glm::vec4 specular{0.0f};         ///< rgb: Fresnel F0 (0: not specular), a: transmission
     glm::vec2 lightmap{-1.0f, 0.0f};  ///< IIM page layer (-1: none), 1 = holds irradiance
     float ior = 1.5f;
     bool double_sided = false;

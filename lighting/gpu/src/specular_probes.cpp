@@ -10,6 +10,7 @@
 
 #include "cube_faces.hpp"
 #include "luxel/runtime/shader_library.hpp"
+#include "material_textures.hpp"
 
 namespace luxel::lighting {
 namespace {
@@ -84,6 +85,7 @@ void SpecularProbes::render_face(Probe& probe, int face, const DrawList& draws) 
                 continue;
             }
             program.set("u_albedo", primitive.material.albedo);
+            glBindTextureUnit(kBaseColorTextureUnit, primitive.material.base_color_texture);
             program.set("u_emission", primitive.material.emission);
             program.set("u_lightmap", primitive.material.lightmap);
             draw_range(*primitive.range);
