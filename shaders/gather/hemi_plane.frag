@@ -1,12 +1,15 @@
 #version 450 core
 // Hemi-plane gather, scene pass: the AIM radiance leaving each visible front face, read
-// bilinearly from its surface's light-map page (RadianceAtlas::sample on the GPU). Back faces
-// are the insides of walls and objects and send nothing; so do surfaces without a page.
+// bilinearly from its surface's light-map page, plus what the face emits (RadianceAtlas::sample
+// on the GPU). Back faces are the insides of walls and objects and send nothing; surfaces
+// without a page send only what they emit.
 
 in vec2 v_lightmap_uv;
 flat in int v_surface;
 
-// Per surface: x = layer (-1: no page), y = page size / layer size, zw = UV clamp range.
+// Per surface, two entries: [2s] x = layer (-1: no page), y = page size / layer size,
+// zw = UV clamp range; [2s + 1] rgb = the radiance the surface's front emits (area lights: the
+// radiance leaving a surface is what it emits plus what it reflects, RadianceAtlas::sample).
 layout(std430, binding = 1) readonly buffer SurfacePages {
     vec4 surface_pages[];
 };
@@ -19,12 +22,13 @@ layout(location = 0) out vec4 o_radiance;
 void main() {
     vec3 radiance = vec3(0.0);
     bool front = gl_FrontFacing != u_mirrored;
-    if (front && v_surface >= 0 && v_surface < surface_pages.length()) {
-        vec4 page = surface_pages[v_surface];
+    if (front && v_surface >= 0 && 2 * v_surface + 1 < surface_pages.length()) {
+        vec4 page = surface_pages[2 * v_surface];
         if (page.x >= 0.0) {
             vec2 uv = clamp(v_lightmap_uv, page.zz, page.ww) * page.y;
             radiance = max(textureLod(u_radiance, vec3(uv, page.x), 0.0).rgb, vec3(0.0));
         }
+        radiance += max(surface_pages[2 * v_surface + 1].rgb, vec3(0.0));
     }
     o_radiance = vec4(radiance, 1.0);
 }

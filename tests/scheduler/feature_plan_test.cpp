@@ -120,6 +120,22 @@ TEST(FeaturePlan, NoLightMeansNoLightingWork) {
     EXPECT_EQ(FeaturePlan{}.active_count(), 0U);
 }
 
+TEST(FeaturePlan, MapsStillHoldingLightAreClearedAfterTheLastLightGoesOff) {
+    SceneCensus c = busy_scene();
+    c.lights_enabled = 0;
+    c.maps_pending = true;
+    const FeaturePlan clearing = FeaturePlan::from(c);
+    EXPECT_FALSE(clearing.photon_tracing());
+    EXPECT_TRUE(clearing.aim());
+    EXPECT_TRUE(clearing.iim_gather());
+    EXPECT_TRUE(contains(clearing.reason(Pass::Aim), "clearing"));
+    EXPECT_FALSE(clearing.direct());
+    // Once cleared, nothing runs.
+    c.maps_pending = false;
+    EXPECT_FALSE(FeaturePlan::from(c).aim());
+    EXPECT_FALSE(FeaturePlan::from(c).iim_gather());
+}
+
 TEST(FeaturePlan, NoLightMappedSurfaceMeansNoGlobalPhotonsAimOrIim) {
     SceneCensus c = busy_scene();
     c.lightmapped_surfaces = 0;

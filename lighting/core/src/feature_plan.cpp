@@ -76,7 +76,11 @@ FeaturePlan::FeaturePlan(const SceneCensus& census) : census_(census) {
 
     // Global photons, AIM and IIM all live on light-mapped surfaces.
     auto surface_pass = [&](Pass pass, std::string_view what) {
-        if (!lit) {
+        if (!lit && c.maps_pending && surfaces && pass != Pass::PhotonTracing) {
+            set(pass, true,
+                "no light is enabled, but the light maps still hold the light of lights switched "
+                "off: clearing them");
+        } else if (!lit) {
             set(pass, false, no_light);
         } else if (!surfaces) {
             set(pass, false, "no light-mapped surface: " + std::string(what));

@@ -49,7 +49,8 @@ IlluminationMaps::IlluminationMaps(ecs::Registry& registry, PhotonWorld& world,
     : registry_(registry),
       world_(world),
       settings_(settings),
-      moves_(registry.observe<ecs::WorldTransform>()) {
+      moves_(registry.observe<ecs::WorldTransform>()),
+      area_changes_(registry.observe<AreaLight>()) {
     sync();
 }
 
@@ -106,7 +107,19 @@ void IlluminationMaps::add_surface(std::uint32_t surface) {
                 material.base_color_image >= 0 ? IimContent::Irradiance : IimContent::Radiance;
         }
     }
+    if (instance != nullptr && info.primitive >= 0) {
+        const auto& primitive =
+            instance->geometry().primitives.at(static_cast<std::size_t>(info.primitive));
+        if (primitive.material >= 0) {
+            const scene::Material& material =
+                instance->source->materials.at(static_cast<std::size_t>(primitive.material));
+            if (material.is_emissive()) {
+                mapped.material_emission = sanitized(material.emitted_radiance());
+            }
+        }
+    }
     aim_.surface_page.push_back(page);
+    aim_.surface_emission.push_back(glm::vec3(0.0f));
     if (page >= 0) {
         auto& owners = owners_[static_cast<std::size_t>(page)];
         const auto size = static_cast<std::size_t>(mapped.texels.page_size);
@@ -119,6 +132,27 @@ void IlluminationMaps::add_surface(std::uint32_t surface) {
     surfaces_.push_back(std::move(mapped));
     surfaces_of_[info.entity].push_back(surface);
     refresh_transform(surface);
+    if (refresh_emission(surface)) {
+        ++emission_version_;
+    }
+}
+
+bool IlluminationMaps::refresh_emission(std::uint32_t surface) {
+    const MapSurface& mapped = surfaces_[surface];
+    glm::vec3 emission(0.0f);
+    // Emission counts where the photon world emits photons for it: an entity with an enabled
+    // AreaLight (scene instantiation gives every emissive mesh one).
+    const auto* area =
+        registry_.valid(mapped.entity) ? registry_.try_get<AreaLight>(mapped.entity) : nullptr;
+    if (area != nullptr && area->enabled) {
+        emission = sanitized(mapped.material_emission * area->scale);
+    }
+    glm::vec3& current = aim_.surface_emission[surface];
+    if (current == emission) {
+        return false;
+    }
+    current = emission;
+    return true;
 }
 
 void IlluminationMaps::refresh_transform(std::uint32_t surface) {
@@ -138,6 +172,17 @@ void IlluminationMaps::sync() {
     for (auto s = static_cast<std::uint32_t>(surfaces_.size()); s < world_.surfaces().size(); ++s) {
         add_surface(s);
     }
+    area_changes_.consume([&](ecs::Entity entity, ecs::ChangeKind) {
+        const auto found = surfaces_of_.find(entity);
+        if (found == surfaces_of_.end()) {
+            return;
+        }
+        for (std::uint32_t surface : found->second) {
+            if (refresh_emission(surface)) {
+                ++emission_version_;
+            }
+        }
+    });
     moves_.consume([&](ecs::Entity entity, ecs::ChangeKind kind) {
         if (kind == ecs::ChangeKind::Destroyed) {
             return;
@@ -168,21 +213,37 @@ std::vector<GatherTexel> IlluminationMaps::world_texels(std::uint32_t surface) c
     return texels;
 }
 
+bool IlluminationMaps::needs_aim(std::uint32_t s) const {
+    const PhotonMap& map = world_.photon_map();
+    const MapSurface& mapped = surfaces_[s];
+    if (mapped.texels.texels.empty() || !registry_.valid(mapped.entity) ||
+        s >= map.surface_count()) {
+        return false;
+    }
+    const SurfacePhotons& photons = map.surface(s);
+    const double change = relative(photons.delta_full.value(), photons.stored_energy.value());
+    const bool in_progress = aim_pass_ && aim_pass_->surface == s;
+    return !mapped.aim_built || in_progress || change > settings_.aim_threshold;
+}
+
+bool IlluminationMaps::aims_current() const {
+    for (std::uint32_t s = 0; s < surfaces_.size(); ++s) {
+        if (needs_aim(s)) {
+            return false;
+        }
+    }
+    return true;
+}
+
 std::vector<MapRequest> IlluminationMaps::aim_requests() const {
     std::vector<MapRequest> requests;
     const PhotonMap& map = world_.photon_map();
     for (std::uint32_t s = 0; s < surfaces_.size(); ++s) {
-        const MapSurface& mapped = surfaces_[s];
-        if (mapped.texels.texels.empty() || !registry_.valid(mapped.entity) ||
-            s >= map.surface_count()) {
-            continue;
-        }
-        const SurfacePhotons& photons = map.surface(s);
-        const double delta = photons.delta_full.value();
-        const double change = relative(delta, photons.stored_energy.value());
-        const bool first = !mapped.aim_built;
-        const bool in_progress = aim_pass_ && aim_pass_->surface == s;
-        if (first || in_progress || change > settings_.aim_threshold) {
+        if (needs_aim(s)) {
+            const MapSurface& mapped = surfaces_[s];
+            const double delta = map.surface(s).delta_full.value();
+            const bool first = !mapped.aim_built;
+            const bool in_progress = aim_pass_ && aim_pass_->surface == s;
             // The pass in progress, then unbuilt maps, then the surfaces whose light changed
             // most per square metre.
             double priority = delta / safe_area(mapped.texels.area);
@@ -337,6 +398,7 @@ std::vector<MapRequest> IlluminationMaps::gather_requests() const {
     std::vector<MapRequest> requests;
     const PhotonMap& map = world_.photon_map();
     const bool ready = aims_ready();
+    const bool current = aims_current();
     for (std::uint32_t s = 0; s < surfaces_.size(); ++s) {
         const MapSurface& mapped = surfaces_[s];
         if (mapped.texels.texels.empty() || !registry_.valid(mapped.entity) ||
@@ -345,8 +407,11 @@ std::vector<MapRequest> IlluminationMaps::gather_requests() const {
         }
         const SurfacePhotons& photons = map.surface(s);
         const double delta = photons.delta_indirect.value();
+        // An area light's emission changed: its direct light on every surface comes from the
+        // gather, so every surface gathers again.
         const bool changed =
-            relative(delta, photons.stored_energy.value()) > settings_.iim_threshold;
+            relative(delta, photons.stored_energy.value()) > settings_.iim_threshold ||
+            mapped.gathered_emission != emission_version_ || (mapped.gathered_stale && current);
         if (mapped.gather_in_progress || (ready && (!mapped.gathered_once || changed))) {
             // Passes in progress first, the furthest along first, so passes finish one after
             // another instead of all crawling together (a pass shows only when complete); then
@@ -387,6 +452,9 @@ std::size_t IlluminationMaps::gather(std::uint32_t surface, std::size_t max_texe
         mapped.gather_in_progress = true;
         mapped.gather_cursor = 0;
         mapped.pass_irradiance.assign(total, glm::vec3(0.0f));
+        mapped.gathered_emission = emission_version_;
+        mapped.pass_aim_rebuilds = counters_.aim_rebuilds;
+        mapped.gathered_stale = !aims_current();
         world_.photon_map().reset_indirect_delta(surface);
         ++counters_.gather_passes;
     }
@@ -409,6 +477,9 @@ std::size_t IlluminationMaps::gather(std::uint32_t surface, std::size_t max_texe
 /// light varies slowly, so a small filter removes most of the noise for little bias.
 void IlluminationMaps::commit_pass(std::uint32_t surface, double now_seconds) {
     MapSurface& mapped = surfaces_[surface];
+    if (counters_.aim_rebuilds != mapped.pass_aim_rebuilds) {
+        mapped.gathered_stale = true;  // an AIM changed under the pass
+    }
     const auto page_id = static_cast<std::size_t>(aim_.surface_page[surface]);
     IimPage& page = iim_pages_[page_id];
     const auto& texels = mapped.texels.texels;

@@ -73,9 +73,10 @@ SceneCensus LightingSystem::take_census() const {
     }
     census.specular_materials = specular;
     const std::uint64_t probe_cycle = config_.photons.selective.per_group;
+    census.maps_pending = !maps_->aim_requests().empty() || !maps_->gather_requests().empty();
     census.converged = photons_->pending_groups().empty() && !photons_->caustics_pending() &&
-                       maps_->aim_requests().empty() && maps_->gather_requests().empty() &&
-                       scheduler_.pending_total() == 0 && frames_since_change_ >= probe_cycle;
+                       !census.maps_pending && scheduler_.pending_total() == 0 &&
+                       frames_since_change_ >= probe_cycle;
     return census;
 }
 

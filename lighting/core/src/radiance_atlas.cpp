@@ -51,14 +51,19 @@ glm::vec3 RadiancePage::sample(const glm::vec2& uv) const {
 }
 
 glm::vec3 RadianceAtlas::sample(std::int32_t surface, const glm::vec2& uv) const {
-    if (surface < 0 || static_cast<std::size_t>(surface) >= surface_page.size()) {
+    if (surface < 0) {
         return glm::vec3(0.0f);
     }
-    const std::int32_t page = surface_page[static_cast<std::size_t>(surface)];
-    if (page < 0 || static_cast<std::size_t>(page) >= pages.size()) {
-        return glm::vec3(0.0f);
+    const auto index = static_cast<std::size_t>(surface);
+    glm::vec3 radiance =
+        index < surface_emission.size() ? surface_emission[index] : glm::vec3(0.0f);
+    if (index < surface_page.size()) {
+        const std::int32_t page = surface_page[index];
+        if (page >= 0 && static_cast<std::size_t>(page) < pages.size()) {
+            radiance += pages[static_cast<std::size_t>(page)].sample(uv);
+        }
     }
-    return pages[static_cast<std::size_t>(page)].sample(uv);
+    return radiance;
 }
 
 }  // namespace luxel::lighting

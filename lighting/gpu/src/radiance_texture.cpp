@@ -53,23 +53,31 @@ void RadianceTexture::sync(const RadianceAtlas& atlas) {
         }
     }
 
+    // Two vec4 per surface: its page (layer or -1, page size / layer size, the UV clamp
+    // range), then the radiance its front emits (RadianceAtlas::surface_emission).
     std::vector<glm::vec4> table;
-    table.reserve(std::max<std::size_t>(atlas.surface_page.size(), 1));
-    for (const std::int32_t page : atlas.surface_page) {
+    const std::size_t surfaces = atlas.surface_page.size();
+    table.reserve(2 * std::max<std::size_t>(surfaces, 1));
+    for (std::size_t s = 0; s < surfaces; ++s) {
+        const std::int32_t page = atlas.surface_page[s];
+        const glm::vec3 emission =
+            s < atlas.surface_emission.size() ? atlas.surface_emission[s] : glm::vec3(0.0f);
         if (page < 0 || static_cast<std::size_t>(page) >= atlas.pages.size() ||
             atlas.pages[static_cast<std::size_t>(page)].size <= 0) {
             table.emplace_back(-1.0f, 0.0f, 0.0f, 0.0f);
-            continue;
+        } else {
+            const auto size = static_cast<float>(atlas.pages[static_cast<std::size_t>(page)].size);
+            // Clamping the UV to the outermost texel centres keeps both bilinear taps on the
+            // page (RadiancePage::sample clamps the same way); the scale then maps the page's
+            // UV into its corner of the larger layer.
+            table.emplace_back(static_cast<float>(page), size / static_cast<float>(layer_size_),
+                               0.5f / size, (size - 0.5f) / size);
         }
-        const auto size = static_cast<float>(atlas.pages[static_cast<std::size_t>(page)].size);
-        // Clamping the UV to the outermost texel centres keeps both bilinear taps on the page
-        // (RadiancePage::sample clamps the same way); the scale then maps the page's UV into
-        // its corner of the larger layer.
-        table.emplace_back(static_cast<float>(page), size / static_cast<float>(layer_size_),
-                           0.5f / size, (size - 0.5f) / size);
+        table.emplace_back(emission, 0.0f);
     }
     if (table.empty()) {
         table.emplace_back(-1.0f, 0.0f, 0.0f, 0.0f);
+        table.emplace_back(0.0f);
     }
     if (!surface_table_ || table != table_) {
         // Recreated when the surface count changes: the shader bounds its lookups by the

@@ -12,9 +12,10 @@ namespace luxel::lighting {
 
 /// A RadianceAtlas on the GPU: every page is one layer of an RGB32F 2D texture array (sized
 /// for the largest page; smaller pages sit in the corner of their layer), sampled bilinearly.
-/// A surface table, one vec4 per surface (layer or -1, page size / layer size, and the UV
-/// clamp range that keeps both bilinear taps on the page), lets the shader find a surface's
-/// page: RadianceAtlas::sample's lookup, texel for texel.
+/// A surface table, two vec4 per surface (layer or -1, page size / layer size, and the UV
+/// clamp range that keeps both bilinear taps on the page; then the radiance the surface
+/// emits), lets the shader find a surface's page: RadianceAtlas::sample's lookup, texel for
+/// texel.
 class RadianceTexture {
   public:
     /// Uploads what changed since the last call: the whole array when the page count or a page

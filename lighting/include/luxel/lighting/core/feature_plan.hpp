@@ -21,6 +21,9 @@ struct SceneCensus {
     std::uint32_t specular_materials = 0;
     /// Static geometry added or removed this frame: the photons it affects are found by probes.
     std::uint32_t geometry_changes = 0;
+    /// AIM rebuilds or IIM gathers requested: with no light enabled, what the maps still hold
+    /// of the lights switched off must be cleared (the passes stay on until it is).
+    bool maps_pending = false;
     /// Nothing pending in the scheduler and every delta (delta_f, delta_i) under its threshold.
     bool converged = false;
 

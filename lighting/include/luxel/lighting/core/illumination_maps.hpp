@@ -13,6 +13,7 @@
 #include "luxel/ecs/observer.hpp"
 #include "luxel/ecs/registry.hpp"
 #include "luxel/ecs/transform.hpp"
+#include "luxel/lighting/components.hpp"
 #include "luxel/lighting/core/gather.hpp"
 #include "luxel/lighting/core/iim_page.hpp"
 #include "luxel/lighting/core/photon_density.hpp"
@@ -63,6 +64,18 @@ struct MapSurface {
     SurfaceTexels texels;  ///< object space
     SurfaceFootprint footprint;
     glm::vec3 albedo{0.5f};
+    /// The material's emitted radiance (before AreaLight's scale and switch; 0 when not
+    /// emissive). RadianceAtlas::surface_emission holds what the surface emits now.
+    glm::vec3 material_emission{0.0f};
+    /// IlluminationMaps::emission_version() when this surface's last gather pass started.
+    std::uint64_t gathered_emission = 0;
+    /// The last pass read an AIM that was out of date (a rebuild was pending when it started,
+    /// or completed while it ran): it gathers again once every AIM is current. Without this a
+    /// pass that starts between a retrace and the AIM rebuild it causes consumes delta_i and
+    /// leaves the IIM on the old AIM for good.
+    bool gathered_stale = false;
+    /// MapCounters::aim_rebuilds when the pass started.
+    std::uint64_t pass_aim_rebuilds = 0;
     IimContent content = IimContent::Radiance;
     glm::mat4 to_world{1.0f};
     /// World metres per page texel (the object-space scale times the transform's).
@@ -129,6 +142,8 @@ class IlluminationMaps {
 
     /// Whether every surface holding photons has had its first AIM (gather passes wait).
     [[nodiscard]] bool aims_ready() const;
+    /// Whether no AIM needs rebuilding (aim_requests() is empty).
+    [[nodiscard]] bool aims_current() const;
 
     /// The AIM pages both gather backends read.
     [[nodiscard]] const RadianceAtlas& aim() const { return aim_; }
@@ -138,6 +153,10 @@ class IlluminationMaps {
     [[nodiscard]] std::span<const MapSurface> surfaces() const { return surfaces_; }
     [[nodiscard]] const IlluminationSettings& settings() const { return settings_; }
     [[nodiscard]] const MapCounters& counters() const { return counters_; }
+    /// Bumped whenever a surface's emission changes (an area light switched, rescaled, added):
+    /// the direct light of area lights reaches the IIM through the gather, so every surface
+    /// gathers again (gather_requests) after a change.
+    [[nodiscard]] std::uint64_t emission_version() const { return emission_version_; }
     /// The world-space texel centres of a surface (what its gathers start from).
     [[nodiscard]] std::vector<GatherTexel> world_texels(std::uint32_t surface) const;
 
@@ -146,6 +165,12 @@ class IlluminationMaps {
 
     void add_surface(std::uint32_t surface);
     void refresh_transform(std::uint32_t surface);
+    /// Sets aim_.surface_emission[surface] from its material and its entity's AreaLight;
+    /// returns whether it changed.
+    bool refresh_emission(std::uint32_t surface);
+    /// Whether surface `s` needs an AIM rebuild: never built, in progress, or delta_f over the
+    /// threshold.
+    [[nodiscard]] bool needs_aim(std::uint32_t s) const;
     void commit_pass(std::uint32_t surface, double now_seconds);
     /// Fills the padding texels around `surface`'s texels on `page` with the mean of their
     /// owned neighbours, so bilinear lookups at a chart's border do not fetch black.
@@ -163,6 +188,8 @@ class IlluminationMaps {
     std::map<std::pair<const scene::Scene*, int>, std::int32_t> pages_;
     std::map<ecs::Entity, std::vector<std::uint32_t>> surfaces_of_;
     ecs::Observer<ecs::WorldTransform> moves_;
+    ecs::Observer<AreaLight> area_changes_;
+    std::uint64_t emission_version_ = 0;
     MapCounters counters_;
     std::unique_ptr<AimPass> aim_pass_;
 };

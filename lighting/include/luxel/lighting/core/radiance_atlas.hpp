@@ -48,8 +48,14 @@ struct RadianceAtlas {
     std::vector<RadiancePage> pages;
     std::vector<std::int32_t> surface_page;  ///< per surface; -1: no light map (reads as 0)
 
-    /// AIM radiance at a hit on `surface` with light-map UV `uv`; zero for surfaces without
-    /// a page.
+    /// Per surface: the radiance W/(m^2 sr) its front emits (an area light's emissive
+    /// material times AreaLight::scale, 0 when switched off or not emissive); missing entries
+    /// emit nothing. The pages hold what a surface reflects; the gathers see both, because the
+    /// radiance leaving a surface is what it emits plus what it reflects. That is how an area
+    /// light's direct light reaches the IIM (see IlluminationMaps).
+    std::vector<glm::vec3> surface_emission;
+    /// Radiance leaving the front of `surface` at light-map UV `uv`: the AIM (zero for
+    /// surfaces without a page) plus the surface's emission.
     [[nodiscard]] glm::vec3 sample(std::int32_t surface, const glm::vec2& uv) const;
 };
 
