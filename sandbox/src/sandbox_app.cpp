@@ -65,26 +65,28 @@ SandboxApp::FrameResult SandboxApp::frame(double time, double dt,
     const lighting::LightingStats& stats = lighting_->update(budget_ms_, time);
     result.lighting_ms = lighting_watch.elapsed_ms();
 
-    // 5. Render. The caustic pass exists only while the FeaturePlan has caustic data; it
-    // splats against the depth of the frame just drawn and is composited into the next one
-    // (one frame late: the renderer draws its G-buffer and composites in one call).
+    // 5. Render. The caustic pass exists only while the FeaturePlan has caustic data; the
+    // renderer calls it between its G-buffer and its composite, so the photons are splatted
+    // against this frame's depth and composited into this frame.
     const bool want_caustics = lighting_->plan().caustic_data();
     if (want_caustics && !caustics_) {
         caustics_.emplace(lighting::CausticPassSettings{}, glm::ivec2(width_, height_), *shaders_);
+        renderer_->set_caustic_stage(
+            [this](const lighting::FrameCamera& frame_camera, GLuint depth) {
+                caustics_->upload(lighting_->photons().caustics());
+                lighting::CausticCamera caustic_camera;
+                caustic_camera.view = frame_camera.view;
+                caustic_camera.projection = frame_camera.projection;
+                caustic_camera.viewport = {width_, height_};
+                caustics_->render(caustic_camera, depth);
+                return lighting::CausticInput{caustics_->irradiance_texture(), true};
+            });
     } else if (!want_caustics && caustics_) {
+        renderer_->set_caustic_stage({});
         renderer_->set_caustics({});
         caustics_.reset();
     }
     const lighting::FrameTimings& timings = renderer_->render(camera, time);
-    if (caustics_) {
-        caustics_->upload(lighting_->photons().caustics());
-        lighting::CausticCamera caustic_camera;
-        caustic_camera.view = camera.view;
-        caustic_camera.projection = camera.projection;
-        caustic_camera.viewport = {width_, height_};
-        caustics_->render(caustic_camera, renderer_->depth_texture());
-        renderer_->set_caustics({caustics_->irradiance_texture(), true});
-    }
 
     RunReport::Frame& report = result.report;
     report.lighting_ms = result.lighting_ms;

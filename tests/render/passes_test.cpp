@@ -176,4 +176,49 @@ TEST_F(Passes, CausticInputIsIrradianceTimesAlbedoOverPi) {
     EXPECT_EQ(sum(renderer.read(FrameImage::Frame)), 0.0);
 }
 
+TEST_F(Passes, ACausticStageIsCompositedIntoTheFrameItWasDrawnFor) {
+    test::RenderWorld world;
+    world.add_mesh(test::single_mesh_scene(test::horizontal_square(glm::vec3(0.0f), 2.0f),
+                                           glm::vec3(0.8f, 0.4f, 0.2f)));
+    world.start();
+    world.update();
+    FrameRenderer renderer(world.registry, *world.lighting, settings());
+    // Frame n's stage fills the caustic irradiance with n W/m^2; it must see frame n's depth
+    // (the square drawn in the middle of the screen) and show up in frame n itself.
+    gl::Texture caustics = gl::Texture::create_2d(GL_RGBA32F, kSize, kSize);
+    int calls = 0;
+    float centre_depth = -1.0f;
+    renderer.set_caustic_stage([&](const FrameCamera&, GLuint depth) {
+        ++calls;
+        EXPECT_EQ(depth, renderer.depth_texture());
+        glGetTextureSubImage(depth, 0, kSize / 2, kSize / 2, 0, 1, 1, 1, GL_DEPTH_COMPONENT,
+                             GL_FLOAT, sizeof(float), &centre_depth);
+        const std::vector<glm::vec4> values(static_cast<std::size_t>(kSize * kSize),
+                                            glm::vec4(static_cast<float>(calls)));
+        glTextureSubImage2D(caustics.id(), 0, 0, 0, kSize, kSize, GL_RGBA, GL_FLOAT,
+                            values.data());
+        return CausticInput{caustics.id(), true};
+    });
+    for (int frame = 1; frame <= 3; ++frame) {
+        renderer.render(camera(), world.time);
+        EXPECT_EQ(calls, frame) << "one call per frame";
+        EXPECT_GT(centre_depth, 0.0f);
+        EXPECT_LT(centre_depth, 1.0f) << "the stage sees this frame's geometry";
+        const Image image = renderer.read(FrameImage::Frame);
+        const float expected = 0.8f * static_cast<float>(frame) / 3.14159265f;
+        EXPECT_NEAR(image.pixel(kSize / 2, kSize / 2).r, expected, 2e-3f * expected)
+            << "frame " << frame << " shows its own caustics";
+    }
+    // Caustics switched off: the stage is not called.
+    renderer.set_terms({.caustics = false});
+    renderer.render(camera(), world.time);
+    EXPECT_EQ(calls, 3);
+    renderer.set_terms({});
+    renderer.set_caustic_stage({});
+    renderer.set_caustics({});
+    renderer.render(camera(), world.time);
+    EXPECT_EQ(calls, 3);
+    EXPECT_EQ(sum(renderer.read(FrameImage::Frame)), 0.0);
+}
+
 }  // namespace

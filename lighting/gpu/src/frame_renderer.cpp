@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "frame_lights.hpp"
@@ -90,6 +91,7 @@ struct FrameRenderer::Impl {
     FrameCounters counters;
     FrameTerms terms;
     CausticInput caustics;
+    CausticStage caustic_stage;
     LightBatches batches;
     gl::Texture black = gl::Texture::create_2d(GL_RGBA16F, 1, 1);
     ecs::Observer<MeshInstance> mesh_changes;
@@ -100,8 +102,7 @@ struct FrameRenderer::Impl {
     std::size_t previous_light_count = 0;
     std::uint64_t previous_page_uploads = 0;
 
-    Impl(ecs::Registry& r, LightingSystem& l, const FrameSettings& s,
-         const ShaderLibrary& shaders)
+    Impl(ecs::Registry& r, LightingSystem& l, const FrameSettings& s, const ShaderLibrary& shaders)
         : registry(r),
           lighting(l),
           settings(s),
@@ -362,6 +363,15 @@ struct FrameRenderer::Impl {
         previous_page_uploads = lightmaps.uploads();
         counters.specular_probes = probes.count();
         counters.specular_faces = probes.faces_rendered();
+        if (caustic_stage && terms.caustics) {
+            // The stage draws with its own state and timers: outside the composite's query.
+            caustics = caustic_stage(camera, targets.depth.id());
+            glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+            glDisable(GL_DEPTH_TEST);
+            glDisable(GL_BLEND);
+            glDisable(GL_CULL_FACE);
+            glDisable(GL_SCISSOR_TEST);
+        }
         glBindVertexArray(fullscreen.id());
 
         timer.begin(RenderPass::Composite);
@@ -403,6 +413,9 @@ const FrameTerms& FrameRenderer::terms() const {
 }
 void FrameRenderer::set_caustics(const CausticInput& caustics) {
     impl_->caustics = caustics;
+}
+void FrameRenderer::set_caustic_stage(CausticStage stage) {
+    impl_->caustic_stage = std::move(stage);
 }
 
 void FrameRenderer::resize(int width, int height) {

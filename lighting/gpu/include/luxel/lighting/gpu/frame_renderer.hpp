@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string_view>
 
@@ -83,6 +84,12 @@ struct CausticInput {
     bool irradiance = true;
 };
 
+/// Draws the caustic term of the frame being rendered: called by render() after the G-buffer
+/// and before the composite, with the frame's camera and the G-buffer's depth texture
+/// (DEPTH_COMPONENT32F, the camera's projection) to depth-test splats against. What it returns
+/// is composited into the same frame. It may change any GL state: render() restores its own.
+using CausticStage = std::function<CausticInput(const FrameCamera& camera, GLuint depth_texture)>;
+
 /// Which image read() returns (all linear, rows top first).
 enum class FrameImage : std::uint8_t {
     Frame,     ///< the composed frame L
@@ -97,7 +104,7 @@ enum class FrameImage : std::uint8_t {
 ///
 ///     FrameRenderer renderer(registry, lighting, {.width = 1280, .height = 720});
 ///     each frame, after lighting.update(budget, t):
-///         renderer.set_caustics({caustic_texture, true});   // optional
+///         renderer.set_caustic_stage(...);   // optional: CausticPass on this frame's depth
 ///         const FrameTimings& times = renderer.render(camera, t);
 ///         tone-map renderer.frame_texture() for display, or renderer.read(FrameImage::Frame)
 ///
@@ -120,8 +127,7 @@ enum class FrameImage : std::uint8_t {
 class FrameRenderer {
   public:
     /// Loads the shaders from the default ShaderLibrary search paths.
-    FrameRenderer(ecs::Registry& registry, LightingSystem& lighting,
-                  FrameSettings settings = {});
+    FrameRenderer(ecs::Registry& registry, LightingSystem& lighting, FrameSettings settings = {});
     FrameRenderer(ecs::Registry& registry, LightingSystem& lighting, FrameSettings settings,
                   const ShaderLibrary& shaders);
     ~FrameRenderer();
@@ -135,8 +141,11 @@ class FrameRenderer {
 
     void set_terms(const FrameTerms& terms);
     [[nodiscard]] const FrameTerms& terms() const;
-    /// The caustic term of the next frames ({} to remove it).
+    /// A caustic term made elsewhere, composited into the next frames ({} to remove it).
     void set_caustics(const CausticInput& caustics);
+    /// The caustic term made during each frame (see CausticStage; {} to remove it). While a
+    /// stage is set it replaces set_caustics().
+    void set_caustic_stage(CausticStage stage);
     /// Reallocates the frame's targets.
     void resize(int width, int height);
 
