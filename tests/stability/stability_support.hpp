@@ -15,6 +15,7 @@
 #include "luxel/lighting/core/animation_system.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
 #include "luxel/lighting/core/scene_instance.hpp"
+#include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/scene/gltf.hpp"
 
 namespace luxel::testing {
@@ -33,13 +34,17 @@ struct LitLevel {
     std::unique_ptr<lighting::LightingSystem> lighting;
     double time = 0.0;
 
-    LitLevel(scene::Scene scene, lighting::LightingConfig config, bool animate = false) {
+    /// `clock` times the scheduler's work units: a ManualClock that never advances makes every
+    /// unit cost nothing, so each frame does all the work queued (deterministic, whatever the
+    /// machine's load).
+    LitLevel(scene::Scene scene, lighting::LightingConfig config, bool animate = false,
+             const Clock& clock = SteadyClock::instance()) {
         lighting::InstantiateOptions options;
         options.play_animations = animate;
         instance = lighting::instantiate(registry, std::make_shared<scene::Scene>(std::move(scene)),
                                          options);
         transforms.update();
-        lighting = std::make_unique<lighting::LightingSystem>(registry, jobs, config);
+        lighting = std::make_unique<lighting::LightingSystem>(registry, jobs, config, clock);
     }
 
     const lighting::LightingStats& frame(double budget_ms, double dt = 1.0 / 30.0) {

@@ -30,7 +30,10 @@ FrameTargets::FrameTargets(int w, int h) : width(w), height(h) {
     normal = target_texture(GL_RGBA16F, w, h);
     position = target_texture(GL_RGBA32F, w, h);
     lightmap = target_texture(GL_RGBA32F, w, h);
-    emission = target_texture(GL_RGBA16F, w, h);
+    // Radiance scales with the light's power: 32-bit, because half floats stop at 65,504 and
+    // lose everything below 6e-8 (docs/STABILITY.md, extreme powers). Albedo, normal and F0
+    // are bounded material values and keep 16 bits.
+    emission = target_texture(GL_RGBA32F, w, h);
     specular = target_texture(GL_RGBA16F, w, h);
     depth = target_texture(GL_DEPTH_COMPONENT32F, w, h);
     gbuffer = gl::Framebuffer::create();

@@ -43,7 +43,8 @@ void SpecularProbes::invalidate(const Bounds& /*bounds*/) {
 SpecularProbes::Probe SpecularProbes::allocate() const {
     Probe probe;
     probe.cube = gl::Texture::create(GL_TEXTURE_CUBE_MAP);
-    glTextureStorage2D(probe.cube.id(), 1, GL_RGBA16F, size_, size_);
+    // Radiance: 32-bit like every radiance target (half floats overflow at 65,504).
+    glTextureStorage2D(probe.cube.id(), 1, GL_RGBA32F, size_, size_);
     glTextureParameteri(probe.cube.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(probe.cube.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(probe.cube.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
