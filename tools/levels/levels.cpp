@@ -222,7 +222,14 @@ scene::Scene make_caustics() {
     const int sphere_glass = level.add_material(glass("glass", 1.5f));
     const int water = level.add_material(glass("water", 1.33f, {0.9f, 0.97f, 1.0f}));
 
-    level.add_mesh_node("floor", make_quad({-3, 0, 3}, {6, 0, 0}, {0, 0, -6}, 12, 12), floor_white);
+    // The floor, 6 x 6 m, with the pool's 2 x 2 m opening (x in [-1, 1], z in [0.5, 2.5]) left
+    // out: four strips around it.
+    scene::Primitive floor;
+    append(floor, make_quad({-3, 0, 0.5f}, {6, 0, 0}, {0, 0, -3.5f}, 12, 7));     // behind
+    append(floor, make_quad({-3, 0, 3}, {6, 0, 0}, {0, 0, -0.5f}, 12, 1));        // in front
+    append(floor, make_quad({-3, 0, 2.5f}, {2, 0, 0}, {0, 0, -2}, 4, 4));         // left
+    append(floor, make_quad({1, 0, 2.5f}, {2, 0, 0}, {0, 0, -2}, 4, 4));          // right
+    level.add_mesh_node("floor", std::move(floor), floor_white);
     // The brass ring: an open cylinder 1 m across on the floor.
     level.add_mesh_node("brass ring", make_open_cylinder(0.5f, 0.3f, 96), brass_material, -1,
                         {-1.5f, 0.0f, -0.5f});
@@ -234,10 +241,15 @@ scene::Scene make_caustics() {
     level.add_mesh_node("box", std::move(box), box_white, -1, {1.5f, 0.0f, -1.0f});
     level.add_mesh_node("glass sphere", make_sphere(0.3f, 48, 24), sphere_glass, -1,
                         {1.5f, 0.3f, -1.0f});
-    // A pool: a tiled floor patch 40 cm below a 2 x 2 m water surface whose waves are driven
+    // A pool: a tiled basin 40 cm deep under a 2 x 2 m water surface whose waves are driven
     // by the wave system from the node's extras (docs/LEVELS.md).
-    level.add_mesh_node("pool floor", make_quad({-1.0f, -0.4f, 2.5f}, {2, 0, 0}, {0, 0, -2}, 8, 8),
-                        pool_tiles, -1, {0.0f, 0.0f, 0.0f});
+    scene::Primitive pool;
+    append(pool, make_quad({-1.0f, -0.4f, 2.5f}, {2, 0, 0}, {0, 0, -2}, 8, 8));  // floor
+    append(pool, make_quad({-1.0f, -0.4f, 0.5f}, {2, 0, 0}, {0, 0.4f, 0}, 8, 2));  // walls,
+    append(pool, make_quad({1.0f, -0.4f, 2.5f}, {-2, 0, 0}, {0, 0.4f, 0}, 8, 2));  // facing in
+    append(pool, make_quad({-1.0f, -0.4f, 2.5f}, {0, 0, -2}, {0, 0.4f, 0}, 8, 2));
+    append(pool, make_quad({1.0f, -0.4f, 0.5f}, {0, 0, 2}, {0, 0.4f, 0}, 8, 2));
+    level.add_mesh_node("pool", std::move(pool), pool_tiles, -1, {0.0f, 0.0f, 0.0f});
     const int surface = level.add_mesh_node(
         "water surface", make_quad({-1.0f, 0, 2.5f}, {2, 0, 0}, {0, 0, -2}, 48, 48), water);
     level.node(surface).flags.dynamic = true;
@@ -251,15 +263,20 @@ scene::Scene make_caustics() {
                    as_key(glm::vec3(0.0f, 0.01f, 0.0f)), as_key(glm::vec3(0.0f, -0.02f, 0.0f)),
                    as_key(glm::vec3(0))});
 
+    // The ring spot grazes the ring at 10.6 degrees: light that clears the near rim (0.3 m)
+    // reaches the far inside wall and is thrown back across the ring's floor at the same low
+    // slope, where the reflections of the curved wall focus into the nephroid (the coffee-cup
+    // caustic). From higher up the reflections land in a thin band at the foot of the wall.
     scene::Light spot =
-        scene::Light::spot_from_power(glm::vec3(120.0f), glm::radians(25.0f), glm::radians(40.0f));
+        scene::Light::spot_from_power(glm::vec3(120.0f), glm::radians(20.0f), glm::radians(35.0f));
     spot.name = "ring spot";
-    level.add_light(spot, {-2.6f, 2.2f, -0.5f}, aim({1.1f, -2.2f, 0.0f}));
+    level.add_light(spot, {-3.4f, 0.6f, -0.5f}, aim({2.4f, -0.45f, 0.0f}));
     level.add_light(point_light("box light", 30.0f), {1.5f, 2.2f, -0.3f});
     scene::Light sun = scene::Light::directional_from_irradiance(glm::vec3(3.0f));
     sun.name = "sun";
     level.add_light(sun, {0.0f, 5.0f, 0.0f}, aim({0.3f, -1.0f, -0.2f}));
-    level.add_camera("camera", {0.0f, 2.6f, 5.2f}, {0.0f, 0.2f, 0.0f}, glm::radians(55.0f));
+    // High enough to see the floor inside the ring.
+    level.add_camera("camera", {0.0f, 3.6f, 4.4f}, {-0.2f, 0.0f, -0.3f}, glm::radians(55.0f));
     return level.finish();
 }
 
