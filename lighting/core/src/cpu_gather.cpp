@@ -85,7 +85,12 @@ glm::vec3 CpuGatherer::gather_one(const GatherTexel& texel) const {
     }
     const glm::vec3 normal = texel.normal / normal_length;
     const glm::vec3 origin = offset_ray_origin(texel.position, normal);
-    const glm::dvec2 rotation = rotation_for(texel.position);
+    // A new rotation per pass (the R2 sequence's irrational steps): averaged passes sample
+    // the hemisphere where earlier ones did not.
+    glm::dvec2 rotation = rotation_for(texel.position);
+    rotation +=
+        static_cast<double>(texel.pass) * glm::dvec2(0.7548776662466927, 0.5698402909980532);
+    rotation -= glm::floor(rotation);
     // cosine_direction(normal, frac(halton2(i) + rotation)), with the tangent frame built once
     // per texel and the azimuth's rotation applied to the tabulated (cos, sin) by the angle
     // sum (exact: the azimuth is periodic, so its wrap-around changes nothing).

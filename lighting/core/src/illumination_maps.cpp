@@ -394,6 +394,23 @@ bool IlluminationMaps::aims_ready() const {
     return true;
 }
 
+bool IlluminationMaps::lighting_changed(std::uint32_t s, bool aims_are_current) const {
+    const SurfacePhotons& photons = world_.photon_map().surface(s);
+    const MapSurface& mapped = surfaces_[s];
+    // An area light's emission changed: its direct light on every surface comes from the
+    // gather, so every surface gathers again.
+    return relative(photons.delta_indirect.value(), photons.stored_energy.value()) >
+               settings_.iim_threshold ||
+           mapped.gathered_emission != emission_version_ ||
+           (mapped.gathered_stale && aims_are_current);
+}
+
+bool IlluminationMaps::wants_refinement(std::uint32_t s) const {
+    const MapSurface& mapped = surfaces_[s];
+    return refine_ && mapped.gathered_once && !mapped.gathered_stale &&
+           mapped.passes_averaged < settings_.refine_passes;
+}
+
 std::vector<MapRequest> IlluminationMaps::gather_requests() const {
     std::vector<MapRequest> requests;
     const PhotonMap& map = world_.photon_map();
@@ -405,18 +422,20 @@ std::vector<MapRequest> IlluminationMaps::gather_requests() const {
             s >= map.surface_count()) {
             continue;
         }
-        const SurfacePhotons& photons = map.surface(s);
-        const double delta = photons.delta_indirect.value();
-        // An area light's emission changed: its direct light on every surface comes from the
-        // gather, so every surface gathers again.
-        const bool changed =
-            relative(delta, photons.stored_energy.value()) > settings_.iim_threshold ||
-            mapped.gathered_emission != emission_version_ || (mapped.gathered_stale && current);
-        if (mapped.gather_in_progress || (ready && (!mapped.gathered_once || changed))) {
+        const double delta = map.surface(s).delta_indirect.value();
+        const bool changed = lighting_changed(s, current);
+        // Refinement only over current AIMs: an average of passes over different AIMs would
+        // mix old light into new.
+        const bool refine = !changed && current && wants_refinement(s);
+        if (mapped.gather_in_progress || (ready && (!mapped.gathered_once || changed || refine))) {
             // Passes in progress first, the furthest along first, so passes finish one after
             // another instead of all crawling together (a pass shows only when complete); then
-            // surfaces never gathered; then the largest delta_i / area.
+            // surfaces never gathered; then the largest delta_i / area; refinement last, the
+            // surfaces with the fewest passes averaged first.
             double priority = delta / safe_area(mapped.texels.area);
+            if (!changed && mapped.gathered_once) {
+                priority = -static_cast<double>(mapped.passes_averaged);
+            }
             if (!mapped.gathered_once) {
                 priority = std::numeric_limits<double>::max() / 4.0;
             }
@@ -452,15 +471,22 @@ std::size_t IlluminationMaps::gather(std::uint32_t surface, std::size_t max_texe
         mapped.gather_in_progress = true;
         mapped.gather_cursor = 0;
         mapped.pass_irradiance.assign(total, glm::vec3(0.0f));
+        const bool current = aims_current();
+        mapped.pass_refines = mapped.gathered_once && !lighting_changed(surface, current) &&
+                              current && wants_refinement(surface);
+        ++mapped.passes_started;
         mapped.gathered_emission = emission_version_;
         mapped.pass_aim_rebuilds = counters_.aim_rebuilds;
-        mapped.gathered_stale = !aims_current();
+        mapped.gathered_stale = !current;
         world_.photon_map().reset_indirect_delta(surface);
         ++counters_.gather_passes;
     }
     const std::size_t first = mapped.gather_cursor;
     const std::size_t count = std::min(max_texels, total - first);
-    const std::vector<GatherTexel> all = world_texels(surface);
+    std::vector<GatherTexel> all = world_texels(surface);
+    for (GatherTexel& texel : all) {
+        texel.pass = mapped.passes_started;
+    }
     const std::span<const GatherTexel> batch(all.data() + first, count);
     gatherer.gather(batch, std::span<glm::vec3>(mapped.pass_irradiance.data() + first, count));
     mapped.gather_cursor = first + count;
@@ -503,6 +529,15 @@ void IlluminationMaps::commit_pass(std::uint32_t surface, double now_seconds) {
               static_cast<std::size_t>(texels[i].x - x0)] = static_cast<std::int32_t>(i);
     }
     const int radius = std::max(settings_.iim_filter_radius, 0);
+    const bool refining = mapped.pass_refines && mapped.passes_averaged > 0 &&
+                          mapped.mean_irradiance.size() == texels.size();
+    // The mean is kept only while more passes may be averaged into it.
+    const bool keep_mean = refine_ && settings_.refine_passes > 1;
+    if (keep_mean) {
+        mapped.mean_irradiance.resize(texels.size());
+    } else {
+        mapped.mean_irradiance = {};
+    }
     for (std::size_t i = 0; i < texels.size(); ++i) {
         glm::dvec3 sum(0.0);
         double weights = 0.0;
@@ -526,7 +561,15 @@ void IlluminationMaps::commit_pass(std::uint32_t surface, double now_seconds) {
                 weights += w;
             }
         }
-        const glm::vec3 e = weights > 0.0 ? glm::vec3(sum / weights) : glm::vec3(0.0f);
+        glm::vec3 e = weights > 0.0 ? glm::vec3(sum / weights) : glm::vec3(0.0f);
+        if (refining) {
+            // The running mean of the passes, in double so a long run of them does not drift.
+            const double n = static_cast<double>(mapped.passes_averaged);
+            e = glm::vec3((glm::dvec3(mapped.mean_irradiance[i]) * n + glm::dvec3(e)) / (n + 1.0));
+        }
+        if (keep_mean) {
+            mapped.mean_irradiance[i] = e;
+        }
         const glm::vec3 value = mapped.content == IimContent::Irradiance
                                     ? e
                                     : mapped.albedo * e * glm::one_over_pi<float>();
@@ -554,6 +597,10 @@ void IlluminationMaps::commit_pass(std::uint32_t surface, double now_seconds) {
     const int top = std::max(y0 - 1, 0);
     page.current.mark_dirty(
         {left, top, std::min(x1 + 2, size) - left, std::min(y1 + 2, size) - top});
+    mapped.passes_averaged = refining ? mapped.passes_averaged + 1 : 1;
+    if (mapped.passes_averaged >= settings_.refine_passes) {
+        mapped.mean_irradiance = {};  // done refining: the IIM holds the mean
+    }
     mapped.gather_in_progress = false;
     mapped.gathered_once = true;
     mapped.pass_irradiance.clear();

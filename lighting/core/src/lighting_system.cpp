@@ -6,6 +6,11 @@
 namespace luxel::lighting {
 namespace {
 
+/// Slices of at most `slice` texels that cover `texels` (slice >= 1).
+std::size_t slices(std::size_t texels, std::size_t slice) {
+    return (texels + slice - 1) / slice;
+}
+
 /// Within one kind, earlier requests (the maps order them by delta / area) get a priority in
 /// (1, 2]; the scheduler's per-kind weights decide between kinds.
 double rank_priority(std::size_t rank, std::size_t count) {
@@ -30,6 +35,7 @@ LightingSystem::LightingSystem(ecs::Registry& registry, JobSystem& jobs, Lightin
       plan_(FeaturePlan::from({})) {
     // Gather rays follow mirrors and glass with the photon world's own optics.
     cpu_gatherer_->set_materials(&photons_->materials());
+    maps_->set_refinement(gatherer_->refines());
 }
 
 LightingSystem::~LightingSystem() = default;
@@ -51,6 +57,7 @@ int LightingSystem::warm_up(double now_seconds, double max_ms) {
 
 void LightingSystem::set_gatherer(IrradianceGatherer* gatherer) {
     gatherer_ = gatherer != nullptr ? gatherer : cpu_gatherer_.get();
+    maps_->set_refinement(gatherer_->refines());
 }
 
 SceneCensus LightingSystem::take_census() const {
@@ -168,14 +175,16 @@ void LightingSystem::queue_work() {
     // keeps growing while its light keeps changing, which ages it). Units tied to surfaces
     // would each continue whatever pass is in progress and lose their place in the queue.
     const std::size_t slice = std::max<std::uint32_t>(config_.texels_per_aim_unit, 1);
-    std::size_t aim_texels = 0;
+    // One unit per slice of each requested surface: a unit never crosses to the next surface,
+    // so a slice larger than a surface still takes one unit per surface.
+    std::size_t aim_slices = 0;
     if (plan_.aim()) {
         for (const MapRequest& request : maps_->aim_requests()) {
-            aim_texels += maps_->surfaces()[request.surface].texels.texels.size();
+            aim_slices += slices(maps_->surfaces()[request.surface].texels.texels.size(), slice);
         }
     }
     constexpr std::size_t kMaxAimUnits = 64;  // a frame never has room for more
-    const std::size_t aim_units = std::min((aim_texels + slice - 1) / slice, kMaxAimUnits);
+    const std::size_t aim_units = std::min(aim_slices, kMaxAimUnits);
     for (std::size_t unit = 0; unit < aim_units; ++unit) {
         scheduler_.enqueue({WorkKind::AimRebuild, unit, rank_priority(unit, aim_units),
                             [this, slice] {
@@ -194,15 +203,15 @@ void LightingSystem::queue_work() {
         std::max<std::uint32_t>(config_.texels_per_gather_unit, 1);
     // Gathers, like AIM rebuilds, are slices of "the next gather work" (the maps' first request:
     // the pass furthest along), so passes complete one after another.
-    std::size_t gather_texels = 0;
+    std::size_t gather_slices = 0;
     if (plan_.iim_gather()) {
         for (const MapRequest& request : maps_->gather_requests()) {
-            gather_texels += maps_->surfaces()[request.surface].texels.texels.size();
+            gather_slices +=
+                slices(maps_->surfaces()[request.surface].texels.texels.size(), texels_per_unit);
         }
     }
     constexpr std::size_t kMaxGatherUnits = 256;  // a frame never has room for more
-    const std::size_t gather_units =
-        std::min((gather_texels + texels_per_unit - 1) / texels_per_unit, kMaxGatherUnits);
+    const std::size_t gather_units = std::min(gather_slices, kMaxGatherUnits);
     for (std::size_t unit = 0; unit < gather_units; ++unit) {
         scheduler_.enqueue({WorkKind::IimGather, unit, rank_priority(unit, gather_units),
                             [this, texels_per_unit] {

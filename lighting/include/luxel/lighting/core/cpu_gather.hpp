@@ -40,6 +40,8 @@ class CpuGatherer final : public IrradianceGatherer {
     void set_materials(const std::vector<TraceMaterial>* materials) { materials_ = materials; }
 
     [[nodiscard]] std::string_view name() const override { return "cpu"; }
+    /// Each pass rotates the ray pattern anew (GatherTexel::pass).
+    [[nodiscard]] bool refines() const override { return true; }
     void gather(std::span<const GatherTexel> texels, std::span<glm::vec3> irradiance) override;
 
     /// Irradiance at one texel (what gather() does per texel).

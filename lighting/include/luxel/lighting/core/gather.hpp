@@ -16,6 +16,9 @@ namespace luxel::lighting {
 struct GatherTexel {
     glm::vec3 position{0.0f};
     glm::vec3 normal{0.0f, 1.0f, 0.0f};  ///< unit, the side light is gathered from
+    /// Which pass over this texel this is: a sampling gatherer takes new samples for each, so
+    /// that passes averaged together (IlluminationSettings::refine_passes) lower the noise.
+    std::uint32_t pass = 0;
 };
 
 class IrradianceGatherer {
@@ -23,9 +26,14 @@ class IrradianceGatherer {
     virtual ~IrradianceGatherer() = default;
     [[nodiscard]] virtual std::string_view name() const = 0;
     /// Irradiance (W/m^2 per channel) at each texel, from the radiance the atlas holds for
-    /// the surfaces the hemisphere sees (not the texel's own emission or direct light).
-    /// `irradiance` has one entry per texel. Never NaN or negative.
+    /// the surfaces the hemisphere sees (what they emit and reflect; not the texel's own
+    /// direct light from punctual lights). `irradiance` has one entry per texel. Never NaN or
+    /// negative.
     virtual void gather(std::span<const GatherTexel> texels, std::span<glm::vec3> irradiance) = 0;
+    /// Whether passes with a different GatherTexel::pass give independent estimates, so that
+    /// averaging them converges (a sampling gatherer: yes; a deterministic one: no, and the
+    /// maps then do not refine).
+    [[nodiscard]] virtual bool refines() const { return false; }
 };
 
 /// The fraction of the cosine-weighted hemisphere a hemi-plane of half-width `a` at unit

@@ -50,6 +50,13 @@ struct IlluminationSettings {
     /// A completed gather pass is filtered over the surface's own texels with a tent of this
     /// radius (texels; 0: none) before it fades in: docs/RESULTS.md measures the trade.
     int iim_filter_radius = 2;
+    /// While a surface's lighting stays unchanged, it is gathered again until this many passes
+    /// are averaged in its IIM (1: one pass, no refinement). Each pass takes new samples
+    /// (GatherTexel::pass), so the gather's noise falls as 1 / sqrt(passes); refinement
+    /// requests come after every other request, so they use budget that would otherwise go
+    /// idle, and they stop once done. Only gatherers that sample refine (IrradianceGatherer::
+    /// refines()); docs/RESULTS.md measures the trade.
+    std::uint32_t refine_passes = 8;
 };
 
 /// A piece of work the scheduler can order: a surface and its priority (delta / area, W/m^2).
@@ -76,6 +83,14 @@ struct MapSurface {
     bool gathered_stale = false;
     /// MapCounters::aim_rebuilds when the pass started.
     std::uint64_t pass_aim_rebuilds = 0;
+    /// Passes started on this surface (each gathers with new samples).
+    std::uint32_t passes_started = 0;
+    /// The pass in progress refines (averages into) the IIM instead of replacing it.
+    bool pass_refines = false;
+    /// Passes averaged in the IIM since its lighting last changed, and their filtered mean
+    /// irradiance per texel (kept only while refining is possible).
+    std::uint32_t passes_averaged = 0;
+    std::vector<glm::vec3> mean_irradiance;
     IimContent content = IimContent::Radiance;
     glm::mat4 to_world{1.0f};
     /// World metres per page texel (the object-space scale times the transform's).
@@ -144,6 +159,9 @@ class IlluminationMaps {
     [[nodiscard]] bool aims_ready() const;
     /// Whether no AIM needs rebuilding (aim_requests() is empty).
     [[nodiscard]] bool aims_current() const;
+    /// Whether passes over unchanged lighting are averaged (set from the gatherer in use:
+    /// IrradianceGatherer::refines(); LightingSystem does it).
+    void set_refinement(bool refine) { refine_ = refine; }
 
     /// The AIM pages both gather backends read.
     [[nodiscard]] const RadianceAtlas& aim() const { return aim_; }
@@ -171,6 +189,11 @@ class IlluminationMaps {
     /// Whether surface `s` needs an AIM rebuild: never built, in progress, or delta_f over the
     /// threshold.
     [[nodiscard]] bool needs_aim(std::uint32_t s) const;
+    /// Whether what surface `s` gathers has changed since its last pass (delta_i over the
+    /// threshold, an emission changed, or the pass read a stale AIM that is current now).
+    [[nodiscard]] bool lighting_changed(std::uint32_t s, bool aims_are_current) const;
+    /// Whether surface `s` wants a refinement pass.
+    [[nodiscard]] bool wants_refinement(std::uint32_t s) const;
     void commit_pass(std::uint32_t surface, double now_seconds);
     /// Fills the padding texels around `surface`'s texels on `page` with the mean of their
     /// owned neighbours, so bilinear lookups at a chart's border do not fetch black.
@@ -190,6 +213,7 @@ class IlluminationMaps {
     ecs::Observer<ecs::WorldTransform> moves_;
     ecs::Observer<AreaLight> area_changes_;
     std::uint64_t emission_version_ = 0;
+    bool refine_ = false;
     MapCounters counters_;
     std::unique_ptr<AimPass> aim_pass_;
 };
