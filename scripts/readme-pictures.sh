@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Renders the README's pictures with luxel-sandbox itself: the sandbox level from two points of
-# its scripted camera path, with every lighting term and with each term left out.
+# its scripted camera path, with every lighting term and with each term left out; and the
+# cornell and caustics levels with every term and with their caustics alone.
 #
 #   scripts/readme-pictures.sh [BUILD_DIR]      (default: build; needs BUILD_DIR/bin/luxel-sandbox)
 #
@@ -41,6 +42,24 @@ for view in "${views[@]}"; do
             exposure="$(sed -n 's/.*"exposure": *\([0-9.e+-]*\).*/\1/p' "$work/$name/report.json")"
         fi
         cp "$work/$name/frame_0019.png" "$out/$name.png"
+        echo "wrote docs/images/sandbox/$name.png"
+    done
+done
+
+# The thesis scene and the caustics level from their own cameras: every term, and the caustic
+# term alone (the light focused by the glass sphere, the brass ring and the water). 40 frames:
+# the caustic photons arrive in slices over the first frames.
+for level in cornell caustics; do
+    exposure=0
+    for variant in "all:all" "caustics:caustics"; do
+        name="$level-${variant%%:*}"
+        "$sandbox" --gl egl --level "$level" --size 640x360 --frames 40 --camera fixed \
+            --terms "${variant##*:}" --png-every 0 --exposure "$exposure" --out "$work/$name" \
+            > /dev/null 2>&1
+        if [[ "$exposure" == 0 ]]; then
+            exposure="$(sed -n 's/.*"exposure": *\([0-9.e+-]*\).*/\1/p' "$work/$name/report.json")"
+        fi
+        cp "$work/$name/frame_0039.png" "$out/$name.png"
         echo "wrote docs/images/sandbox/$name.png"
     done
 done

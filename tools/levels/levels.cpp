@@ -271,7 +271,9 @@ scene::Scene make_caustics() {
         scene::Light::spot_from_power(glm::vec3(120.0f), glm::radians(20.0f), glm::radians(35.0f));
     spot.name = "ring spot";
     level.add_light(spot, {-3.4f, 0.6f, -0.5f}, aim({2.4f, -0.45f, 0.0f}));
-    level.add_light(point_light("box light", 30.0f), {1.5f, 2.2f, -0.3f});
+    // Above the box's back wall: the sphere's focus lands on the floor in front of the sphere,
+    // where the camera sees it (from straight above it would hide under the sphere).
+    level.add_light(point_light("box light", 30.0f), {1.5f, 1.6f, -1.5f});
     scene::Light sun = scene::Light::directional_from_irradiance(glm::vec3(3.0f));
     sun.name = "sun";
     level.add_light(sun, {0.0f, 5.0f, 0.0f}, aim({0.3f, -1.0f, -0.2f}));
