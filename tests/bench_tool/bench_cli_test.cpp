@@ -1,7 +1,7 @@
 // The luxel-bench executable: errors that name the flag or level at fault, a tiny run that
-// writes every output with consistent columns, and the reference cache reused by a second run.
+// writes every output with consistent columns, and the references (light maps and frames)
+// reused from the cache by a second run. The image and backend columns: bench_image_test.cpp.
 
-#include <cstdio>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -9,52 +9,17 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "bench_outputs.hpp"
 #include "luxel/runtime/image.hpp"
-#include "run_command.hpp"
 #include "temp_dir.hpp"
 
 namespace {
 
 using luxel::testing::CommandResult;
+using luxel::testing::count;
+using luxel::testing::luxel_bench;
 using luxel::testing::quoted;
-
-CommandResult luxel_bench(const std::string& arguments) {
-    return luxel::testing::run_command(LUXEL_BENCH_EXECUTABLE, arguments);
-}
-
-std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path) {
-    std::vector<std::vector<std::string>> rows;
-    std::ifstream in(path);
-    std::string line;
-    while (std::getline(in, line)) {
-        // RFC 4180 cells: quoted ones may hold commas and doubled quotes.
-        std::vector<std::string> cells(1);
-        bool quoted_cell = false;
-        for (std::size_t i = 0; i < line.size(); ++i) {
-            const char c = line[i];
-            if (quoted_cell && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-                cells.back() += '"';
-                ++i;
-            } else if (c == '"') {
-                quoted_cell = !quoted_cell;
-            } else if (c == ',' && !quoted_cell) {
-                cells.emplace_back();
-            } else {
-                cells.back() += c;
-            }
-        }
-        rows.push_back(cells);
-    }
-    return rows;
-}
-
-std::size_t count(const std::string& text, const std::string& what) {
-    std::size_t n = 0;
-    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) {
-        ++n;
-    }
-    return n;
-}
+using luxel::testing::read_csv;
 
 TEST(BenchCli, ABadFlagIsRejectedByName) {
     const CommandResult run = luxel_bench("--level cornell --bogus 3");
@@ -96,11 +61,14 @@ TEST(BenchCli, ATinyRunWritesEveryOutputAndASecondReusesTheReference) {
     const std::filesystem::path out = dir / "out";
     const std::string arguments =
         "--level cornell --budgets 8 --frames 4 --after 3 --checkpoint 2 --ref-photons 100000 "
-        "--ref-caustic-photons 50000 --ref-spp 1 --sweep rays=16 --threads 2 --out " +
+        "--ref-caustic-photons 50000 --ref-spp 1 --image 32x24 --image-spp 4 --sweep rays=16 "
+        "--threads 2 --out " +
         quoted(out);
     const CommandResult first = luxel_bench(arguments);
     ASSERT_EQ(first.exit_code, 0) << first.output;
-    EXPECT_EQ(count(first.output, "computing reference"), 2u) << first.output;
+    // Light maps and a frame, before and after the change.
+    EXPECT_EQ(count(first.output, "computing reference frame"), 2u) << first.output;
+    EXPECT_EQ(count(first.output, "computing reference"), 4u) << first.output;
 
     const auto runs = read_csv(out / "runs.csv");
     ASSERT_EQ(runs.size(), 3u);  // header, paper @ 8 ms, rays=16 @ 8 ms
@@ -133,7 +101,8 @@ TEST(BenchCli, ATinyRunWritesEveryOutputAndASecondReusesTheReference) {
     EXPECT_EQ(json["runs"][0]["frame_ms"].size(), 4u + 3u);
     EXPECT_EQ(json["level"], "cornell");
 
-    for (const char* png : {"indirect_vs_ms.png", "caustic_vs_ms.png", "after_change.png"}) {
+    for (const char* png :
+         {"indirect_vs_ms.png", "caustic_vs_ms.png", "image_vs_ms.png", "after_change.png"}) {
         const luxel::Image8 image = luxel::read_png(out / png);
         EXPECT_EQ(image.width, 900) << png;
         EXPECT_EQ(image.height, 560) << png;
@@ -148,7 +117,8 @@ TEST(BenchCli, ATinyRunWritesEveryOutputAndASecondReusesTheReference) {
     const CommandResult second = luxel_bench(arguments);
     ASSERT_EQ(second.exit_code, 0) << second.output;
     EXPECT_EQ(count(second.output, "computing reference"), 0u) << second.output;
-    EXPECT_EQ(count(second.output, "from cache"), 4u) << second.output;
+    // Each of the two runs reads both poses' light maps and frames.
+    EXPECT_EQ(count(second.output, "from cache"), 8u) << second.output;
 }
 
 }  // namespace

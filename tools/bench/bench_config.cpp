@@ -35,7 +35,8 @@ std::string BenchConfig::knobs() const {
     std::ostringstream out;
     out << "photons=" << groups << "x" << per_group << " aim_n=" << aim_n << " rays=" << rays
         << " texels_per_unit=" << texels_per_unit << " filter=" << filter
-        << " caustics=" << caustic_photons << "x" << caustic_slices;
+        << " caustics=" << caustic_photons << "x" << caustic_slices << " backend=" << backend
+        << " kernel=" << kernel;
     return out.str();
 }
 
@@ -67,6 +68,10 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.texels_per_unit = whole(value);
             } else if (sweep.knob == "filter") {
                 c.filter = whole(value);
+            } else if (sweep.knob == "backend") {
+                c.backend = value;
+            } else if (sweep.knob == "kernel") {
+                c.kernel = value;
             } else {
                 continue;  // budget: handled above
             }

@@ -24,6 +24,12 @@ struct BenchConfig {
     std::uint32_t filter = 2;                ///< IIM filter radius in texels (luxel's default)
     std::uint32_t caustic_photons = 10'000;  ///< per (generator, light) pair; the paper's
     std::uint32_t caustic_slices = 8;        ///< ... over 8 frames
+    /// The final-gather backend: "cpu" (Embree rays, `rays` per texel) or "gpu" (the
+    /// hemi-plane, HemiPlaneGatherer, in the bench's GL context; `rays` does not apply).
+    std::string backend = "cpu";
+    /// The screen-space caustic filter of the frame (CausticPass): larsen, box, cone (the round
+    /// cone) or world (the world-space cone). Changes only the image and its caustic pass time.
+    std::string kernel = "larsen";
 
     [[nodiscard]] lighting::LightingConfig lighting() const;
     /// "groups=77 per_group=40 ..." for logs and the Markdown table.

@@ -71,6 +71,15 @@ Sweep parse_sweep(const std::string& text) {
             if (v < 1.0 || v != std::floor(v)) {
                 throw Error(what + ": '" + value + "' is not a whole number >= 1");
             }
+        } else if (sweep.knob == "backend") {
+            if (value != "cpu" && value != "gpu") {
+                throw Error(what + ": '" + value + "' is not a gather backend (cpu, gpu)");
+            }
+        } else if (sweep.knob == "kernel") {
+            if (value != "larsen" && value != "box" && value != "cone" && value != "world") {
+                throw Error(what + ": '" + value +
+                            "' is not a caustic kernel (larsen, box, cone, world)");
+            }
         } else if (sweep.knob == "filter") {
             const double v = number(value, what);
             if (v < 0.0 || v > 16.0 || v != std::floor(v)) {
@@ -79,7 +88,7 @@ Sweep parse_sweep(const std::string& text) {
         } else {
             throw Error("--sweep " + sweep.knob +
                         ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, filter, "
-                        "caustics)");
+                        "caustics, backend, kernel)");
         }
     }
     return sweep;
@@ -118,6 +127,24 @@ std::vector<double> parse_budgets(const std::string& text) {
     return budgets;
 }
 
+void parse_image_size(const std::string& text, ImageSpec& image) {
+    const auto parts = split(text, 'x');
+    if (parts.size() != 2) {
+        throw Error("--image: '" + text + "' is not WIDTHxHEIGHT (e.g. 160x120)");
+    }
+    int size[2] = {0, 0};
+    for (std::size_t i = 0; i < 2; ++i) {
+        const double v = number(parts[i], "--image " + text);
+        // 4096: a reference frame of more pixels would take hours at any useful spp.
+        if (v < 1.0 || v > 4096.0 || v != std::floor(v)) {
+            throw Error("--image: '" + text + "' needs whole numbers of pixels in 1..4096");
+        }
+        size[i] = static_cast<int>(v);
+    }
+    image.width = size[0];
+    image.height = size[1];
+}
+
 void validate(const Options& options) {
     if (options.frames < 1) {
         throw Error("--frames: need at least one frame");
@@ -133,6 +160,16 @@ void validate(const Options& options) {
     }
     if (options.reference.spp < 1) {
         throw Error("--ref-spp: need at least one sample");
+    }
+    if (options.image.spp < 1) {
+        throw Error("--image-spp: need at least one sample per pixel");
+    }
+    for (const Sweep& sweep : options.sweeps) {
+        if (sweep.knob == "kernel" && !options.image.enabled) {
+            throw Error(
+                "--sweep kernel: the caustic kernel only changes the image, which "
+                "--no-image turns off");
+        }
     }
 }
 

@@ -32,6 +32,15 @@ struct ReferenceSpec {
     std::uint32_t seed = 1;
 };
 
+/// The image error (DESIGN.md §4): the real-time frame of the level's camera against a
+/// reference frame of the same camera and size, at every checkpoint.
+struct ImageSpec {
+    bool enabled = true;  ///< --no-image: off, and no GL context unless backend=gpu is swept
+    int width = 160;      ///< small: a 128-spp reference frame costs about half a minute
+    int height = 120;
+    std::uint32_t spp = 128;  ///< the reference frame's path samples per pixel
+};
+
 struct Options {
     std::string level;
     std::vector<double> budgets{1.0, 2.0, 4.0, 8.0};
@@ -45,18 +54,23 @@ struct Options {
     double time = 0.0;       ///< the animation pose (frozen)
     double dt = 1.0 / 30.0;  ///< seconds per frame (IIM fade-in)
     ReferenceSpec reference;
+    ImageSpec image;
     int threads = 0;
     bool dump_maps = false;  ///< per-texel JSON of every run in OUT/maps
 };
 
-/// Parses KNOB=V1,V2,... (knobs: budget, photons GxM, aim_n, rays, texels_per_unit,
-/// caustics NxK). Throws luxel::Error naming the flag and what is wrong.
+/// Parses KNOB=V1,V2,... (knobs: budget, photons GxM, aim_n, rays, texels_per_unit, filter,
+/// caustics NxK, backend cpu|gpu, kernel larsen|box|cone|world). Throws luxel::Error naming
+/// the flag and what is wrong.
 [[nodiscard]] Sweep parse_sweep(const std::string& text);
 /// Parses NODE:dx,dy,dz. Throws luxel::Error.
 [[nodiscard]] Change parse_change(const std::string& text);
 /// Parses "1,2,4" into numbers > 0. Throws luxel::Error.
 [[nodiscard]] std::vector<double> parse_budgets(const std::string& text);
-/// Checks ranges CLI11 cannot. Throws luxel::Error.
+/// Parses --image WIDTHxHEIGHT (each 1..4096) into `image`. Throws luxel::Error.
+void parse_image_size(const std::string& text, ImageSpec& image);
+/// Checks ranges CLI11 cannot, and knobs that need the image (kernel) when it is off. Throws
+/// luxel::Error.
 void validate(const Options& options);
 
 }  // namespace luxel::bench

@@ -5,12 +5,17 @@
 #include <cstdio>
 #include <sstream>
 
+#include "frame_view.hpp"
+#include "image_reference.hpp"
+#include "level.hpp"
 #include "luxel/ecs/transform.hpp"
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/core/animation_system.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
+#include "luxel/lighting/core/reference/error_metrics.hpp"
 #include "luxel/lighting/core/reference/reference_scene.hpp"
 #include "luxel/lighting/core/scene_instance.hpp"
+#include "luxel/lighting/gpu/hemi_plane_gatherer.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/scene/gltf.hpp"
@@ -39,6 +44,13 @@ std::string describe(const Change& change) {
     out << change.node << ":" << change.offset.x << "," << change.offset.y << ","
         << change.offset.z;
     return out.str();
+}
+
+bool sweeps_gpu_backend(const Options& options) {
+    return std::any_of(options.sweeps.begin(), options.sweeps.end(), [](const Sweep& sweep) {
+        return sweep.knob == "backend" &&
+               std::find(sweep.values.begin(), sweep.values.end(), "gpu") != sweep.values.end();
+    });
 }
 
 }  // namespace
@@ -73,9 +85,22 @@ Bench::Bench(const Options& options, const std::filesystem::path& level_file)
          << ";bytes=" << std::filesystem::file_size(level_file) << ";time=" << options.time;
     pose_ = pose.str();
     jobs_ = std::make_unique<JobSystem>(options.threads);
+    if (options.image.enabled || sweeps_gpu_backend(options)) {
+        gl_ = make_headless_context();
+        shaders_ = std::make_unique<ShaderLibrary>();
+        std::fprintf(stderr, "luxel-bench: GL %s\n", gl_description().c_str());
+    }
 }
 
 Bench::~Bench() = default;
+
+std::string Bench::gl_description() const {
+    if (!gl_) {
+        return {};
+    }
+    return gl_->info().renderer + ", " + gl_->info().version + " (" +
+           std::string(backend_name(gl_->backend())) + ")";
+}
 
 RunResult Bench::run(const BenchConfig& config) {
     const Options& options = *options_;
@@ -92,6 +117,24 @@ RunResult Bench::run(const BenchConfig& config) {
     ecs::TransformSystem transforms(registry);
     transforms.update();
     lighting::LightingSystem lighting(registry, *jobs_, config.lighting());
+    std::unique_ptr<lighting::HemiPlaneGatherer> gpu_gatherer;
+    if (config.backend == "gpu") {
+        gpu_gatherer = std::make_unique<lighting::HemiPlaneGatherer>(
+            lighting.photons().ray_scene(), lighting.maps().aim(), lighting::HemiPlaneSettings{},
+            *shaders_);
+        lighting.set_gatherer(gpu_gatherer.get());
+    }
+    std::optional<lighting::reference::ReferenceCamera> camera;
+    std::unique_ptr<FrameView> view;
+    if (options.image.enabled) {
+        camera = ref::level_camera(registry, instance, options.image.width, options.image.height);
+        if (!camera) {
+            throw Error(file_.string() +
+                        " has no camera for the image error (--no-image leaves it out)");
+        }
+        view = std::make_unique<FrameView>(registry, lighting, *camera, parse_kernel(config.kernel),
+                                           *shaders_);
+    }
     double now = 0.0;
     std::unique_ptr<lighting::reference::ReferenceScene> scene;
     std::vector<double> active_ms;
@@ -108,12 +151,16 @@ RunResult Bench::run(const BenchConfig& config) {
         }
         return false;
     };
+    const auto file_name = [&](const char* phase, const char* extension) {
+        std::ostringstream name;
+        name << config.method << "_" << config.budget_ms << "ms_" << phase << extension;
+        return name.str();
+    };
     const auto dump = [&](const RealTimeMaps& maps, const ReferenceMaps& reference,
                           const char* phase) {
         if (options.dump_maps) {
-            std::ostringstream name;
-            name << config.method << "_" << config.budget_ms << "ms_" << phase << ".json";
-            write_maps_json(options.out / "maps" / name.str(), *scene, maps, reference);
+            write_maps_json(options.out / "maps" / file_name(phase, ".json"), *scene, maps,
+                            reference);
         }
     };
     const std::filesystem::path cache = options.out / "cache";
@@ -127,29 +174,77 @@ RunResult Bench::run(const BenchConfig& config) {
         reference_for(cache, pose_ + ";change=none", *scene, options.reference, *jobs_);
     result.reference_se = before.relative_standard_error;
     result.reference_seconds += before.from_cache ? 0.0 : before.seconds;
+    // The reference frames of the pose before and after the change (none without the image).
+    ReferenceImage frame_before;
+    ReferenceImage frame_after;
+    const auto frame_reference = [&](const std::string& change, ReferenceImage& into) {
+        into = reference_image_for(cache, pose_ + ";change=" + change, *scene, *camera,
+                                   options.reference, options.image, *jobs_);
+        result.reference_seconds += into.from_cache ? 0.0 : into.seconds;
+    };
+    if (view) {
+        frame_reference("none", frame_before);
+        result.image_measured = true;
+        result.reference_se_image = frame_before.relative_standard_error;
+    }
+    // GPU ms of the static checkpoints' renders (one sample each: their median is reported).
+    std::vector<double> frame_gpu_ms;
+    std::vector<double> caustic_gpu_ms;
+    // The error of the frame as rendered now; at the phase's last frame its picture too.
+    const auto image_error = [&](const ReferenceImage& reference, bool last, bool after) {
+        const FrameShot shot = view->render(now);
+        const double error = lighting::reference::image_relative_rmse(shot.image, reference.image);
+        if (last) {
+            write_side_by_side(
+                options.out / "frames" / file_name(after ? "after" : "static", ".png"), shot.image,
+                reference.image);
+        }
+        if (!after) {
+            frame_gpu_ms.push_back(shot.frame_gpu_ms);
+            caustic_gpu_ms.push_back(shot.caustic_gpu_ms);
+        }
+        return error;
+    };
     const auto measure = [&](const ReferenceMaps& reference, std::uint32_t at, bool after) {
         const RealTimeMaps maps = read_real_time(lighting, *scene, now);
-        if ((!after && at == options.frames) || (after && at == options.after)) {
+        const bool last = (!after && at == options.frames) || (after && at == options.after);
+        if (last) {
             dump(maps, reference, after ? "after" : "static");
         }
         const MapErrors errors = map_errors(maps, reference);
         result.caustic_photons = maps.caustic_photons;
         result.caustic_unbinned = maps.caustic_unbinned;
-        result.checkpoints.push_back({at, after, errors.indirect, errors.caustic});
-        return errors;
+        Checkpoint checkpoint{at, after, errors.indirect, errors.caustic, std::nullopt};
+        // Frames are rendered at checkpoints only (after the change: every checkpoint-th
+        // frame and the last), not at every frame the indirect curve samples.
+        const bool checkpoint_frame = at % options.checkpoint == 0 || last;
+        if (view && checkpoint_frame) {
+            checkpoint.image = image_error(after ? frame_after : frame_before, last, after);
+        }
+        result.checkpoints.push_back(checkpoint);
+        return checkpoint;
     };
     for (std::uint32_t f = 1; f <= options.frames; ++f) {
         if (f > 1 && frame(config.budget_ms)) {
             result.static_work_frames = f;
         }
         if (f % options.checkpoint == 0 || f == options.frames) {
-            const MapErrors errors = measure(before, f, false);
+            const Checkpoint errors = measure(before, f, false);
             result.indirect = errors.indirect;
             result.caustic = errors.caustic;
+            result.image = errors.image.value_or(0.0);
         }
     }
-    std::fprintf(stderr, "luxel-bench: %s @ %g ms: converged indirect %.4f, caustic %.4f\n",
+    result.image_net = net_of_reference_noise(result.image, result.reference_se_image);
+    result.frame_gpu_ms = percentile(frame_gpu_ms, 0.5);
+    result.caustic_gpu_ms = percentile(caustic_gpu_ms, 0.5);
+    std::fprintf(stderr, "luxel-bench: %s @ %g ms: converged indirect %.4f, caustic %.4f",
                  config.method.c_str(), config.budget_ms, result.indirect, result.caustic);
+    if (result.image_measured) {
+        std::fprintf(stderr, ", image %.4f (%.4f net of the reference's noise %.4f)", result.image,
+                     result.image_net, result.reference_se_image);
+    }
+    std::fprintf(stderr, "\n");
 
     if (change_) {
         result.changed = true;
@@ -166,12 +261,17 @@ RunResult Bench::run(const BenchConfig& config) {
                                                   *scene, options.reference, *jobs_);
         result.reference_se_after = after.relative_standard_error;
         result.reference_seconds += after.from_cache ? 0.0 : after.seconds;
+        if (view) {
+            frame_reference(describe(*change_), frame_after);
+            result.reference_se_image_after = frame_after.relative_standard_error;
+        }
         result.indirect_at_change = measure(after, 0, true).indirect;
         for (std::uint32_t f = 1; f <= options.after; ++f) {
             frame(config.budget_ms);
-            const MapErrors errors = measure(after, f, true);
+            const Checkpoint errors = measure(after, f, true);
             result.after_indirect.push_back(errors.indirect);
             result.indirect_after = errors.indirect;
+            result.image_after = errors.image.value_or(result.image_after);
             if (result.recovery_frames < 0 && errors.indirect < 2.0 * result.indirect) {
                 result.recovery_frames = static_cast<int>(f);
             }
@@ -184,9 +284,14 @@ RunResult Bench::run(const BenchConfig& config) {
         });
         std::fprintf(stderr,
                      "luxel-bench: %s @ %g ms: after the move indirect %.4f -> %.4f, back under "
-                     "2x converged in %d frames\n",
+                     "2x converged in %d frames",
                      config.method.c_str(), config.budget_ms, result.indirect_at_change,
                      result.indirect_after, result.recovery_frames);
+        if (result.image_measured) {
+            std::fprintf(stderr, "; image %.4f at the end (reference noise %.4f)",
+                         result.image_after, result.reference_se_image_after);
+        }
+        std::fprintf(stderr, "\n");
     }
     result.active_frames = active_ms.size();
     result.ms_median = percentile(active_ms, 0.5);

@@ -13,8 +13,10 @@
 
 #include "bench_config.hpp"
 #include "bench_options.hpp"
+#include "luxel/runtime/gl_context.hpp"
 #include "luxel/runtime/jobs.hpp"
 #include "luxel/runtime/scene/scene.hpp"
+#include "luxel/runtime/shader_library.hpp"
 
 namespace luxel::bench {
 
@@ -23,6 +25,7 @@ struct Checkpoint {
     bool after_change = false;
     double indirect = 0.0;  ///< light-map relRMSE
     double caustic = 0.0;
+    std::optional<double> image;  ///< image relRMSE; none when the image is off
 };
 
 struct RunResult {
@@ -51,9 +54,21 @@ struct RunResult {
     double reference_seconds = 0.0;  ///< computing (not loading) the references this run
     std::size_t caustic_photons = 0;
     std::size_t caustic_unbinned = 0;
+    /// The image error (--image): the real-time frame against the reference frame of the same
+    /// camera, at the end of the static frames and of the frames after the change.
+    bool image_measured = false;
+    double image = 0.0;
+    double image_net = 0.0;  ///< net_of_reference_noise(image, reference_se_image)
+    double image_after = 0.0;
+    double reference_se_image = 0.0;
+    double reference_se_image_after = 0.0;
+    /// Median over the static checkpoints' renders: FrameRenderer's passes, the caustic pass.
+    double frame_gpu_ms = 0.0;
+    double caustic_gpu_ms = 0.0;
 };
 
-/// Holds the level and the jobs for all runs of one luxel-bench invocation.
+/// Holds the level, the jobs and (for the image error and the GPU gather backend) the GL
+/// context for all runs of one luxel-bench invocation.
 class Bench {
   public:
     /// Loads the level file; throws luxel::Error if it cannot.
@@ -63,6 +78,8 @@ class Bench {
     [[nodiscard]] RunResult run(const BenchConfig& config);
     /// The change that runs after the static phase (resolved from --change), if any.
     [[nodiscard]] const std::optional<Change>& change() const { return change_; }
+    /// The GL renderer and version, or empty when no context was needed.
+    [[nodiscard]] std::string gl_description() const;
 
   private:
     const Options* options_;
@@ -71,6 +88,8 @@ class Bench {
     std::optional<Change> change_;
     std::string pose_;  ///< the cache key's level and pose part
     std::unique_ptr<JobSystem> jobs_;
+    std::unique_ptr<GlContext> gl_;  ///< before every GL object of a run, and outlives them
+    std::unique_ptr<ShaderLibrary> shaders_;
 };
 
 }  // namespace luxel::bench

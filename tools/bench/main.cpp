@@ -1,8 +1,10 @@
-// luxel-bench: the real-time path's light-map error against the reference, next to its cost
-// (DESIGN.md §4, issue 11).
+// luxel-bench: the real-time path's light-map and image error against the reference, next to
+// its cost (DESIGN.md §4, issue 11).
 //   luxel-bench --level NAME|PATH [--budgets 1,2,4,8] [--frames N] [--after N] [--out DIR]
 //               [--sweep KNOB=V1,V2 ...] [--change NODE:dx,dy,dz|auto|none] [--ref-* ...]
-// Writes CSV, JSON, PNG plots and summary.md into DIR; references are cached in DIR/cache.
+//               [--image WxH] [--image-spp N] [--no-image]
+// Writes CSV, JSON, PNG plots, frames and summary.md into DIR; references are cached in
+// DIR/cache.
 
 #include <cstdio>
 #include <exception>
@@ -28,11 +30,13 @@ using namespace luxel;
 int run(int argc, char** argv) {
     CLI::App app{
         "luxel-bench: runs a level through the real-time lighting path under each "
-        "configuration and budget, and measures its light maps against the reference "
-        "integrator (indirect and caustic relRMSE), its lighting ms per frame, and the frames "
-        "it takes to recover after a scripted change."};
+        "configuration and budget, and measures its light maps (indirect and caustic relRMSE) "
+        "and its frame (image relRMSE) against the reference integrator, its lighting ms per "
+        "frame, and the frames it takes to recover after a scripted change."};
     bench::Options options;
     std::string budgets;
+    std::string image_size;
+    bool no_image = false;
     std::vector<std::string> sweeps;
     app.add_option("--level", options.level,
                    "a prepared level's name (assets/levels/prepared/NAME.glb) or a .glb path")
@@ -48,8 +52,17 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--sweep", sweeps,
                    "KNOB=V1,V2,... (budget, photons GxM, aim_n, rays, texels_per_unit, filter, "
-                   "caustics NxK); repeatable, each varies one knob from the paper's "
-                   "configuration");
+                   "caustics NxK, backend cpu|gpu, kernel larsen|box|cone|world); repeatable, "
+                   "each varies one knob from the paper's configuration");
+    app.add_option("--image", image_size,
+                   "WIDTHxHEIGHT of the frames compared for the image error (default 160x120): "
+                   "the real-time frame and a reference frame of the level's first camera");
+    app.add_option("--image-spp", options.image.spp,
+                   "path samples per pixel of the reference frame")
+        ->capture_default_str();
+    app.add_flag("--no-image", no_image,
+                 "leave the image error out (no frames rendered, no GL context unless "
+                 "backend=gpu is swept)");
     app.add_option("--change", options.change,
                    "NODE:dx,dy,dz moved after the static frames; auto: 'moving cube' by 0.3 m "
                    "in x when the level has it; none")
@@ -78,6 +91,13 @@ int run(int argc, char** argv) {
     if (!budgets.empty()) {
         options.budgets = bench::parse_budgets(budgets);
     }
+    if (!image_size.empty()) {
+        if (no_image) {
+            throw Error("--image " + image_size + " and --no-image: give one or the other");
+        }
+        bench::parse_image_size(image_size, options.image);
+    }
+    options.image.enabled = !no_image;
     for (const std::string& s : sweeps) {
         options.sweeps.push_back(bench::parse_sweep(s));
     }
@@ -108,6 +128,7 @@ int run(int argc, char** argv) {
     info.command = command;
     info.change = bench.change();
     info.options = &options;
+    info.gl = bench.gl_description();
     const auto files = bench::write_report(info, runs);
     std::fprintf(stderr, "luxel-bench: wrote %zu files to %s in %.1f s\n", files.size(),
                  options.out.string().c_str(), clock.elapsed_ms() / 1000.0);

@@ -18,17 +18,6 @@ using namespace lighting::reference;
 constexpr std::uint32_t kPasses = 4;
 constexpr std::array<const char*, 3> kNames{"direct", "indirect", "caustic"};
 
-std::string fnv1a(const std::string& text) {
-    std::uint64_t h = 0xcbf29ce484222325ull;
-    for (const char c : text) {
-        h ^= static_cast<std::uint8_t>(c);
-        h *= 0x100000001b3ull;
-    }
-    char buffer[17];
-    std::snprintf(buffer, sizeof(buffer), "%016" PRIx64, h);
-    return buffer;
-}
-
 std::uint64_t share(std::uint64_t total, std::uint32_t pass) {
     return total / kPasses + (pass < total % kPasses ? 1 : 0);
 }
@@ -92,6 +81,17 @@ void save(const std::filesystem::path& file, const ReferenceMaps& maps) {
 
 }  // namespace
 
+std::string cache_hash(const std::string& key) {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    for (const char c : key) {
+        h ^= static_cast<std::uint8_t>(c);
+        h *= 0x100000001b3ull;
+    }
+    char buffer[17];
+    std::snprintf(buffer, sizeof(buffer), "%016" PRIx64, h);
+    return buffer;
+}
+
 ReferenceMaps reference_for(const std::filesystem::path& cache_dir, const std::string& pose,
                             const ReferenceScene& scene, const ReferenceSpec& spec,
                             JobSystem& jobs) {
@@ -100,7 +100,7 @@ ReferenceMaps reference_for(const std::filesystem::path& cache_dir, const std::s
                ";caustic_photons=" + std::to_string(spec.caustic_photons) +
                ";spp=" + std::to_string(spec.spp) + ";seed=" + std::to_string(spec.seed) +
                ";texels=" + std::to_string(scene.texel_count()) + ";reference=v1";
-    maps.hash = fnv1a(maps.key);
+    maps.hash = cache_hash(maps.key);
     const std::filesystem::path file = cache_dir / (maps.hash + ".json");
     if (load(file, maps, scene.texel_count())) {
         maps.from_cache = true;

@@ -30,6 +30,9 @@ struct ReferenceMaps {
     [[nodiscard]] const std::vector<glm::dvec3>& caustic() const { return value[2]; }
 };
 
+/// FNV-1a of a cache key as 16 hex digits: the cache file's name.
+[[nodiscard]] std::string cache_hash(const std::string& key);
+
 /// The reference for `scene` in the pose `pose` (a description of level and state that the
 /// caller guarantees identifies the scene): read from `cache_dir`/<hash>.json when present and
 /// matching, else computed and written there. Logs which to stderr.

@@ -16,6 +16,7 @@ namespace {
 /// The goals for cornell (converged light maps).
 constexpr double kIndirectGoal = 0.05;
 constexpr double kCausticGoal = 0.15;
+constexpr double kImageGoal = 0.05;
 constexpr double kRecoveryBudgetMs = 4.0;
 constexpr int kRecoveryGoalFrames = 30;
 
@@ -40,6 +41,11 @@ std::string change_text(const std::optional<Change>& change) {
     return out.str();
 }
 
+/// An image figure, or kNotMeasured.
+std::string image_number(const RunResult& r, double v, int decimals = 4) {
+    return r.image_measured ? number(v, decimals) : kNotMeasured;
+}
+
 std::vector<std::string> row(const ReportInfo& info, const RunResult& r) {
     const BenchConfig& c = r.config;
     return {info.level,
@@ -53,6 +59,8 @@ std::vector<std::string> row(const ReportInfo& info, const RunResult& r) {
             std::to_string(c.filter),
             std::to_string(c.caustic_photons),
             std::to_string(c.caustic_slices),
+            c.backend,
+            c.kernel,
             std::to_string(r.frame_ms.size()),
             std::to_string(r.active_frames),
             std::to_string(r.static_work_frames),
@@ -60,16 +68,22 @@ std::vector<std::string> row(const ReportInfo& info, const RunResult& r) {
             number(r.ms_p95, 3),
             number(r.indirect),
             number(r.caustic),
+            image_number(r, r.image),
+            image_number(r, r.image_net),
+            image_number(r, r.reference_se_image, 5),
             r.changed ? change_text(info.change) : "none",
             number(r.indirect_at_change),
             number(r.indirect_after),
+            r.changed ? image_number(r, r.image_after) : kNotMeasured,
             std::to_string(r.recovery_frames),
             number(r.reference_se[0], 5),
             number(r.reference_se[1], 5),
             number(r.reference_se[2], 5),
             number(r.reference_se_after[1], 5),
             std::to_string(r.caustic_photons),
-            std::to_string(r.caustic_unbinned)};
+            std::to_string(r.caustic_unbinned),
+            image_number(r, r.frame_gpu_ms, 3),
+            image_number(r, r.caustic_gpu_ms, 3)};
 }
 
 void write_csv(const std::filesystem::path& path, const std::vector<std::string>& header,
@@ -105,13 +119,31 @@ std::string run_name(const RunResult& r) {
     return r.config.method + " @ " + number(r.config.budget_ms, 1) + " ms";
 }
 
+enum class Measure { Indirect, Caustic, Image };
+
+double measured(const RunResult& r, Measure what) {
+    switch (what) {
+        case Measure::Indirect:
+            return r.indirect;
+        case Measure::Caustic:
+            return r.caustic;
+        case Measure::Image:
+            return r.image;
+    }
+    return 0.0;
+}
+
 /// Error against median ms, one curve per method, with the Pareto front over all runs.
-PlotSpec error_plot(const std::vector<RunResult>& runs, bool caustic, const ReportInfo& info) {
+PlotSpec error_plot(const std::vector<RunResult>& runs, Measure what, const ReportInfo& info) {
     PlotSpec spec;
-    spec.title = info.level + (caustic ? ": caustic" : ": indirect") +
-                 " light-map error against ms per frame";
+    static constexpr const char* kTitles[] = {": indirect light-map error against ms per frame",
+                                              ": caustic light-map error against ms per frame",
+                                              ": image error against lighting ms per frame"};
+    static constexpr const char* kLabels[] = {"indirect relRMSE %", "caustic relRMSE %",
+                                              "image relRMSE %"};
+    spec.title = info.level + kTitles[static_cast<int>(what)];
     spec.x_label = "lighting ms per frame (median, real clock)";
-    spec.y_label = caustic ? "caustic relRMSE %" : "indirect relRMSE %";
+    spec.y_label = kLabels[static_cast<int>(what)];
     std::map<std::string, std::size_t> index;
     std::vector<glm::dvec2> all;
     for (const RunResult& r : runs) {
@@ -119,7 +151,7 @@ PlotSpec error_plot(const std::vector<RunResult>& runs, bool caustic, const Repo
         if (added) {
             spec.series.push_back({r.config.method, {}, false});
         }
-        const glm::dvec2 p(r.ms_median, 100.0 * (caustic ? r.caustic : r.indirect));
+        const glm::dvec2 p(r.ms_median, 100.0 * measured(r, what));
         spec.series[it->second].points.push_back(p);
         all.push_back(p);
     }
@@ -129,7 +161,8 @@ PlotSpec error_plot(const std::vector<RunResult>& runs, bool caustic, const Repo
     }
     spec.front = pareto_front(all);
     if (info.level == "cornell") {
-        spec.lines.push_back({100.0 * (caustic ? kCausticGoal : kIndirectGoal), "goal"});
+        static constexpr double kGoals[] = {kIndirectGoal, kCausticGoal, kImageGoal};
+        spec.lines.push_back({100.0 * kGoals[static_cast<int>(what)], "goal"});
     }
     return spec;
 }
@@ -182,6 +215,8 @@ const std::vector<std::string>& run_columns() {
                                                   "filter",
                                                   "caustic_photons",
                                                   "caustic_slices",
+                                                  "backend",
+                                                  "kernel",
                                                   "frames",
                                                   "active_frames",
                                                   "static_work_frames",
@@ -189,16 +224,22 @@ const std::vector<std::string>& run_columns() {
                                                   "ms_p95",
                                                   "indirect_relrmse",
                                                   "caustic_relrmse",
+                                                  "image_relrmse",
+                                                  "image_relrmse_net",
+                                                  "ref_se_image",
                                                   "change",
                                                   "indirect_at_change",
                                                   "indirect_after",
+                                                  "image_after",
                                                   "recovery_frames",
                                                   "ref_se_direct",
                                                   "ref_se_indirect",
                                                   "ref_se_caustic",
                                                   "ref_se_indirect_after",
                                                   "caustic_photons_stored",
-                                                  "caustic_unbinned"};
+                                                  "caustic_unbinned",
+                                                  "frame_gpu_ms",
+                                                  "caustic_gpu_ms"};
     return columns;
 }
 
@@ -220,6 +261,14 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
                          {"caustic_photons", ref.caustic_photons},
                          {"spp", ref.spp},
                          {"seed", ref.seed}};
+    const ImageSpec& image = info.options->image;
+    json["image"] = {{"measured", image.enabled}};
+    if (image.enabled) {
+        json["image"]["width"] = image.width;
+        json["image"]["height"] = image.height;
+        json["image"]["reference_spp"] = image.spp;
+    }
+    json["gl"] = info.gl;
     for (const RunResult& r : runs) {
         rows.push_back(row(info, r));
         nlohmann::json run;
@@ -232,11 +281,14 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
         for (const Checkpoint& c : r.checkpoints) {
             checkpoints.push_back({r.config.method, number(r.config.budget_ms, 2),
                                    c.after_change ? "after" : "static", std::to_string(c.frame),
-                                   number(c.indirect), number(c.caustic)});
-            run["checkpoints"].push_back({{"frame", c.frame},
-                                          {"after_change", c.after_change},
-                                          {"indirect", c.indirect},
-                                          {"caustic", c.caustic}});
+                                   number(c.indirect), number(c.caustic),
+                                   c.image ? number(*c.image) : kNotMeasured});
+            run["checkpoints"].push_back(
+                {{"frame", c.frame},
+                 {"after_change", c.after_change},
+                 {"indirect", c.indirect},
+                 {"caustic", c.caustic},
+                 {"image", c.image ? nlohmann::json(*c.image) : nlohmann::json(kNotMeasured)}});
         }
         for (std::size_t f = 0; f < r.after_indirect.size(); ++f) {
             after.push_back({r.config.method, number(r.config.budget_ms, 2), std::to_string(f + 1),
@@ -246,7 +298,8 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
     }
     write_csv(out / "runs.csv", run_columns(), rows);
     write_csv(out / "checkpoints.csv",
-              {"method", "budget_ms", "phase", "frame", "indirect_relrmse", "caustic_relrmse"},
+              {"method", "budget_ms", "phase", "frame", "indirect_relrmse", "caustic_relrmse",
+               "image_relrmse"},
               checkpoints);
     write_csv(out / "after_change.csv", {"method", "budget_ms", "frame", "indirect_relrmse"},
               after);
@@ -256,10 +309,14 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
     }
     files.insert(files.end(), {out / "runs.csv", out / "checkpoints.csv", out / "after_change.csv",
                                out / "results.json"});
-    write_plot(out / "indirect_vs_ms.png", error_plot(runs, false, info));
-    write_plot(out / "caustic_vs_ms.png", error_plot(runs, true, info));
+    write_plot(out / "indirect_vs_ms.png", error_plot(runs, Measure::Indirect, info));
+    write_plot(out / "caustic_vs_ms.png", error_plot(runs, Measure::Caustic, info));
     files.push_back(out / "indirect_vs_ms.png");
     files.push_back(out / "caustic_vs_ms.png");
+    if (image.enabled) {
+        write_plot(out / "image_vs_ms.png", error_plot(runs, Measure::Image, info));
+        files.push_back(out / "image_vs_ms.png");
+    }
     if (info.change) {
         write_plot(out / "after_change.png", after_plot(runs, info));
         files.push_back(out / "after_change.png");
@@ -270,12 +327,27 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
     md << "Reference: " << ref.indirect_photons << " indirect photons, " << ref.caustic_photons
        << " caustic photons, " << ref.spp << " spp (direct), seed " << ref.seed
        << ". Change: " << change_text(info.change) << ".\n\n";
-    md << "| method | budget ms | ms median | ms p95 | indirect | caustic | after change | "
-          "recovery frames | ref. SE ind. / caus. |\n|---|---|---|---|---|---|---|---|---|\n";
+    if (image.enabled) {
+        md << "Image error: the real-time frame (FrameRenderer + CausticPass on " << info.gl
+           << ") against a reference frame of the level's first camera, " << image.width << "x"
+           << image.height << ", " << image.spp
+           << " spp; \"image\" is its relRMSE at the last static frame, (net) the same with the "
+              "reference frame's own noise taken out. Frames side by side (real time | "
+              "reference) in frames/.\n\n";
+    } else {
+        md << "Image error: **not measured** (--no-image).\n\n";
+    }
+    md << "| method | budget ms | ms median | ms p95 | indirect | caustic | image (net) | after "
+          "change | recovery frames | ref. SE ind. / caus. / image |\n"
+          "|---|---|---|---|---|---|---|---|---|---|\n";
     for (const RunResult& r : runs) {
         md << "| " << r.config.method << " | " << number(r.config.budget_ms, 1) << " | "
            << number(r.ms_median, 2) << " | " << number(r.ms_p95, 2) << " | "
            << number(100.0 * r.indirect, 2) << "% | " << number(100.0 * r.caustic, 2) << "% | "
+           << (r.image_measured
+                   ? number(100.0 * r.image, 2) + "% (" + number(100.0 * r.image_net, 2) + "%)"
+                   : std::string("not measured"))
+           << " | "
            << (r.changed ? number(100.0 * r.indirect_at_change, 1) + "% -> " +
                                number(100.0 * r.indirect_after, 1) + "%"
                          : "-")
@@ -284,16 +356,19 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
                : r.recovery_frames >= 0 ? std::to_string(r.recovery_frames)
                                         : std::string("not within"))
            << " | " << number(100.0 * r.reference_se[1], 2) << "% / "
-           << number(100.0 * r.reference_se[2], 2) << "% |\n";
+           << number(100.0 * r.reference_se[2], 2) << "% / "
+           << (r.image_measured ? number(100.0 * r.reference_se_image, 2) + "%" : "-") << " |\n";
     }
     md << "\nReference adequacy (its relative standard error at most 1/10 of the error it "
           "judges):\n";
     for (const RunResult& r : runs) {
         const bool ok_i = r.reference_se[1] <= 0.1 * r.indirect;
         const bool ok_c = r.reference_se[2] <= 0.1 * r.caustic;
-        if (!ok_i || !ok_c) {
+        const bool ok_f = !r.image_measured || r.reference_se_image <= 0.1 * r.image;
+        if (!ok_i || !ok_c || !ok_f) {
             md << "- " << run_name(r) << ": " << (ok_i ? "" : "indirect ")
-               << (ok_c ? "" : "caustic ") << "reference not converged enough\n";
+               << (ok_c ? "" : "caustic ") << (ok_f ? "" : "image ")
+               << "reference not converged enough\n";
         }
     }
     md << "- (rows not listed: adequate)\n";
@@ -306,6 +381,13 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
             md << "\n" << run_name(r) << ":\n";
             md << goal_line("indirect, converged", r.indirect, kIndirectGoal, true);
             md << goal_line("caustic, converged", r.caustic, kCausticGoal, true);
+            if (r.image_measured) {
+                md << goal_line("image, converged", r.image, kImageGoal, true);
+                md << goal_line("image, converged, net of the reference's noise", r.image_net,
+                                kImageGoal, true);
+            } else {
+                md << "- image: **not measured** (--no-image)\n";
+            }
             if (r.changed) {
                 const bool met = r.recovery_frames >= 0 && r.recovery_frames <= kRecoveryGoalFrames;
                 md << "- recovery after the move: "
@@ -316,6 +398,9 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
         }
     }
     md << "\n![indirect](indirect_vs_ms.png)\n![caustic](caustic_vs_ms.png)\n";
+    if (image.enabled) {
+        md << "![image](image_vs_ms.png)\n";
+    }
     if (info.change) {
         md << "![after change](after_change.png)\n";
     }

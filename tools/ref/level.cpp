@@ -71,9 +71,14 @@ std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file, doubl
 
 std::optional<lighting::reference::ReferenceCamera> level_camera(const LoadedLevel& level,
                                                                  int width, int height) {
-    for (ecs::Entity entity : level.instance.nodes) {
-        const auto* camera = level.registry.try_get<lighting::CameraComponent>(entity);
-        const auto* world = level.registry.try_get<ecs::WorldTransform>(entity);
+    return level_camera(level.registry, level.instance, width, height);
+}
+
+std::optional<lighting::reference::ReferenceCamera> level_camera(
+    const ecs::Registry& registry, const lighting::SceneInstance& instance, int width, int height) {
+    for (ecs::Entity entity : instance.nodes) {
+        const auto* camera = registry.try_get<lighting::CameraComponent>(entity);
+        const auto* world = registry.try_get<ecs::WorldTransform>(entity);
         if (camera == nullptr || world == nullptr) {
             continue;
         }

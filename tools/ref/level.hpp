@@ -37,5 +37,9 @@ struct LoadedLevel {
 /// The level's first camera (node order) for a width x height image, if it has one.
 [[nodiscard]] std::optional<lighting::reference::ReferenceCamera> level_camera(
     const LoadedLevel& level, int width, int height);
+/// The same for any posed instance of a level (luxel-bench renders the real-time frame and
+/// the reference frame from this one camera).
+[[nodiscard]] std::optional<lighting::reference::ReferenceCamera> level_camera(
+    const ecs::Registry& registry, const lighting::SceneInstance& instance, int width, int height);
 
 }  // namespace luxel::ref

@@ -1,0 +1,197 @@
+// luxel-bench's image error and its GPU-backend / caustic-kernel knobs: the image columns are
+// numbers in CSV and JSON when the image is on and say "not_measured" with --no-image, a bad
+// --image is named, and a sweep over backend=cpu,gpu runs both gather backends.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "bench_outputs.hpp"
+#include "luxel/runtime/image.hpp"
+#include "temp_dir.hpp"
+
+namespace {
+
+using luxel::testing::cell_number;
+using luxel::testing::column_index;
+using luxel::testing::CommandResult;
+using luxel::testing::count;
+using luxel::testing::CsvRows;
+using luxel::testing::luxel_bench;
+using luxel::testing::quoted;
+using luxel::testing::read_csv;
+using luxel::testing::read_text;
+
+/// The columns the image adds to runs.csv (and to every run of results.json).
+const std::vector<std::string> kImageColumns{"image_relrmse", "image_relrmse_net",
+                                             "ref_se_image",  "image_after",
+                                             "frame_gpu_ms",  "caustic_gpu_ms"};
+
+nlohmann::json read_json(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    return nlohmann::json::parse(in);
+}
+
+TEST(BenchImage, BadImageValuesAreExplained) {
+    for (const char* bad : {"160by120", "0x120", "160x", "160x120x2", "5000x10"}) {
+        const CommandResult run =
+            luxel_bench(std::string("--level cornell --frames 1 --image ") + bad);
+        EXPECT_NE(run.exit_code, 0) << bad;
+        EXPECT_NE(run.output.find("--image"), std::string::npos) << bad << ": " << run.output;
+        EXPECT_NE(run.output.find(bad), std::string::npos) << bad << ": " << run.output;
+    }
+    CommandResult run = luxel_bench("--level cornell --frames 1 --image 32x24 --no-image");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("--no-image"), std::string::npos) << run.output;
+    run = luxel_bench("--level cornell --frames 1 --image-spp 0");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("--image-spp"), std::string::npos) << run.output;
+    run = luxel_bench("--level cornell --frames 1 --sweep backend=cuda");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("cuda"), std::string::npos) << run.output;
+    run = luxel_bench("--level cornell --frames 1 --sweep kernel=gauss");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("gauss"), std::string::npos) << run.output;
+    // The kernel only changes the frame: sweeping it without one would be rows of nothing.
+    run = luxel_bench("--level cornell --frames 1 --no-image --sweep kernel=box");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("--no-image"), std::string::npos) << run.output;
+}
+
+TEST(BenchImage, TheImageErrorIsAFiniteNumberInCsvAndJson) {
+    luxel::testing::TempDir dir("luxel-bench-image");
+    const std::filesystem::path out = dir / "out";
+    // 4 frames from cold gather no indirect light yet: the frame has its direct light,
+    // caustics and specular, and no indirect. A 64-spp reference of 32 x 24 pixels takes a
+    // fraction of a second and has a relative standard error near 0.17.
+    const CommandResult run = luxel_bench(
+        "--level cornell --budgets 8 --frames 4 --after 2 --checkpoint 2 --ref-photons 100000 "
+        "--ref-caustic-photons 50000 --ref-spp 1 --image 32x24 --image-spp 64 "
+        "--sweep kernel=world --threads 2 --out " +
+        quoted(out));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+
+    const CsvRows rows = read_csv(out / "runs.csv");
+    ASSERT_EQ(rows.size(), 3u);  // header, paper, kernel=world
+    for (const std::string& column : kImageColumns) {
+        ASSERT_LT(column_index(rows, column), rows[0].size()) << column;
+    }
+    const auto value = [&](std::size_t row, const std::string& column) {
+        return cell_number(rows[row].at(column_index(rows, column)));
+    };
+    const std::filesystem::path results = out / "results.json";
+    const nlohmann::json json = read_json(results);
+    ASSERT_EQ(json["runs"].size(), 2u);
+    EXPECT_TRUE(json["image"]["measured"].get<bool>());
+    EXPECT_EQ(json["image"]["width"], 32);
+    for (std::size_t r = 1; r < rows.size(); ++r) {
+        for (const std::string& column : kImageColumns) {
+            EXPECT_TRUE(std::isfinite(value(r, column))) << column << " row " << r;
+            const std::string cell = json["runs"][r - 1][column].get<std::string>();
+            EXPECT_TRUE(std::isfinite(cell_number(cell))) << column << " in JSON: " << cell;
+        }
+        const double image = value(r, "image_relrmse");
+        const double se = value(r, "ref_se_image");
+        const double net = value(r, "image_relrmse_net");
+        std::printf("[ figures  ] %s: image relRMSE %.4f, net %.4f, reference SE %.4f\n",
+                    rows[r][1].c_str(), image, net, se);
+        // An all-black frame scores exactly 1, a frame 1.5x too bright 0.5. This one lacks
+        // only the indirect light (a fraction of cornell's radiance; 0.27 measured, most of it
+        // the reference's own noise): 0.5 passes it and fails a black, unlit or badly exposed
+        // frame.
+        EXPECT_GT(image, 0.0) << rows[r][1];
+        EXPECT_LT(image, 0.5) << rows[r][1];
+        // The net figure follows from the two others; the CSV rounds to 4 and 5 decimals.
+        const double expected = std::sqrt(std::max(0.0, (image * image - se * se) / (1 - se * se)));
+        EXPECT_NEAR(net, expected, 2e-4) << rows[r][1];
+        EXPECT_LE(net, image + 1e-4) << rows[r][1];
+    }
+    EXPECT_EQ(rows[2][column_index(rows, "kernel")], "world");
+
+    // Checkpoints carry the image error too (rendered at every checkpoint).
+    const CsvRows checkpoints = read_csv(out / "checkpoints.csv");
+    const std::size_t image_column = column_index(checkpoints, "image_relrmse");
+    ASSERT_LT(image_column, checkpoints[0].size());
+    for (std::size_t r = 1; r < checkpoints.size(); ++r) {
+        EXPECT_TRUE(std::isfinite(cell_number(checkpoints[r].at(image_column)))) << "row " << r;
+    }
+
+    // Real time | 4 black pixels | reference, one picture per run and phase.
+    for (const char* png : {"frames/paper_8ms_static.png", "frames/paper_8ms_after.png",
+                            "frames/kernel=world_8ms_static.png"}) {
+        const luxel::Image8 image = luxel::read_png(out / png);
+        EXPECT_EQ(image.width, 2 * 32 + 4) << png;
+        EXPECT_EQ(image.height, 24) << png;
+    }
+    EXPECT_EQ(count(read_text(out / "summary.md"), "not measured"), 0u);
+}
+
+TEST(BenchImage, NoImageMarksTheColumnsNotMeasuredAndMakesNoContext) {
+    luxel::testing::TempDir dir("luxel-bench-no-image");
+    const std::filesystem::path out = dir / "out";
+    const CommandResult run = luxel_bench(
+        "--level cornell --budgets 8 --frames 2 --after 1 --checkpoint 2 --ref-photons 100000 "
+        "--ref-caustic-photons 50000 --ref-spp 1 --no-image --threads 2 --out " +
+        quoted(out));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    // The bench logs the GL renderer when it makes a context; without the image it has none.
+    EXPECT_EQ(count(run.output, "luxel-bench: GL "), 0u) << run.output;
+    EXPECT_EQ(count(run.output, "reference frame"), 0u) << run.output;
+
+    const CsvRows rows = read_csv(out / "runs.csv");
+    ASSERT_EQ(rows.size(), 2u);
+    const nlohmann::json json = read_json(out / "results.json");
+    EXPECT_FALSE(json["image"]["measured"].get<bool>());
+    for (const std::string& column : kImageColumns) {
+        const std::size_t c = column_index(rows, column);
+        ASSERT_LT(c, rows[0].size()) << column;
+        EXPECT_EQ(rows[1][c], "not_measured") << column;
+        EXPECT_EQ(json["runs"][0][column], "not_measured") << column;
+    }
+    EXPECT_FALSE(std::filesystem::exists(out / "frames"));
+    EXPECT_FALSE(std::filesystem::exists(out / "image_vs_ms.png"));
+    const std::string summary = read_text(out / "summary.md");
+    EXPECT_NE(summary.find("Image error: **not measured**"), std::string::npos) << summary;
+}
+
+TEST(BenchImage, ASweepOverBothGatherBackendsRunsBoth) {
+    luxel::testing::TempDir dir("luxel-bench-backend");
+    const std::filesystem::path out = dir / "out";
+    // A budget far above what 6 frames need: the scheduler's queues, not the clock, decide how
+    // much is gathered (both backends gather their first units by frame 4).
+    const CommandResult run = luxel_bench(
+        "--level cornell --budgets 1000 --frames 6 --checkpoint 2 --change none "
+        "--ref-photons 100000 --ref-caustic-photons 50000 --ref-spp 1 --no-image "
+        "--sweep backend=cpu,gpu --threads 2 --out " +
+        quoted(out));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    // backend=gpu needs the GL context even without the image.
+    EXPECT_EQ(count(run.output, "luxel-bench: GL "), 1u) << run.output;
+
+    const CsvRows rows = read_csv(out / "runs.csv");
+    ASSERT_EQ(rows.size(), 3u);  // header, paper (= backend=cpu, not repeated), backend=gpu
+    const std::size_t backend = column_index(rows, "backend");
+    const std::size_t indirect = column_index(rows, "indirect_relrmse");
+    ASSERT_LT(backend, rows[0].size());
+    EXPECT_EQ(rows[1][1], "paper");
+    EXPECT_EQ(rows[1][backend], "cpu");
+    EXPECT_EQ(rows[2][1], "backend=gpu");
+    EXPECT_EQ(rows[2][backend], "gpu");
+    for (std::size_t r = 1; r < rows.size(); ++r) {
+        const double error = cell_number(rows[r][indirect]);
+        std::printf("[ figures  ] backend %s: indirect relRMSE %.4f after 6 frames\n",
+                    rows[r][backend].c_str(), error);
+        // 1 is the error of an IIM with nothing gathered: below it, the backend's gathers
+        // reached the light maps.
+        EXPECT_GE(error, 0.0) << rows[r][1];
+        EXPECT_LT(error, 1.0) << rows[r][1];
+    }
+}
+
+}  // namespace

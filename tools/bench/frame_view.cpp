@@ -1,0 +1,118 @@
+#include "frame_view.hpp"
+
+#include <cmath>
+
+#include "luxel/runtime/error.hpp"
+
+namespace luxel::bench {
+namespace {
+
+lighting::FrameSettings frame_settings(const lighting::reference::ReferenceCamera& camera) {
+    lighting::FrameSettings settings;
+    settings.width = camera.width;
+    settings.height = camera.height;
+    // The timings reported are this frame's, not a frame still in flight.
+    settings.wait_for_timings = true;
+    // A checkpoint renders once where a game renders every frame: with all six faces per
+    // render, the specular probes show what continuous rendering of the static scene would
+    // have converged to (the sandbox spreads them, one face per frame).
+    settings.specular_faces_per_frame = 6;
+    return settings;
+}
+
+}  // namespace
+
+std::unique_ptr<GlContext> make_headless_context() {
+    GlContextOptions options;
+    options.width = 16;  // headless: the frame renders into its own framebuffers
+    options.height = 16;
+    std::string failures;
+    for (const GlBackend backend : {GlBackend::Egl, GlBackend::OsMesa}) {
+        options.backend = backend;
+        try {
+            return create_gl_context(options);
+        } catch (const GlContextError& e) {
+            failures += std::string("\n  - ") + e.what();
+        }
+    }
+    throw GlContextError(
+        "the image error and the GPU gather backend need an OpenGL 4.5 context, and none could "
+        "be created (--no-image runs without one):" +
+        failures);
+}
+
+lighting::CausticKernel parse_kernel(const std::string& name) {
+    if (name == "larsen") {
+        return lighting::CausticKernel::Larsen;
+    }
+    if (name == "box") {
+        return lighting::CausticKernel::Box;
+    }
+    if (name == "cone") {
+        return lighting::CausticKernel::RoundCone;
+    }
+    if (name == "world") {
+        return lighting::CausticKernel::WorldCone;
+    }
+    throw Error("kernel '" + name + "': expected larsen, box, cone or world");
+}
+
+lighting::FrameCamera frame_camera(const lighting::reference::ReferenceCamera& camera) {
+    // A perspective projection has -1 in [2][3] and 0 in [3][3]; an orthographic one 0 and 1.
+    if (camera.projection[3][3] != 0.0f || !(camera.projection[1][1] > 0.0f)) {
+        throw Error(
+            "the level's camera is not a perspective camera, which the caustic pass needs "
+            "(--no-image leaves the image error out)");
+    }
+    lighting::FrameCamera out;
+    out.view = camera.view;
+    out.projection = camera.projection;
+    out.position = glm::vec3(glm::inverse(camera.view)[3]);
+    out.yfov = 2.0f * std::atan(1.0f / camera.projection[1][1]);
+    return out;
+}
+
+FrameView::FrameView(ecs::Registry& registry, lighting::LightingSystem& lighting,
+                     const lighting::reference::ReferenceCamera& camera,
+                     lighting::CausticKernel kernel, const ShaderLibrary& shaders)
+    : lighting_(&lighting),
+      shaders_(&shaders),
+      camera_(frame_camera(camera)),
+      renderer_(registry, lighting, frame_settings(camera), shaders) {
+    caustic_camera_.view = camera_.view;
+    caustic_camera_.projection = camera_.projection;
+    caustic_camera_.viewport = {camera.width, camera.height};
+    caustic_settings_.kernel = kernel;
+}
+
+FrameShot FrameView::render(double now_seconds) {
+    // As the sandbox: the caustic pass exists while the FeaturePlan has caustic data, and the
+    // renderer runs it between its G-buffer and its composite (the caustic stage), so the
+    // photons are splatted against this frame's depth and composited into this frame.
+    const bool want_caustics = lighting_->plan().caustic_data();
+    if (want_caustics && !caustics_) {
+        caustics_.emplace(caustic_settings_, caustic_camera_.viewport, *shaders_);
+        renderer_.set_caustic_stage([this](const lighting::FrameCamera& camera, GLuint depth) {
+            caustics_->upload(lighting_->photons().caustics());
+            lighting::CausticCamera caustic_camera = caustic_camera_;
+            caustic_camera.view = camera.view;
+            caustic_camera.projection = camera.projection;
+            caustics_->render(caustic_camera, depth);
+            return lighting::CausticInput{caustics_->irradiance_texture(), true};
+        });
+    } else if (!want_caustics && caustics_) {
+        renderer_.set_caustic_stage({});
+        renderer_.set_caustics({});
+        caustics_.reset();
+    }
+    FrameShot shot;
+    shot.frame_gpu_ms = renderer_.render(camera_, now_seconds).total();
+    if (caustics_) {
+        const lighting::CausticPassStats& stats = caustics_->stats();
+        shot.caustic_gpu_ms = stats.splat_ms + stats.filter_ms;
+    }
+    shot.image = renderer_.read(lighting::FrameImage::Frame);
+    return shot;
+}
+
+}  // namespace luxel::bench

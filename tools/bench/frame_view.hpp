@@ -1,0 +1,65 @@
+#pragma once
+
+// The real-time frame for luxel-bench's image error: FrameRenderer and CausticPass on a
+// headless GL context, composed as the sandbox composes them, from the reference's camera.
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "luxel/ecs/registry.hpp"
+#include "luxel/lighting/core/lighting_system.hpp"
+#include "luxel/lighting/core/reference/reference_frame.hpp"
+#include "luxel/lighting/gpu/caustic_pass.hpp"
+#include "luxel/lighting/gpu/frame_camera.hpp"
+#include "luxel/lighting/gpu/frame_renderer.hpp"
+#include "luxel/runtime/gl_context.hpp"
+#include "luxel/runtime/image.hpp"
+#include "luxel/runtime/shader_library.hpp"
+
+namespace luxel::bench {
+
+/// A headless OpenGL 4.5 context: EGL, else OSMesa (the sandbox's headless order; never a
+/// window). Throws GlContextError listing both attempts.
+[[nodiscard]] std::unique_ptr<GlContext> make_headless_context();
+
+/// "larsen", "box", "cone", "world" as CausticPass kernels. Throws luxel::Error otherwise.
+[[nodiscard]] lighting::CausticKernel parse_kernel(const std::string& name);
+
+/// The renderer's camera with exactly the reference camera's view and projection (so both
+/// frames see the same pixels). Throws luxel::Error for an orthographic projection: the caustic
+/// pass needs a perspective one.
+[[nodiscard]] lighting::FrameCamera frame_camera(
+    const lighting::reference::ReferenceCamera& camera);
+
+struct FrameShot {
+    Image image;                  ///< the composed linear frame, rows top first
+    double frame_gpu_ms = 0.0;    ///< FrameRenderer's passes (GPU timer queries)
+    double caustic_gpu_ms = 0.0;  ///< CausticPass splat + filter (GPU); 0 without caustics
+};
+
+/// One run's renderer. Needs the context current for its whole life; not movable (the caustic
+/// stage it gives the renderer holds `this`).
+class FrameView {
+  public:
+    FrameView(ecs::Registry& registry, lighting::LightingSystem& lighting,
+              const lighting::reference::ReferenceCamera& camera, lighting::CausticKernel kernel,
+              const ShaderLibrary& shaders);
+    FrameView(const FrameView&) = delete;
+    FrameView& operator=(const FrameView&) = delete;
+
+    /// The frame at `now_seconds` (the clock given to LightingSystem::update) with this
+    /// frame's caustics (FrameRenderer's caustic stage: not one frame late).
+    [[nodiscard]] FrameShot render(double now_seconds);
+
+  private:
+    lighting::LightingSystem* lighting_;
+    const ShaderLibrary* shaders_;
+    lighting::FrameCamera camera_;
+    lighting::CausticCamera caustic_camera_;
+    lighting::CausticPassSettings caustic_settings_;
+    lighting::FrameRenderer renderer_;
+    std::optional<lighting::CausticPass> caustics_;
+};
+
+}  // namespace luxel::bench
