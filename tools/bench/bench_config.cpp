@@ -28,13 +28,14 @@ lighting::LightingConfig BenchConfig::lighting() const {
     config.gather.rays_per_texel = rays;
     config.texels_per_gather_unit = texels_per_unit;
     config.maps.iim_filter_radius = static_cast<int>(filter);
+    config.maps.refine_passes = refine;
     return config;
 }
 
 std::string BenchConfig::knobs() const {
     std::ostringstream out;
     out << "photons=" << groups << "x" << per_group << " aim_n=" << aim_n << " rays=" << rays
-        << " texels_per_unit=" << texels_per_unit << " filter=" << filter
+        << " texels_per_unit=" << texels_per_unit << " filter=" << filter << " refine=" << refine
         << " caustics=" << caustic_photons << "x" << caustic_slices << " backend=" << backend
         << " kernel=" << kernel;
     return out.str();
@@ -68,6 +69,8 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.texels_per_unit = whole(value);
             } else if (sweep.knob == "filter") {
                 c.filter = whole(value);
+            } else if (sweep.knob == "refine") {
+                c.refine = whole(value);
             } else if (sweep.knob == "backend") {
                 c.backend = value;
             } else if (sweep.knob == "kernel") {

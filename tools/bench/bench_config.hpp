@@ -18,10 +18,11 @@ struct BenchConfig {
     double budget_ms = 4.0;
     std::uint32_t groups = 77;  ///< the paper: 77 groups x 40 photons
     std::uint32_t per_group = 40;
-    std::uint32_t aim_n = 50;                ///< N nearest photons of the AIM estimate
-    std::uint32_t rays = 64;                 ///< gather rays per texel (CPU backend)
-    std::uint32_t texels_per_unit = 20;      ///< the paper gathers 20 texels per frame
-    std::uint32_t filter = 2;                ///< IIM filter radius in texels (luxel's default)
+    std::uint32_t aim_n = 50;            ///< N nearest photons of the AIM estimate
+    std::uint32_t rays = 64;             ///< gather rays per texel (CPU backend)
+    std::uint32_t texels_per_unit = 20;  ///< the paper gathers 20 texels per frame
+    std::uint32_t filter = 2;            ///< IIM filter radius in texels (luxel's default)
+    std::uint32_t refine = 16;  ///< gather passes averaged while lighting is unchanged (default)
     std::uint32_t caustic_photons = 10'000;  ///< per (generator, light) pair; the paper's
     std::uint32_t caustic_slices = 8;        ///< ... over 8 frames
     /// The final-gather backend: "cpu" (Embree rays, `rays` per texel) or "gpu" (the

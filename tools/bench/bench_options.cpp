@@ -85,10 +85,15 @@ Sweep parse_sweep(const std::string& text) {
             if (v < 0.0 || v > 16.0 || v != std::floor(v)) {
                 throw Error(what + ": '" + value + "' is not a whole number of texels in 0..16");
             }
+        } else if (sweep.knob == "refine") {
+            const double v = number(value, what);
+            if (v < 1.0 || v > 1024.0 || v != std::floor(v)) {
+                throw Error(what + ": '" + value + "' is not a whole number of passes in 1..1024");
+            }
         } else {
             throw Error("--sweep " + sweep.knob +
                         ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, filter, "
-                        "caustics, backend, kernel)");
+                        "refine, caustics, backend, kernel)");
         }
     }
     return sweep;

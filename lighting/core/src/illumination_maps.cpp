@@ -8,6 +8,8 @@
 #include <glm/gtc/constants.hpp>
 
 #include "luxel/ecs/hierarchy.hpp"
+#include "luxel/lighting/core/light_source.hpp"
+#include "luxel/lighting/core/ray_scene.hpp"
 #include "luxel/runtime/scene/image_decode.hpp"
 
 namespace luxel::lighting {
@@ -301,11 +303,22 @@ std::size_t IlluminationMaps::rebuild_aim(std::uint32_t surface, std::size_t max
     int y0 = page.size;
     int x1 = -1;
     int y1 = -1;
+    const float probe_length =
+        static_cast<float>(settings_.enclosure_probe_texels * metres_per_texel);
     for (std::size_t i = first; i < end; ++i) {
         const SurfaceTexel& texel = mapped.texels.texels[i];
+        glm::vec3 radiance(0.0f);
+        if (probe_length > 0.0f && enclosed(pass.texels[i], probe_length)) {
+            page.at(texel.x, texel.y) = radiance;
+            ++counters_.enclosed_texels;
+            x0 = std::min(x0, texel.x);
+            y0 = std::min(y0, texel.y);
+            x1 = std::max(x1, texel.x);
+            y1 = std::max(y1, texel.y);
+            continue;
+        }
         const DensitySample found =
             pass.density->sample(pass.texels[i].position, pass.texels[i].normal, density);
-        glm::vec3 radiance(0.0f);
         if (found.radius > 0.0 && metres_per_texel > 0.0) {
             const double on_surface = mapped.footprint.fraction(i, found.radius / metres_per_texel,
                                                                 settings_.density.kernel);
@@ -345,6 +358,29 @@ std::size_t IlluminationMaps::rebuild_aim(std::uint32_t surface, std::size_t max
         aim_pass_.reset();
     }
     return end - first;
+}
+
+bool IlluminationMaps::enclosed(const GatherTexel& texel, float probe_length) const {
+    // Rays over the hemisphere: the normal and eight cosine-distributed directions around it.
+    // A texel under an object resting on its surface has (nearly) all of them blocked within a
+    // texel or two; one in a corner or beside a wall has the ones pointing away free (half or
+    // more). Two free rays are allowed: where a box rests on a bumpy floor, grazing rays slip
+    // out through the gaps between the bumps although hardly any light gets in.
+    constexpr int kProbes = 9;
+    constexpr int kFreeAllowed = 2;
+    const RayScene& scene = world_.ray_scene();
+    const glm::vec3 origin = offset_ray_origin(texel.position, texel.normal);
+    int free = 0;
+    for (int k = 0; k < kProbes && free <= kFreeAllowed; ++k) {
+        const glm::vec3 direction =
+            k == 0 ? texel.normal
+                   : cosine_direction(
+                         texel.normal,
+                         glm::dvec2((static_cast<double>(k) - 0.5) / (kProbes - 1),
+                                    std::fmod(static_cast<double>(k) * 0.6180339887498949, 1.0)));
+        free += scene.occluded(origin, direction, probe_length) ? 0 : 1;
+    }
+    return free <= kFreeAllowed;
 }
 
 void IlluminationMaps::dilate(std::uint32_t surface, RadiancePage& page) const {
@@ -529,16 +565,58 @@ void IlluminationMaps::commit_pass(std::uint32_t surface, double now_seconds) {
               static_cast<std::size_t>(texels[i].x - x0)] = static_cast<std::int32_t>(i);
     }
     const int radius = std::max(settings_.iim_filter_radius, 0);
+    const std::size_t count = texels.size();
     const bool refining = mapped.pass_refines && mapped.passes_averaged > 0 &&
-                          mapped.mean_irradiance.size() == texels.size();
-    // The mean is kept only while more passes may be averaged into it.
+                          mapped.mean_irradiance.size() == count &&
+                          mapped.irradiance_m2.size() == count;
+    const std::uint32_t passes = refining ? mapped.passes_averaged + 1 : 1;
+    // The per-texel mean of the passes (unfiltered) and, for the noise estimate, the sum of
+    // squared deviations (Welford's update, in double per step so long runs do not drift).
+    // Kept only while more passes may be averaged in.
     const bool keep_mean = refine_ && settings_.refine_passes > 1;
+    std::vector<glm::vec3> pass_mean;
     if (keep_mean) {
-        mapped.mean_irradiance.resize(texels.size());
+        mapped.mean_irradiance.resize(count);
+        mapped.irradiance_m2.resize(count);
+        for (std::size_t i = 0; i < count; ++i) {
+            const glm::dvec3 x(sanitized(mapped.pass_irradiance[i]));
+            if (!refining) {
+                mapped.mean_irradiance[i] = glm::vec3(x);
+                mapped.irradiance_m2[i] = glm::vec3(0.0f);
+                continue;
+            }
+            const glm::dvec3 old_mean(mapped.mean_irradiance[i]);
+            const glm::dvec3 mean = old_mean + (x - old_mean) / static_cast<double>(passes);
+            mapped.mean_irradiance[i] = glm::vec3(mean);
+            mapped.irradiance_m2[i] =
+                glm::vec3(glm::dvec3(mapped.irradiance_m2[i]) + (x - old_mean) * (x - mean));
+        }
     } else {
         mapped.mean_irradiance = {};
+        mapped.irradiance_m2 = {};
+        pass_mean.resize(count);
+        for (std::size_t i = 0; i < count; ++i) {
+            pass_mean[i] = sanitized(mapped.pass_irradiance[i]);
+        }
     }
-    for (std::size_t i = 0; i < texels.size(); ++i) {
+    const std::vector<glm::vec3>& mean = keep_mean ? mapped.mean_irradiance : pass_mean;
+    // With three passes or more each texel knows its noise: the variance of its mean, summed
+    // over the channels. The filter then leaves out neighbours whose difference is not
+    // explained by the noise (a range weight, as a bilateral filter's, in units of the noise):
+    // noise is smoothed, while a real feature such as the focus of light under a glass sphere
+    // (one texel, several times its neighbours) keeps its value. Fewer passes: the plain tent.
+    const double sigmas = static_cast<double>(settings_.iim_filter_noise_sigmas);
+    const bool noise_aware = sigmas > 0.0 && passes >= 3 && keep_mean;
+    std::vector<double> noise;
+    if (noise_aware) {
+        noise.resize(count);
+        const double scale = 1.0 / (static_cast<double>(passes - 1) * static_cast<double>(passes));
+        for (std::size_t i = 0; i < count; ++i) {
+            const glm::dvec3 m2(mapped.irradiance_m2[i]);
+            noise[i] = (m2.x + m2.y + m2.z) * scale;
+        }
+    }
+    for (std::size_t i = 0; i < count; ++i) {
         glm::dvec3 sum(0.0);
         double weights = 0.0;
         for (int dy = -radius; dy <= radius; ++dy) {
@@ -554,22 +632,22 @@ void IlluminationMaps::commit_pass(std::uint32_t surface, double now_seconds) {
                 if (j < 0) {
                     continue;
                 }
-                const double w =
+                const auto neighbour = static_cast<std::size_t>(j);
+                double w =
                     static_cast<double>((radius + 1 - std::abs(dx)) * (radius + 1 - std::abs(dy)));
-                sum +=
-                    w * glm::dvec3(sanitized(mapped.pass_irradiance[static_cast<std::size_t>(j)]));
+                if (noise_aware && neighbour != i) {
+                    const glm::dvec3 d = glm::dvec3(mean[neighbour]) - glm::dvec3(mean[i]);
+                    const double difference = glm::dot(d, d);
+                    const double spread = sigmas * sigmas * (noise[i] + noise[neighbour]);
+                    // No noise at all (e.g. two black texels): any difference is real.
+                    w *= spread > 0.0 ? std::exp(-0.5 * difference / spread)
+                                      : (difference > 0.0 ? 0.0 : 1.0);
+                }
+                sum += w * glm::dvec3(mean[neighbour]);
                 weights += w;
             }
         }
-        glm::vec3 e = weights > 0.0 ? glm::vec3(sum / weights) : glm::vec3(0.0f);
-        if (refining) {
-            // The running mean of the passes, in double so a long run of them does not drift.
-            const double n = static_cast<double>(mapped.passes_averaged);
-            e = glm::vec3((glm::dvec3(mapped.mean_irradiance[i]) * n + glm::dvec3(e)) / (n + 1.0));
-        }
-        if (keep_mean) {
-            mapped.mean_irradiance[i] = e;
-        }
+        const glm::vec3 e = weights > 0.0 ? glm::vec3(sum / weights) : glm::vec3(0.0f);
         const glm::vec3 value = mapped.content == IimContent::Irradiance
                                     ? e
                                     : mapped.albedo * e * glm::one_over_pi<float>();
@@ -597,9 +675,11 @@ void IlluminationMaps::commit_pass(std::uint32_t surface, double now_seconds) {
     const int top = std::max(y0 - 1, 0);
     page.current.mark_dirty(
         {left, top, std::min(x1 + 2, size) - left, std::min(y1 + 2, size) - top});
-    mapped.passes_averaged = refining ? mapped.passes_averaged + 1 : 1;
+    mapped.passes_averaged = passes;
     if (mapped.passes_averaged >= settings_.refine_passes) {
-        mapped.mean_irradiance = {};  // done refining: the IIM holds the mean
+        // Done refining: the IIM holds the filtered mean.
+        mapped.mean_irradiance = {};
+        mapped.irradiance_m2 = {};
     }
     mapped.gather_in_progress = false;
     mapped.gathered_once = true;

@@ -56,7 +56,17 @@ struct IlluminationSettings {
     /// requests come after every other request, so they use budget that would otherwise go
     /// idle, and they stop once done. Only gatherers that sample refine (IrradianceGatherer::
     /// refines()); docs/RESULTS.md measures the trade.
-    std::uint32_t refine_passes = 8;
+    std::uint32_t refine_passes = 16;
+    /// AIM texels whose hemisphere is closed within this many texels (every probe ray blocked:
+    /// the floor under a box resting on it, the box's bottom) get no light: no photon can
+    /// reach them, and a density estimate there would borrow the photons around the object
+    /// (its radius grows until it finds some) and leak light under it. 0: no probes.
+    double enclosure_probe_texels = 1.5;
+    /// Once three or more passes are averaged, the filter weighs each neighbour by how well
+    /// the texels' noise explains their difference: exp(-d^2 / (2 k^2 (var_i + var_j))) with
+    /// k this many standard deviations of the texels' means (0: the plain tent). Noise is
+    /// smoothed; a feature sharper than the tent (the focus under a glass sphere) is kept.
+    float iim_filter_noise_sigmas = 2.5f;
 };
 
 /// A piece of work the scheduler can order: a surface and its priority (delta / area, W/m^2).
@@ -87,10 +97,12 @@ struct MapSurface {
     std::uint32_t passes_started = 0;
     /// The pass in progress refines (averages into) the IIM instead of replacing it.
     bool pass_refines = false;
-    /// Passes averaged in the IIM since its lighting last changed, and their filtered mean
-    /// irradiance per texel (kept only while refining is possible).
+    /// Passes averaged in the IIM since its lighting last changed, their mean irradiance per
+    /// texel before filtering, and the sum of squared deviations from it (Welford), kept only
+    /// while refining is possible.
     std::uint32_t passes_averaged = 0;
     std::vector<glm::vec3> mean_irradiance;
+    std::vector<glm::vec3> irradiance_m2;
     IimContent content = IimContent::Radiance;
     glm::mat4 to_world{1.0f};
     /// World metres per page texel (the object-space scale times the transform's).
@@ -111,6 +123,7 @@ struct MapCounters {
     std::uint64_t aim_texels = 0;
     std::uint64_t gather_passes = 0;
     std::uint64_t texels_gathered = 0;
+    std::uint64_t enclosed_texels = 0;  ///< AIM texels found enclosed (set to 0)
 };
 
 class IlluminationMaps {
@@ -192,6 +205,8 @@ class IlluminationMaps {
     /// Whether what surface `s` gathers has changed since its last pass (delta_i over the
     /// threshold, an emission changed, or the pass read a stale AIM that is current now).
     [[nodiscard]] bool lighting_changed(std::uint32_t s, bool aims_are_current) const;
+    /// Whether every probe ray from the texel is blocked within `probe_length` metres.
+    [[nodiscard]] bool enclosed(const GatherTexel& texel, float probe_length) const;
     /// Whether surface `s` wants a refinement pass.
     [[nodiscard]] bool wants_refinement(std::uint32_t s) const;
     void commit_pass(std::uint32_t surface, double now_seconds);
