@@ -54,6 +54,35 @@ TEST(BenchCli, BadValuesAreExplained) {
     run = luxel_bench("--level cornell --change cube:1,0");
     EXPECT_NE(run.exit_code, 0);
     EXPECT_NE(run.output.find("--change"), std::string::npos) << run.output;
+    run = luxel_bench("--level cornell --change 'door hinge:turn=0,1,0'");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("the axis and the angle"), std::string::npos) << run.output;
+    run = luxel_bench("--level cornell --change 'moving cube:turn=0,0,0,90'");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("axis is zero"), std::string::npos) << run.output;
+}
+
+TEST(BenchCli, ALightSwitchAndATurnAreScriptedChanges) {
+    luxel::testing::TempDir dir("luxel-bench-switch");
+    const std::string tiny =
+        " --budgets 8 --frames 4 --after 3 --checkpoint 2 --ref-photons 100000 "
+        "--ref-caustic-photons 50000 --ref-spp 1 --no-image --threads 2 --out ";
+    // The box light of the caustics level goes off after the static frames: a new reference
+    // for the light that is left, and the recovery measured against it.
+    CommandResult run =
+        luxel_bench("--level caustics --change 'box light:off'" + tiny + quoted(dir / "switch"));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_NE(run.output.find("after the change"), std::string::npos) << run.output;
+    EXPECT_EQ(read_csv(dir / "switch" / "after_change.csv").size(), 1u + 3u);
+    // Cornell's cube turned 45 degrees about its vertical axis.
+    run = luxel_bench("--level cornell --change 'moving cube:turn=0,1,0,45'" + tiny +
+                      quoted(dir / "turn"));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_EQ(read_csv(dir / "turn" / "after_change.csv").size(), 1u + 3u);
+    // A node without a light cannot be switched.
+    run = luxel_bench("--level cornell --change 'moving cube:off'" + tiny + quoted(dir / "bad"));
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("carries no light"), std::string::npos) << run.output;
 }
 
 TEST(BenchCli, ATinyRunWritesEveryOutputAndASecondReusesTheReference) {

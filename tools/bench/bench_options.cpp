@@ -102,14 +102,38 @@ Sweep parse_sweep(const std::string& text) {
 Change parse_change(const std::string& text) {
     const std::size_t colon = text.rfind(':');
     if (colon == std::string::npos || colon == 0) {
-        throw Error("--change " + text + ": expected NODE:dx,dy,dz, auto or none");
-    }
-    const auto parts = split(text.substr(colon + 1), ',');
-    if (parts.size() != 3) {
-        throw Error("--change " + text + ": the offset needs three numbers dx,dy,dz");
+        throw Error("--change " + text +
+                    ": expected NODE:dx,dy,dz, NODE:turn=ax,ay,az,deg, NODE:off, NODE:on, auto or "
+                    "none");
     }
     Change change;
     change.node = text.substr(0, colon);
+    const std::string what = text.substr(colon + 1);
+    if (what == "off" || what == "on") {
+        change.kind = what == "off" ? Change::Kind::Off : Change::Kind::On;
+        return change;
+    }
+    if (what.rfind("turn=", 0) == 0) {
+        const auto parts = split(what.substr(5), ',');
+        if (parts.size() != 4) {
+            throw Error("--change " + text + ": a turn needs the axis and the angle, ax,ay,az,deg");
+        }
+        change.kind = Change::Kind::Turn;
+        for (int i = 0; i < 3; ++i) {
+            change.axis[i] =
+                static_cast<float>(number(parts[static_cast<std::size_t>(i)], "--change"));
+        }
+        change.degrees = static_cast<float>(number(parts[3], "--change"));
+        if (!(glm::length(change.axis) > 0.0f)) {
+            throw Error("--change " + text + ": the turn's axis is zero");
+        }
+        change.axis = glm::normalize(change.axis);
+        return change;
+    }
+    const auto parts = split(what, ',');
+    if (parts.size() != 3) {
+        throw Error("--change " + text + ": the offset needs three numbers dx,dy,dz");
+    }
     for (int i = 0; i < 3; ++i) {
         change.offset[i] =
             static_cast<float>(number(parts[static_cast<std::size_t>(i)], "--change"));

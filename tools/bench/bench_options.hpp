@@ -19,9 +19,15 @@ struct Sweep {
 };
 
 /// The scripted change: a node moved by an offset once the static run has converged.
+/// The scripted change after the static frames: a node moved (NODE:dx,dy,dz), turned
+/// (NODE:turn=ax,ay,az,degrees, about its own origin) or its light switched (NODE:off, NODE:on).
 struct Change {
+    enum class Kind { Move, Turn, Off, On };
     std::string node;
-    glm::vec3 offset{0.0f};
+    Kind kind = Kind::Move;
+    glm::vec3 offset{0.0f};            ///< Move: metres
+    glm::vec3 axis{0.0f, 1.0f, 0.0f};  ///< Turn
+    float degrees = 0.0f;              ///< Turn
 };
 
 /// The reference's size: what the cache key holds besides the level and the pose.
@@ -49,7 +55,7 @@ struct Options {
     std::uint32_t checkpoint = 30;  ///< static frames between error measurements
     std::filesystem::path out = "bench-out";
     std::vector<Sweep> sweeps;
-    std::string change = "auto";  ///< NODE:dx,dy,dz, "auto" or "none"
+    std::string change = "auto";  ///< see Change, "auto" or "none"
     std::optional<Change> parsed_change;
     double time = 0.0;       ///< the animation pose (frozen)
     double dt = 1.0 / 30.0;  ///< seconds per frame (IIM fade-in)

@@ -4,12 +4,16 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <type_traits>
+
+#include <glm/gtc/quaternion.hpp>
 
 #include "frame_view.hpp"
 #include "image_reference.hpp"
 #include "level.hpp"
 #include "luxel/ecs/transform.hpp"
 #include "luxel/ecs/transform_system.hpp"
+#include "luxel/lighting/components.hpp"
 #include "luxel/lighting/core/animation_system.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
 #include "luxel/lighting/core/reference/error_metrics.hpp"
@@ -41,9 +45,63 @@ double percentile(std::vector<double> values, double p) {
 
 std::string describe(const Change& change) {
     std::ostringstream out;
-    out << change.node << ":" << change.offset.x << "," << change.offset.y << ","
-        << change.offset.z;
+    out << change.node << ":";
+    switch (change.kind) {
+        case Change::Kind::Move:
+            out << change.offset.x << "," << change.offset.y << "," << change.offset.z;
+            break;
+        case Change::Kind::Turn:
+            out << "turn=" << change.axis.x << "," << change.axis.y << "," << change.axis.z << ","
+                << change.degrees;
+            break;
+        case Change::Kind::Off:
+            out << "off";
+            break;
+        case Change::Kind::On:
+            out << "on";
+            break;
+    }
     return out.str();
+}
+
+/// Sets the `enabled` flag of whichever light the entity carries; false when it has none.
+bool switch_light(ecs::Registry& registry, ecs::Entity entity, bool on) {
+    bool found = false;
+    const auto set = [&](auto* light) {
+        if (light != nullptr) {
+            registry.patch<std::remove_pointer_t<decltype(light)>>(
+                entity, [&](auto& l) { l.enabled = on; });
+            found = true;
+        }
+    };
+    set(registry.try_get<lighting::PointLight>(entity));
+    set(registry.try_get<lighting::SpotLight>(entity));
+    set(registry.try_get<lighting::DirectionalLight>(entity));
+    set(registry.try_get<lighting::AreaLight>(entity));
+    return found;
+}
+
+/// Applies the scripted change to the live scene.
+void apply(const Change& change, ecs::Registry& registry, ecs::Entity entity,
+           const std::string& level) {
+    switch (change.kind) {
+        case Change::Kind::Move:
+            registry.patch<ecs::Transform>(
+                entity, [&](ecs::Transform& t) { t.translation += change.offset; });
+            break;
+        case Change::Kind::Turn:
+            registry.patch<ecs::Transform>(entity, [&](ecs::Transform& t) {
+                t.rotation = glm::angleAxis(glm::radians(change.degrees), change.axis) * t.rotation;
+            });
+            break;
+        case Change::Kind::Off:
+        case Change::Kind::On:
+            if (!switch_light(registry, entity, change.kind == Change::Kind::On)) {
+                throw Error("--change " + describe(change) + ": node '" + change.node + "' of " +
+                            level + " carries no light to switch");
+            }
+            break;
+    }
 }
 
 bool sweeps_gpu_backend(const Options& options) {
@@ -67,7 +125,9 @@ Bench::Bench(const Options& options, const std::filesystem::path& level_file)
     } else if (options.change == "auto") {
         for (const scene::Node& node : source_->nodes) {
             if (node.name == kAutoNode) {
-                change_ = Change{kAutoNode, {kAutoOffset, 0.0f, 0.0f}};
+                change_ = Change{};
+                change_->node = kAutoNode;
+                change_->offset = {kAutoOffset, 0.0f, 0.0f};
             }
         }
     }
@@ -249,8 +309,7 @@ RunResult Bench::run(const BenchConfig& config) {
     if (change_) {
         result.changed = true;
         const ecs::Entity entity = instance.find(change_->node);
-        registry.patch<ecs::Transform>(
-            entity, [&](ecs::Transform& t) { t.translation += change_->offset; });
+        apply(*change_, registry, entity, file_.string());
         transforms.update();
         // A zero budget syncs the move into the photon world and the maps without doing any
         // lighting work: the reference of the new pose needs the moved geometry.
@@ -283,7 +342,7 @@ RunResult Bench::run(const BenchConfig& config) {
                    c.frame != options.after;
         });
         std::fprintf(stderr,
-                     "luxel-bench: %s @ %g ms: after the move indirect %.4f -> %.4f, back under "
+                     "luxel-bench: %s @ %g ms: after the change indirect %.4f -> %.4f, back under "
                      "2x converged in %d frames",
                      config.method.c_str(), config.budget_ms, result.indirect_at_change,
                      result.indirect_after, result.recovery_frames);

@@ -65,7 +65,8 @@ int run(int argc, char** argv) {
                  "leave the image error out (no frames rendered, no GL context unless "
                  "backend=gpu is swept)");
     app.add_option("--change", options.change,
-                   "NODE:dx,dy,dz moved after the static frames; auto: 'moving cube' by 0.3 m "
+                   "after the static frames: NODE:dx,dy,dz moves a node, NODE:turn=ax,ay,az,deg "
+                   "turns it, NODE:off / NODE:on switch its light; auto: 'moving cube' by 0.3 m "
                    "in x when the level has it; none")
         ->capture_default_str();
     app.add_option("--time", options.time, "animation pose in seconds (frozen)")

@@ -390,7 +390,7 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
             }
             if (r.changed) {
                 const bool met = r.recovery_frames >= 0 && r.recovery_frames <= kRecoveryGoalFrames;
-                md << "- recovery after the move: "
+                md << "- recovery after the change: "
                    << (r.recovery_frames >= 0 ? std::to_string(r.recovery_frames) + " frames"
                                               : "not within the frames run")
                    << " (goal <= 30 at 4 ms): **" << (met ? "met" : "missed") << "**\n";

@@ -466,19 +466,21 @@ std::vector<MapRequest> IlluminationMaps::gather_requests() const {
         if (mapped.gather_in_progress || (ready && (!mapped.gathered_once || changed || refine))) {
             // Passes in progress first, the furthest along first, so passes finish one after
             // another instead of all crawling together (a pass shows only when complete); then
-            // surfaces never gathered; then the largest delta_i / area; refinement last, the
-            // surfaces with the fewest passes averaged first.
+            // surfaces never gathered; then the largest delta_i / area; refinement last: a
+            // refinement pass in progress, then the surfaces with the fewest passes averaged.
+            // A change never waits for refinement (a refinement pass of a surface whose light
+            // changed is dropped and started afresh by gather()).
+            const double done = static_cast<double>(mapped.gather_cursor) /
+                                static_cast<double>(mapped.texels.texels.size());
             double priority = delta / safe_area(mapped.texels.area);
-            if (!changed && mapped.gathered_once) {
-                priority = -static_cast<double>(mapped.passes_averaged);
-            }
-            if (!mapped.gathered_once) {
-                priority = std::numeric_limits<double>::max() / 4.0;
-            }
-            if (mapped.gather_in_progress) {
-                const double done = static_cast<double>(mapped.gather_cursor) /
-                                    static_cast<double>(mapped.texels.texels.size());
+            if (mapped.gather_in_progress && !mapped.pass_refines) {
                 priority = std::numeric_limits<double>::max() / 2.0 * (1.0 + done);
+            } else if (!mapped.gathered_once) {
+                priority = std::numeric_limits<double>::max() / 4.0;
+            } else if (!changed && mapped.gather_in_progress) {
+                priority = -0.5 + 0.25 * done;
+            } else if (!changed) {
+                priority = -static_cast<double>(mapped.passes_averaged);
             }
             requests.push_back({s, priority});
         }
@@ -495,6 +497,10 @@ std::size_t IlluminationMaps::gather(std::uint32_t surface, std::size_t max_texe
     const std::int32_t page_id = aim_.surface_page.at(surface);
     if (page_id < 0 || mapped.texels.texels.empty() || max_texels == 0) {
         return 0;
+    }
+    if (mapped.gather_in_progress && mapped.pass_refines &&
+        lighting_changed(surface, aims_current())) {
+        mapped.gather_in_progress = false;  // the light changed under a refinement pass
     }
     if (!mapped.gather_in_progress && !aims_ready()) {
         // Checked again here, not only when the request was made: photons stored since (by
