@@ -2,6 +2,8 @@
 // writes every output with consistent columns, and the references (light maps and frames)
 // reused from the cache by a second run. The image and backend columns: bench_image_test.cpp.
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -60,6 +62,43 @@ TEST(BenchCli, BadValuesAreExplained) {
     run = luxel_bench("--level cornell --change 'moving cube:turn=0,0,0,90'");
     EXPECT_NE(run.exit_code, 0);
     EXPECT_NE(run.output.find("axis is zero"), std::string::npos) << run.output;
+}
+
+TEST(BenchCli, TheAnimatedPhaseJudgesEachCheckpointByItsOwnReference) {
+    luxel::testing::TempDir dir("luxel-bench-animate");
+    const std::filesystem::path out = dir / "out";
+    const CommandResult run = luxel_bench(
+        "--level cornell --budgets 8 --frames 2 --change none --animate 4 --checkpoint 2 "
+        "--ref-photons 100000 --ref-caustic-photons 50000 --ref-spp 1 --no-image --threads 2 "
+        "--out " +
+        quoted(out));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    // The static pose's reference and one per animated checkpoint (frames 2 and 4).
+    EXPECT_EQ(count(run.output, "computing reference"), 3u) << run.output;
+    const auto rows = read_csv(out / "checkpoints.csv");
+    ASSERT_GT(rows.size(), 1u);
+    const auto column = [&](const std::string& name) {
+        return static_cast<std::size_t>(std::find(rows[0].begin(), rows[0].end(), name) -
+                                        rows[0].begin());
+    };
+    ASSERT_LT(column("animated_time_s"), rows[0].size());
+    std::vector<double> times;
+    for (std::size_t r = 1; r < rows.size(); ++r) {
+        if (rows[r][column("phase")] != "animated") {
+            continue;
+        }
+        const double error = std::stod(rows[r][column("indirect_relrmse")]);
+        EXPECT_TRUE(std::isfinite(error) && error >= 0.0) << rows[r][column("indirect_relrmse")];
+        times.push_back(std::stod(rows[r][column("animated_time_s")]));
+    }
+    ASSERT_EQ(times.size(), 2u);
+    EXPECT_NEAR(times[0], 2.0 / 30.0, 1e-3);
+    EXPECT_NEAR(times[1], 4.0 / 30.0, 1e-3);
+    const auto runs = read_csv(out / "runs.csv");
+    ASSERT_EQ(runs.size(), 2u);
+    const auto median = std::find(runs[0].begin(), runs[0].end(), "animated_indirect_median");
+    ASSERT_NE(median, runs[0].end());
+    EXPECT_NE(runs[1][static_cast<std::size_t>(median - runs[0].begin())], "not_measured");
 }
 
 TEST(BenchCli, ALightSwitchAndATurnAreScriptedChanges) {

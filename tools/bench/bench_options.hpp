@@ -50,8 +50,11 @@ struct ImageSpec {
 struct Options {
     std::string level;
     std::vector<double> budgets{1.0, 2.0, 4.0, 8.0};
-    std::uint32_t frames = 150;     ///< static frames per configuration
-    std::uint32_t after = 90;       ///< frames after the scripted change
+    std::uint32_t frames = 150;  ///< static frames per configuration
+    std::uint32_t after = 90;    ///< frames after the scripted change
+    /// Frames of the level's animation played after the change, compared at every checkpoint
+    /// against a reference of that instant (0: none).
+    std::uint32_t animate = 0;
     std::uint32_t checkpoint = 30;  ///< static frames between error measurements
     std::filesystem::path out = "bench-out";
     std::vector<Sweep> sweeps;

@@ -274,7 +274,7 @@ RunResult Bench::run(const BenchConfig& config) {
         const MapErrors errors = map_errors(maps, reference);
         result.caustic_photons = maps.caustic_photons;
         result.caustic_unbinned = maps.caustic_unbinned;
-        Checkpoint checkpoint{at, after, errors.indirect, errors.caustic, std::nullopt};
+        Checkpoint checkpoint{at, after, false, 0.0, errors.indirect, errors.caustic, std::nullopt};
         // Frames are rendered at checkpoints only (after the change: every checkpoint-th
         // frame and the last), not at every frame the indirect curve samples.
         const bool checkpoint_frame = at % options.checkpoint == 0 || last;
@@ -351,6 +351,44 @@ RunResult Bench::run(const BenchConfig& config) {
                          result.image_after, result.reference_se_image_after);
         }
         std::fprintf(stderr, "\n");
+    }
+
+    if (options.animate > 0) {
+        // The level's animation plays from the pose (after the change, which the animation
+        // may override on the nodes it drives); at every checkpoint a reference of that
+        // instant, cached under its time, judges the light maps.
+        const std::string changed = change_ ? describe(*change_) : "none";
+        for (std::uint32_t f = 1; f <= options.animate; ++f) {
+            lighting::update_animations(registry, options.dt);
+            lighting::update_light_switches(registry, options.dt);
+            frame(config.budget_ms);
+            if (f % options.checkpoint != 0 && f != options.animate) {
+                continue;
+            }
+            const double played = static_cast<double>(f) * options.dt;
+            std::ostringstream instant;
+            instant << pose_ << ";change=" << changed << ";animated=" << played;
+            scene = std::make_unique<lighting::reference::ReferenceScene>(
+                lighting::reference::ReferenceScene::from_world(lighting.photons(),
+                                                                lighting.maps()));
+            const ReferenceMaps reference =
+                reference_for(cache, instant.str(), *scene, options.reference, *jobs_);
+            result.reference_seconds += reference.from_cache ? 0.0 : reference.seconds;
+            const MapErrors errors = map_errors(read_real_time(lighting, *scene, now), reference);
+            Checkpoint checkpoint{f,           false, true, played, errors.indirect, errors.caustic,
+                                  std::nullopt};
+            result.checkpoints.push_back(checkpoint);
+            result.animated_indirect.push_back(errors.indirect);
+        }
+        result.animated_indirect_median = percentile(result.animated_indirect, 0.5);
+        result.animated_indirect_max =
+            *std::max_element(result.animated_indirect.begin(), result.animated_indirect.end());
+        std::fprintf(stderr,
+                     "luxel-bench: %s @ %g ms: animated %u frames, indirect median %.4f, "
+                     "largest %.4f over %zu checkpoints\n",
+                     config.method.c_str(), config.budget_ms, options.animate,
+                     result.animated_indirect_median, result.animated_indirect_max,
+                     result.animated_indirect.size());
     }
     result.active_frames = active_ms.size();
     result.ms_median = percentile(active_ms, 0.5);

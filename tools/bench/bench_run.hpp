@@ -23,6 +23,8 @@ namespace luxel::bench {
 struct Checkpoint {
     std::uint32_t frame = 0;  ///< frames since the start of its phase
     bool after_change = false;
+    bool animated = false;  ///< in the animated phase (--animate)
+    double time = 0.0;      ///< animated: seconds of animation played since the pose
     double indirect = 0.0;  ///< light-map relRMSE
     double caustic = 0.0;
     std::optional<double> image;  ///< image relRMSE; none when the image is off
@@ -65,6 +67,11 @@ struct RunResult {
     /// Median over the static checkpoints' renders: FrameRenderer's passes, the caustic pass.
     double frame_gpu_ms = 0.0;
     double caustic_gpu_ms = 0.0;
+    /// The animated phase (--animate): the indirect error at each checkpoint against the
+    /// reference of that instant; its median and largest value.
+    std::vector<double> animated_indirect;
+    double animated_indirect_median = 0.0;
+    double animated_indirect_max = 0.0;
 };
 
 /// Holds the level, the jobs and (for the image error and the GPU gather backend) the GL

@@ -44,6 +44,11 @@ int run(int argc, char** argv) {
     app.add_option("--budgets", budgets, "lighting budgets in ms per frame (default 1,2,4,8)");
     app.add_option("--frames", options.frames, "static frames per configuration")
         ->capture_default_str();
+    app.add_option("--animate", options.animate,
+                   "frames of the level's animation played after the change; at every "
+                   "checkpoint the light maps are compared with a reference of that instant "
+                   "(one reference each: use a smaller --ref-photons)")
+        ->capture_default_str();
     app.add_option("--after", options.after, "frames after the scripted change")
         ->capture_default_str();
     app.add_option("--checkpoint", options.checkpoint, "static frames between error checkpoints")

@@ -57,6 +57,7 @@ std::vector<std::string> row(const ReportInfo& info, const RunResult& r) {
             std::to_string(c.rays),
             std::to_string(c.texels_per_unit),
             std::to_string(c.filter),
+            std::to_string(c.refine),
             std::to_string(c.caustic_photons),
             std::to_string(c.caustic_slices),
             c.backend,
@@ -83,7 +84,9 @@ std::vector<std::string> row(const ReportInfo& info, const RunResult& r) {
             std::to_string(r.caustic_photons),
             std::to_string(r.caustic_unbinned),
             image_number(r, r.frame_gpu_ms, 3),
-            image_number(r, r.caustic_gpu_ms, 3)};
+            image_number(r, r.caustic_gpu_ms, 3),
+            r.animated_indirect.empty() ? kNotMeasured : number(r.animated_indirect_median),
+            r.animated_indirect.empty() ? kNotMeasured : number(r.animated_indirect_max)};
 }
 
 void write_csv(const std::filesystem::path& path, const std::vector<std::string>& header,
@@ -213,6 +216,7 @@ const std::vector<std::string>& run_columns() {
                                                   "rays",
                                                   "texels_per_unit",
                                                   "filter",
+                                                  "refine",
                                                   "caustic_photons",
                                                   "caustic_slices",
                                                   "backend",
@@ -239,7 +243,9 @@ const std::vector<std::string>& run_columns() {
                                                   "caustic_photons_stored",
                                                   "caustic_unbinned",
                                                   "frame_gpu_ms",
-                                                  "caustic_gpu_ms"};
+                                                  "caustic_gpu_ms",
+                                                  "animated_indirect_median",
+                                                  "animated_indirect_max"};
     return columns;
 }
 
@@ -279,12 +285,15 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
         run["frame_ms"] = r.frame_ms;
         run["after_indirect"] = r.after_indirect;
         for (const Checkpoint& c : r.checkpoints) {
-            checkpoints.push_back({r.config.method, number(r.config.budget_ms, 2),
-                                   c.after_change ? "after" : "static", std::to_string(c.frame),
-                                   number(c.indirect), number(c.caustic),
-                                   c.image ? number(*c.image) : kNotMeasured});
+            const char* phase = c.animated ? "animated" : c.after_change ? "after" : "static";
+            checkpoints.push_back({r.config.method, number(r.config.budget_ms, 2), phase,
+                                   std::to_string(c.frame), number(c.indirect), number(c.caustic),
+                                   c.image ? number(*c.image) : kNotMeasured,
+                                   c.animated ? number(c.time, 3) : "0"});
             run["checkpoints"].push_back(
                 {{"frame", c.frame},
+                 {"phase", phase},
+                 {"time", c.time},
                  {"after_change", c.after_change},
                  {"indirect", c.indirect},
                  {"caustic", c.caustic},
@@ -299,7 +308,7 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
     write_csv(out / "runs.csv", run_columns(), rows);
     write_csv(out / "checkpoints.csv",
               {"method", "budget_ms", "phase", "frame", "indirect_relrmse", "caustic_relrmse",
-               "image_relrmse"},
+               "image_relrmse", "animated_time_s"},
               checkpoints);
     write_csv(out / "after_change.csv", {"method", "budget_ms", "frame", "indirect_relrmse"},
               after);
@@ -358,6 +367,17 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
            << " | " << number(100.0 * r.reference_se[1], 2) << "% / "
            << number(100.0 * r.reference_se[2], 2) << "% / "
            << (r.image_measured ? number(100.0 * r.reference_se_image, 2) + "%" : "-") << " |\n";
+    }
+    if (info.options->animate > 0) {
+        md << "\nAnimated phase (" << info.options->animate
+           << " frames of the level's animation after the change; indirect relRMSE against a "
+              "reference of each checkpoint's instant):\n\n";
+        for (const RunResult& r : runs) {
+            md << "- " << r.config.method << " @ " << number(r.config.budget_ms, 1)
+               << " ms: median " << number(100.0 * r.animated_indirect_median, 2) << "%, largest "
+               << number(100.0 * r.animated_indirect_max, 2) << "% over "
+               << r.animated_indirect.size() << " checkpoints\n";
+        }
     }
     md << "\nReference adequacy (its relative standard error at most 1/10 of the error it "
           "judges):\n";
