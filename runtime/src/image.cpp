@@ -1,6 +1,7 @@
 #include "luxel/runtime/image.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <memory>
 #include <stdexcept>
@@ -197,6 +198,27 @@ Image8 read_png(const std::filesystem::path& path) {
     image.data.assign(pixels.get(), pixels.get() + pixel_count(width, height) *
                                                        static_cast<std::size_t>(channels));
     return image;
+}
+
+float metered_exposure(const Image& image, int stride) {
+    const int step = std::max(stride, 1);
+    double log_sum = 0.0;
+    std::size_t count = 0;
+    for (int y = 0; y < image.height; y += step) {
+        for (int x = 0; x < image.width; x += step) {
+            const glm::vec4 p = image.pixel(x, y);
+            const double luminance = 0.2126 * p.r + 0.7152 * p.g + 0.0722 * p.b;
+            if (std::isfinite(luminance) && luminance > 1e-6) {
+                log_sum += std::log(1e-4 + luminance);
+                ++count;
+            }
+        }
+    }
+    if (count == 0) {
+        return 1.0f;
+    }
+    const double average = std::exp(log_sum / static_cast<double>(count));
+    return static_cast<float>(std::clamp(kExposureKey / average, 1e-3, 1e4));
 }
 
 }  // namespace luxel

@@ -70,29 +70,6 @@ void save(const std::filesystem::path& stem, const ReferenceImage& reference) {
     std::filesystem::rename(partial_json, json_file);
 }
 
-/// Exposure that maps the log-average luminance of the lit pixels to a mid grey (what the
-/// sandbox's meter does for one frame); black pixels are the void, not a dark surface.
-float metered_exposure(const Image& image) {
-    constexpr double kKey = 0.12;
-    double log_sum = 0.0;
-    std::size_t count = 0;
-    for (int y = 0; y < image.height; ++y) {
-        for (int x = 0; x < image.width; ++x) {
-            const glm::vec4 p = image.pixel(x, y);
-            const double luminance = 0.2126 * p.r + 0.7152 * p.g + 0.0722 * p.b;
-            if (std::isfinite(luminance) && luminance > 1e-6) {
-                log_sum += std::log(1e-4 + luminance);
-                ++count;
-            }
-        }
-    }
-    if (count == 0) {
-        return 1.0f;
-    }
-    const double average = std::exp(log_sum / static_cast<double>(count));
-    return static_cast<float>(std::clamp(kKey / average, 1e-3, 1e4));
-}
-
 }  // namespace
 
 std::string describe_camera(const ReferenceCamera& camera) {
@@ -137,11 +114,7 @@ ReferenceImage reference_image_for(const std::filesystem::path& cache_dir, const
     Stopwatch clock;
     // As luxel-ref renders a frame: the integrator traces only caustic photons (no texel
     // samples, no indirect photons), and the frame's diffuse surfaces read their estimate.
-    ReferenceSettings settings;
-    settings.seed = spec.seed;
-    settings.caustics.seed = spec.seed;
-    settings.indirect = IndirectMethod::Photons;
-    settings.indirect_photons.seed = spec.seed;
+    const ReferenceSettings settings = reference_settings(spec);
     ReferenceIntegrator integrator(scene, settings);
     FrameSettings frame_settings;
     frame_settings.seed = spec.seed;

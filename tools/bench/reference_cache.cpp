@@ -92,6 +92,16 @@ std::string cache_hash(const std::string& key) {
     return buffer;
 }
 
+lighting::reference::ReferenceSettings reference_settings(const ReferenceSpec& spec) {
+    using namespace lighting::reference;
+    ReferenceSettings settings;
+    settings.seed = spec.seed;
+    settings.caustics.seed = spec.seed;
+    settings.indirect = IndirectMethod::Photons;
+    settings.indirect_photons.seed = spec.seed;
+    return settings;
+}
+
 ReferenceMaps reference_for(const std::filesystem::path& cache_dir, const std::string& pose,
                             const ReferenceScene& scene, const ReferenceSpec& spec,
                             JobSystem& jobs) {
@@ -114,11 +124,7 @@ ReferenceMaps reference_for(const std::filesystem::path& cache_dir, const std::s
     std::fprintf(stderr, "luxel-bench: computing reference %s (%s)\n", maps.hash.c_str(),
                  maps.key.c_str());
     Stopwatch clock;
-    ReferenceSettings settings;
-    settings.seed = spec.seed;
-    settings.caustics.seed = spec.seed;
-    settings.indirect = IndirectMethod::Photons;
-    settings.indirect_photons.seed = spec.seed;
+    const ReferenceSettings settings = reference_settings(spec);
     ReferenceIntegrator integrator(scene, settings);
     for (std::uint32_t pass = 0; pass < kPasses; ++pass) {
         integrator.set_pass_size(static_cast<std::uint32_t>(share(spec.spp, pass)),

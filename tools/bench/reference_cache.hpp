@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "bench_options.hpp"
+#include "luxel/lighting/core/reference/reference_integrator.hpp"
 #include "luxel/lighting/core/reference/reference_scene.hpp"
 #include "luxel/runtime/jobs.hpp"
 
@@ -32,6 +33,10 @@ struct ReferenceMaps {
 
 /// FNV-1a of a cache key as 16 hex digits: the cache file's name.
 [[nodiscard]] std::string cache_hash(const std::string& key);
+
+/// The integrator's settings for a reference of `spec` (seeds, photon-estimated indirect):
+/// one definition for the light-map and the frame references.
+[[nodiscard]] lighting::reference::ReferenceSettings reference_settings(const ReferenceSpec& spec);
 
 /// The reference for `scene` in the pose `pose` (a description of level and state that the
 /// caller guarantees identifies the scene): read from `cache_dir`/<hash>.json when present and

@@ -51,4 +51,14 @@ void write_png(const std::filesystem::path& path, const Image& image,
 /// Reads a PNG as 8-bit values (any channel count the file has).
 [[nodiscard]] Image8 read_png(const std::filesystem::path& path);
 
+/// The grey a metered exposure maps the log-average luminance to: a little under the
+/// photographic 0.18, since luxel's interiors are mostly pale walls.
+inline constexpr double kExposureKey = 0.12;
+
+/// The exposure that maps the log-average luminance of `image`'s lit pixels to kExposureKey,
+/// as a camera's meter would, reading every `stride`-th pixel in each direction. Black pixels
+/// are the sky or the void beyond an open level, not a dark surface: metering them would
+/// expose the lit part to white, so they are left out. An image with nothing lit: 1.
+[[nodiscard]] float metered_exposure(const Image& image, int stride = 1);
+
 }  // namespace luxel
