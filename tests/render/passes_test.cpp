@@ -195,8 +195,7 @@ TEST_F(Passes, ACausticStageIsCompositedIntoTheFrameItWasDrawnFor) {
                              GL_FLOAT, sizeof(float), &centre_depth);
         const std::vector<glm::vec4> values(static_cast<std::size_t>(kSize * kSize),
                                             glm::vec4(static_cast<float>(calls)));
-        glTextureSubImage2D(caustics.id(), 0, 0, 0, kSize, kSize, GL_RGBA, GL_FLOAT,
-                            values.data());
+        glTextureSubImage2D(caustics.id(), 0, 0, 0, kSize, kSize, GL_RGBA, GL_FLOAT, values.data());
         return CausticInput{caustics.id(), true};
     });
     for (int frame = 1; frame <= 3; ++frame) {
@@ -219,6 +218,45 @@ TEST_F(Passes, ACausticStageIsCompositedIntoTheFrameItWasDrawnFor) {
     renderer.render(camera(), world.time);
     EXPECT_EQ(calls, 3);
     EXPECT_EQ(sum(renderer.read(FrameImage::Frame)), 0.0);
+}
+
+TEST_F(Passes, OfTwoFacesBackToBackTheOneFacingTheCameraIsDrawn) {
+    // A wall between two rooms is two single-sided faces in one plane: red facing up, blue
+    // facing down. From above every covered pixel must be red (glTF's single-sided faces show
+    // their front only), not whichever face won the depth test; from below, blue. As
+    // double-sided materials both would show and fight, so the faces here are single-sided.
+    test::RenderWorld world;
+    world.add_mesh(test::single_mesh_scene(test::horizontal_square(glm::vec3(0.0f), 2.0f, true),
+                                           glm::vec3(0.8f, 0.1f, 0.1f)));
+    world.add_mesh(test::single_mesh_scene(test::horizontal_square(glm::vec3(0.0f), 2.0f, false),
+                                           glm::vec3(0.1f, 0.1f, 0.8f)));
+    world.start();
+    world.update();
+    FrameRenderer renderer(world.registry, *world.lighting, settings());
+    for (const bool above : {true, false}) {
+        const glm::vec3 eye = above ? glm::vec3(0.5f, 3.5f, 2.5f) : glm::vec3(0.5f, -3.5f, 2.5f);
+        renderer.render(FrameCamera::look_at(eye, glm::vec3(0.0f), {0.0f, 1.0f, 0.0f}, 1.0f, 1.0f),
+                        world.time);
+        const Image albedo = renderer.read(FrameImage::Albedo);
+        int covered = 0;
+        int wrong = 0;
+        for (int y = 0; y < kSize; ++y) {
+            for (int x = 0; x < kSize; ++x) {
+                const glm::vec4 a = albedo.pixel(x, y);
+                if (a.r == 0.0f && a.b == 0.0f) {
+                    continue;
+                }
+                ++covered;
+                wrong += (above ? a.r < a.b : a.b < a.r) ? 1 : 0;
+            }
+        }
+        std::printf(
+            "[ figures  ] back-to-back faces seen from %s: %d of %d pixels show the back "
+            "face\n",
+            above ? "above" : "below", wrong, covered);
+        EXPECT_GT(covered, kSize * kSize / 4);
+        EXPECT_EQ(wrong, 0);
+    }
 }
 
 }  // namespace

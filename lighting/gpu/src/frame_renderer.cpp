@@ -204,6 +204,7 @@ struct FrameRenderer::Impl {
                     continue;
                 }
                 const DrawMaterial& m = primitive.material;
+                cull_as_material(item, m);
                 program.set("u_albedo", m.albedo);
                 // Texture x factor per pixel (white for untextured primitives).
                 glBindTextureUnit(kBaseColorTextureUnit, m.base_color_texture);
@@ -220,6 +221,8 @@ struct FrameRenderer::Impl {
         }
         counters.draws = drawn;
         glDisable(GL_DEPTH_TEST);
+        glDisable(GL_CULL_FACE);
+        glFrontFace(GL_CCW);
     }
 
     void direct_pass(const std::vector<FrameLight>& lights) {

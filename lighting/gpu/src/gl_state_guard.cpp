@@ -22,6 +22,8 @@ GlStateGuard::GlStateGuard() {
     glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask_);
     glGetIntegerv(GL_CLIP_ORIGIN, &clip_origin_);
     glGetIntegerv(GL_CLIP_DEPTH_MODE, &clip_depth_mode_);
+    glGetIntegerv(GL_FRONT_FACE, &front_face_);
+    glGetIntegerv(GL_CULL_FACE_MODE, &cull_face_mode_);
     depth_test_ = glIsEnabled(GL_DEPTH_TEST) == GL_TRUE;
     cull_face_ = glIsEnabled(GL_CULL_FACE) == GL_TRUE;
     blend_ = glIsEnabled(GL_BLEND) == GL_TRUE;
@@ -39,6 +41,8 @@ GlStateGuard::~GlStateGuard() {
     glDepthFunc(static_cast<GLenum>(depth_func_));
     glDepthMask(depth_mask_);
     glClipControl(static_cast<GLenum>(clip_origin_), static_cast<GLenum>(clip_depth_mode_));
+    glFrontFace(static_cast<GLenum>(front_face_));
+    glCullFace(static_cast<GLenum>(cull_face_mode_));
     set_enabled(GL_DEPTH_TEST, depth_test_);
     set_enabled(GL_CULL_FACE, cull_face_);
     set_enabled(GL_BLEND, blend_);

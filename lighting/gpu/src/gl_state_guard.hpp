@@ -27,6 +27,8 @@ class GlStateGuard {
     GLboolean depth_mask_ = GL_TRUE;
     GLint clip_origin_ = GL_LOWER_LEFT;
     GLint clip_depth_mode_ = GL_NEGATIVE_ONE_TO_ONE;
+    GLint front_face_ = GL_CCW;
+    GLint cull_face_mode_ = GL_BACK;
     bool depth_test_ = false;
     bool cull_face_ = false;
     bool blend_ = false;

@@ -67,6 +67,7 @@ void build_draw_list(ecs::Registry& registry, const LightingSystem& lighting, Me
         item.mesh = &meshes.get(instance, frame);
         item.model = entity_world_matrix(registry, entity);
         item.normal_matrix = glm::transpose(glm::inverse(glm::mat3(item.model)));
+        item.mirrored = glm::determinant(glm::mat3(item.model)) < 0.0f;
         item.bounds = item.mesh->bounds.transformed(item.model);
         item.first = out.primitives.size();
         float emission_scale = 1.0f;
@@ -101,6 +102,17 @@ void build_draw_list(ecs::Registry& registry, const LightingSystem& lighting, Me
         out.bounds.add(item.bounds);
         out.items.push_back(item);
     }
+}
+
+void cull_as_material(const DrawItem& item, const DrawMaterial& material) {
+    if (material.double_sided) {
+        glDisable(GL_CULL_FACE);
+        return;
+    }
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    // glTF's front faces wind counter-clockwise; a mirroring transform turns them clockwise.
+    glFrontFace(item.mirrored ? GL_CW : GL_CCW);
 }
 
 }  // namespace luxel::lighting

@@ -40,7 +40,14 @@ struct DrawItem {
     std::size_t first = 0;  ///< into DrawList::primitives
     std::size_t count = 0;
     bool specular = false;  ///< any primitive has a specular material
+    bool mirrored = false;  ///< the model matrix flips winding (negative determinant)
 };
+
+/// glTF's doubleSided for the passes that see surfaces (G-buffer, probes): a single-sided
+/// primitive shows only its front, so of two faces back to back in one plane (a wall between
+/// two rooms) the one facing the camera is drawn, not whichever wins the depth test; a
+/// double-sided one shows both sides. Shadow maps keep both sides (either side casts).
+void cull_as_material(const DrawItem& item, const DrawMaterial& material);
 
 struct DrawList {
     std::vector<DrawItem> items;

@@ -85,6 +85,7 @@ void SpecularProbes::render_face(Probe& probe, int face, const DrawList& draws) 
             if (primitive.range->index_count == 0) {
                 continue;
             }
+            cull_as_material(item, primitive.material);
             program.set("u_albedo", primitive.material.albedo);
             glBindTextureUnit(kBaseColorTextureUnit, primitive.material.base_color_texture);
             program.set("u_emission", primitive.material.emission);
@@ -92,6 +93,8 @@ void SpecularProbes::render_face(Probe& probe, int face, const DrawList& draws) 
             draw_range(*primitive.range);
         }
     }
+    glDisable(GL_CULL_FACE);
+    glFrontFace(GL_CCW);
     ++faces_rendered_;
 }
 
