@@ -7,6 +7,7 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include "iim_pass_filter.hpp"
 #include "luxel/ecs/hierarchy.hpp"
 #include "luxel/lighting/core/light_source.hpp"
 #include "luxel/lighting/core/ray_scene.hpp"
@@ -501,6 +502,7 @@ std::size_t IlluminationMaps::gather(std::uint32_t surface, std::size_t max_texe
     if (mapped.gather_in_progress && mapped.pass_refines &&
         lighting_changed(surface, aims_current())) {
         mapped.gather_in_progress = false;  // the light changed under a refinement pass
+        filters_.erase(surface);
     }
     if (!mapped.gather_in_progress && !aims_ready()) {
         // Checked again here, not only when the request was made: photons stored since (by
@@ -525,62 +527,50 @@ std::size_t IlluminationMaps::gather(std::uint32_t surface, std::size_t max_texe
     }
     const std::size_t first = mapped.gather_cursor;
     const std::size_t count = std::min(max_texels, total - first);
-    std::vector<GatherTexel> all = world_texels(surface);
-    for (GatherTexel& texel : all) {
-        texel.pass = mapped.passes_started;
+    if (count > 0) {
+        std::vector<GatherTexel> all = world_texels(surface);
+        for (GatherTexel& texel : all) {
+            texel.pass = mapped.passes_started;
+        }
+        const std::span<const GatherTexel> batch(all.data() + first, count);
+        gatherer.gather(batch, std::span<glm::vec3>(mapped.pass_irradiance.data() + first, count));
+        mapped.gather_cursor = first + count;
+        counters_.texels_gathered += count;
+        if (mapped.gather_cursor >= total) {
+            begin_filter(surface);
+        }
     }
-    const std::span<const GatherTexel> batch(all.data() + first, count);
-    gatherer.gather(batch, std::span<glm::vec3>(mapped.pass_irradiance.data() + first, count));
-    mapped.gather_cursor = first + count;
-    counters_.texels_gathered += count;
-    if (mapped.gather_cursor >= total) {
-        commit_pass(surface, now_seconds);
+    // Filtering a texel costs about a fortieth of gathering it with 64 rays: what is left of
+    // this call's texels goes to the filter at that rate, so a call that gathers the last
+    // texels of a large surface does not also filter all of it.
+    constexpr std::size_t kFilteredPerGathered = 32;
+    if (const auto filter = filters_.find(surface); filter != filters_.end()) {
+        filter->second->run((max_texels - count) * kFilteredPerGathered);
+        if (filter->second->done()) {
+            finish_pass(surface, now_seconds);
+        }
     }
     return count;
 }
 
-/// Filters a completed pass over the surface's texels and fades it in. The filter is a tent of
-/// radius iim_filter_radius texels over the surface's own texels (never across to another
-/// surface, which may be across a crease): final gathering's noise is per texel while indirect
-/// light varies slowly, so a small filter removes most of the noise for little bias.
-void IlluminationMaps::commit_pass(std::uint32_t surface, double now_seconds) {
+/// A completed pass's values go into the surface's mean (refinement) and a filter starts over
+/// them: a tent of radius iim_filter_radius texels over the surface's own texels (final
+/// gathering's noise is per texel while indirect light varies slowly, so a small filter removes
+/// most of the noise for little bias), noise-aware from the third pass. The filter runs in
+/// slices (gather() gives it the budget its call has left), then finish_pass() fades it in.
+void IlluminationMaps::begin_filter(std::uint32_t surface) {
     MapSurface& mapped = surfaces_[surface];
-    if (counters_.aim_rebuilds != mapped.pass_aim_rebuilds) {
-        mapped.gathered_stale = true;  // an AIM changed under the pass
-    }
-    const auto page_id = static_cast<std::size_t>(aim_.surface_page[surface]);
-    IimPage& page = iim_pages_[page_id];
-    const auto& texels = mapped.texels.texels;
-    int x0 = page.current.size;
-    int y0 = page.current.size;
-    int x1 = -1;
-    int y1 = -1;
-    for (const SurfaceTexel& texel : texels) {
-        x0 = std::min(x0, texel.x);
-        y0 = std::min(y0, texel.y);
-        x1 = std::max(x1, texel.x);
-        y1 = std::max(y1, texel.y);
-    }
-    // Texel index by position within the surface's bounds.
-    const int width = x1 - x0 + 1;
-    const int height = y1 - y0 + 1;
-    std::vector<std::int32_t> index(
-        static_cast<std::size_t>(width) * static_cast<std::size_t>(height), -1);
-    for (std::size_t i = 0; i < texels.size(); ++i) {
-        index[static_cast<std::size_t>(texels[i].y - y0) * static_cast<std::size_t>(width) +
-              static_cast<std::size_t>(texels[i].x - x0)] = static_cast<std::int32_t>(i);
-    }
-    const int radius = std::max(settings_.iim_filter_radius, 0);
-    const std::size_t count = texels.size();
+    const std::size_t count = mapped.texels.texels.size();
     const bool refining = mapped.pass_refines && mapped.passes_averaged > 0 &&
                           mapped.mean_irradiance.size() == count &&
                           mapped.irradiance_m2.size() == count;
-    const std::uint32_t passes = refining ? mapped.passes_averaged + 1 : 1;
+    mapped.pass_passes = refining ? mapped.passes_averaged + 1 : 1;
+    const std::uint32_t passes = mapped.pass_passes;
     // The per-texel mean of the passes (unfiltered) and, for the noise estimate, the sum of
     // squared deviations (Welford's update, in double per step so long runs do not drift).
     // Kept only while more passes may be averaged in.
     const bool keep_mean = refine_ && settings_.refine_passes > 1;
-    std::vector<glm::vec3> pass_mean;
+    std::vector<glm::vec3> values(count);
     if (keep_mean) {
         mapped.mean_irradiance.resize(count);
         mapped.irradiance_m2.resize(count);
@@ -589,32 +579,30 @@ void IlluminationMaps::commit_pass(std::uint32_t surface, double now_seconds) {
             if (!refining) {
                 mapped.mean_irradiance[i] = glm::vec3(x);
                 mapped.irradiance_m2[i] = glm::vec3(0.0f);
-                continue;
+            } else {
+                const glm::dvec3 old_mean(mapped.mean_irradiance[i]);
+                const glm::dvec3 mean = old_mean + (x - old_mean) / static_cast<double>(passes);
+                mapped.mean_irradiance[i] = glm::vec3(mean);
+                mapped.irradiance_m2[i] =
+                    glm::vec3(glm::dvec3(mapped.irradiance_m2[i]) + (x - old_mean) * (x - mean));
             }
-            const glm::dvec3 old_mean(mapped.mean_irradiance[i]);
-            const glm::dvec3 mean = old_mean + (x - old_mean) / static_cast<double>(passes);
-            mapped.mean_irradiance[i] = glm::vec3(mean);
-            mapped.irradiance_m2[i] =
-                glm::vec3(glm::dvec3(mapped.irradiance_m2[i]) + (x - old_mean) * (x - mean));
+            values[i] = mapped.mean_irradiance[i];
         }
     } else {
         mapped.mean_irradiance = {};
         mapped.irradiance_m2 = {};
-        pass_mean.resize(count);
         for (std::size_t i = 0; i < count; ++i) {
-            pass_mean[i] = sanitized(mapped.pass_irradiance[i]);
+            values[i] = sanitized(mapped.pass_irradiance[i]);
         }
     }
-    const std::vector<glm::vec3>& mean = keep_mean ? mapped.mean_irradiance : pass_mean;
     // With three passes or more each texel knows its noise: the variance of its mean, summed
     // over the channels. The filter then leaves out neighbours whose difference is not
     // explained by the noise (a range weight, as a bilateral filter's, in units of the noise):
     // noise is smoothed, while a real feature such as the focus of light under a glass sphere
     // (one texel, several times its neighbours) keeps its value. Fewer passes: the plain tent.
     const double sigmas = static_cast<double>(settings_.iim_filter_noise_sigmas);
-    const bool noise_aware = sigmas > 0.0 && passes >= 3 && keep_mean;
     std::vector<double> noise;
-    if (noise_aware) {
+    if (sigmas > 0.0 && passes >= 3 && keep_mean) {
         noise.resize(count);
         const double scale = 1.0 / (static_cast<double>(passes - 1) * static_cast<double>(passes));
         for (std::size_t i = 0; i < count; ++i) {
@@ -622,38 +610,29 @@ void IlluminationMaps::commit_pass(std::uint32_t surface, double now_seconds) {
             noise[i] = (m2.x + m2.y + m2.z) * scale;
         }
     }
-    for (std::size_t i = 0; i < count; ++i) {
-        glm::dvec3 sum(0.0);
-        double weights = 0.0;
-        for (int dy = -radius; dy <= radius; ++dy) {
-            for (int dx = -radius; dx <= radius; ++dx) {
-                const int x = texels[i].x - x0 + dx;
-                const int y = texels[i].y - y0 + dy;
-                if (x < 0 || y < 0 || x >= width || y >= height) {
-                    continue;
-                }
-                const std::int32_t j =
-                    index[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                          static_cast<std::size_t>(x)];
-                if (j < 0) {
-                    continue;
-                }
-                const auto neighbour = static_cast<std::size_t>(j);
-                double w =
-                    static_cast<double>((radius + 1 - std::abs(dx)) * (radius + 1 - std::abs(dy)));
-                if (noise_aware && neighbour != i) {
-                    const glm::dvec3 d = glm::dvec3(mean[neighbour]) - glm::dvec3(mean[i]);
-                    const double difference = glm::dot(d, d);
-                    const double spread = sigmas * sigmas * (noise[i] + noise[neighbour]);
-                    // No noise at all (e.g. two black texels): any difference is real.
-                    w *= spread > 0.0 ? std::exp(-0.5 * difference / spread)
-                                      : (difference > 0.0 ? 0.0 : 1.0);
-                }
-                sum += w * glm::dvec3(mean[neighbour]);
-                weights += w;
-            }
-        }
-        const glm::vec3 e = weights > 0.0 ? glm::vec3(sum / weights) : glm::vec3(0.0f);
+    filters_[surface] =
+        std::make_unique<IimPassFilter>(mapped.texels.texels, std::move(values), std::move(noise),
+                                        settings_.iim_filter_radius, sigmas);
+    mapped.pass_irradiance.clear();
+    mapped.pass_irradiance.shrink_to_fit();
+}
+
+void IlluminationMaps::finish_pass(std::uint32_t surface, double now_seconds) {
+    MapSurface& mapped = surfaces_[surface];
+    const auto found = filters_.find(surface);
+    if (found == filters_.end()) {
+        return;
+    }
+    const IimPassFilter& filter = *found->second;
+    if (counters_.aim_rebuilds != mapped.pass_aim_rebuilds) {
+        mapped.gathered_stale = true;  // an AIM changed under the pass
+    }
+    const auto page_id = static_cast<std::size_t>(aim_.surface_page[surface]);
+    IimPage& page = iim_pages_[page_id];
+    const auto& texels = mapped.texels.texels;
+    const std::vector<glm::vec3>& filtered = filter.filtered();
+    for (std::size_t i = 0; i < texels.size() && i < filtered.size(); ++i) {
+        const glm::vec3 e = filtered[i];
         const glm::vec3 value = mapped.content == IimContent::Irradiance
                                     ? e
                                     : mapped.albedo * e * glm::one_over_pi<float>();
@@ -677,11 +656,12 @@ void IlluminationMaps::commit_pass(std::uint32_t surface, double now_seconds) {
             }
         }
     }
-    const int left = std::max(x0 - 1, 0);
-    const int top = std::max(y0 - 1, 0);
+    const glm::ivec4 bounds = filter.bounds();
+    const int left = std::max(bounds.x - 1, 0);
+    const int top = std::max(bounds.y - 1, 0);
     page.current.mark_dirty(
-        {left, top, std::min(x1 + 2, size) - left, std::min(y1 + 2, size) - top});
-    mapped.passes_averaged = passes;
+        {left, top, std::min(bounds.z + 2, size) - left, std::min(bounds.w + 2, size) - top});
+    mapped.passes_averaged = mapped.pass_passes;
     if (mapped.passes_averaged >= settings_.refine_passes) {
         // Done refining: the IIM holds the filtered mean.
         mapped.mean_irradiance = {};
@@ -689,8 +669,7 @@ void IlluminationMaps::commit_pass(std::uint32_t surface, double now_seconds) {
     }
     mapped.gather_in_progress = false;
     mapped.gathered_once = true;
-    mapped.pass_irradiance.clear();
-    mapped.pass_irradiance.shrink_to_fit();
+    filters_.erase(found);
 }
 
 }  // namespace luxel::lighting

@@ -97,6 +97,8 @@ struct MapSurface {
     std::uint32_t passes_started = 0;
     /// The pass in progress refines (averages into) the IIM instead of replacing it.
     bool pass_refines = false;
+    /// Passes averaged once the pass in progress is in (set when its gathering completes).
+    std::uint32_t pass_passes = 0;
     /// Passes averaged in the IIM since its lighting last changed, their mean irradiance per
     /// texel before filtering, and the sum of squared deviations from it (Welford), kept only
     /// while refining is possible.
@@ -125,6 +127,8 @@ struct MapCounters {
     std::uint64_t texels_gathered = 0;
     std::uint64_t enclosed_texels = 0;  ///< AIM texels found enclosed (set to 0)
 };
+
+class IimPassFilter;
 
 class IlluminationMaps {
   public:
@@ -209,7 +213,10 @@ class IlluminationMaps {
     [[nodiscard]] bool enclosed(const GatherTexel& texel, float probe_length) const;
     /// Whether surface `s` wants a refinement pass.
     [[nodiscard]] bool wants_refinement(std::uint32_t s) const;
-    void commit_pass(std::uint32_t surface, double now_seconds);
+    /// A pass's last texel is gathered: updates the mean and starts its filter.
+    void begin_filter(std::uint32_t surface);
+    /// The filter is done: fades the pass into the IIM.
+    void finish_pass(std::uint32_t surface, double now_seconds);
     /// Fills the padding texels around `surface`'s texels on `page` with the mean of their
     /// owned neighbours, so bilinear lookups at a chart's border do not fetch black.
     void dilate(std::uint32_t surface, RadiancePage& page) const;
@@ -231,6 +238,8 @@ class IlluminationMaps {
     bool refine_ = false;
     MapCounters counters_;
     std::unique_ptr<AimPass> aim_pass_;
+    /// Completed passes being filtered, by surface.
+    std::map<std::uint32_t, std::unique_ptr<IimPassFilter>> filters_;
 };
 
 }  // namespace luxel::lighting

@@ -1,0 +1,84 @@
+#include "iim_pass_filter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+namespace luxel::lighting {
+
+IimPassFilter::IimPassFilter(const std::vector<SurfaceTexel>& texels, std::vector<glm::vec3> values,
+                             std::vector<double> noise, int radius, double noise_sigmas)
+    : values_(std::move(values)),
+      noise_(std::move(noise)),
+      radius_(std::max(radius, 0)),
+      sigmas_(noise_sigmas) {
+    const std::size_t count = std::min(texels.size(), values_.size());
+    values_.resize(count);
+    if (noise_.size() != count) {
+        noise_.clear();  // no noise estimate: the plain tent
+    }
+    positions_.reserve(count);
+    int x1 = -1;
+    int y1 = -1;
+    x0_ = count > 0 ? texels[0].x : 0;
+    y0_ = count > 0 ? texels[0].y : 0;
+    for (std::size_t i = 0; i < count; ++i) {
+        positions_.emplace_back(texels[i].x, texels[i].y);
+        x0_ = std::min(x0_, texels[i].x);
+        y0_ = std::min(y0_, texels[i].y);
+        x1 = std::max(x1, texels[i].x);
+        y1 = std::max(y1, texels[i].y);
+    }
+    width_ = count > 0 ? x1 - x0_ + 1 : 0;
+    height_ = count > 0 ? y1 - y0_ + 1 : 0;
+    index_.assign(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), -1);
+    for (std::size_t i = 0; i < count; ++i) {
+        index_[static_cast<std::size_t>(positions_[i].y - y0_) * static_cast<std::size_t>(width_) +
+               static_cast<std::size_t>(positions_[i].x - x0_)] = static_cast<std::int32_t>(i);
+    }
+    filtered_.assign(count, glm::vec3(0.0f));
+}
+
+std::size_t IimPassFilter::run(std::size_t max_texels) {
+    const std::size_t end = std::min(values_.size(), cursor_ + max_texels);
+    const bool noise_aware = !noise_.empty() && sigmas_ > 0.0;
+    const int radius = radius_;
+    for (std::size_t i = cursor_; i < end; ++i) {
+        glm::dvec3 sum(0.0);
+        double weights = 0.0;
+        for (int dy = -radius; dy <= radius; ++dy) {
+            for (int dx = -radius; dx <= radius; ++dx) {
+                const int x = positions_[i].x - x0_ + dx;
+                const int y = positions_[i].y - y0_ + dy;
+                if (x < 0 || y < 0 || x >= width_ || y >= height_) {
+                    continue;
+                }
+                const std::int32_t j =
+                    index_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
+                           static_cast<std::size_t>(x)];
+                if (j < 0) {
+                    continue;
+                }
+                const auto neighbour = static_cast<std::size_t>(j);
+                double w =
+                    static_cast<double>((radius + 1 - std::abs(dx)) * (radius + 1 - std::abs(dy)));
+                if (noise_aware && neighbour != i) {
+                    const glm::dvec3 d = glm::dvec3(values_[neighbour]) - glm::dvec3(values_[i]);
+                    const double difference = glm::dot(d, d);
+                    const double spread = sigmas_ * sigmas_ * (noise_[i] + noise_[neighbour]);
+                    // No noise at all (e.g. two black texels): any difference is real.
+                    w *= spread > 0.0 ? std::exp(-0.5 * difference / spread)
+                                      : (difference > 0.0 ? 0.0 : 1.0);
+                }
+                sum += w * glm::dvec3(values_[neighbour]);
+                weights += w;
+            }
+        }
+        filtered_[i] = weights > 0.0 ? glm::vec3(sum / weights) : glm::vec3(0.0f);
+    }
+    const std::size_t done = end - cursor_;
+    cursor_ = end;
+    return done;
+}
+
+}  // namespace luxel::lighting

@@ -1,0 +1,54 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "luxel/lighting/core/surface_texels.hpp"
+
+namespace luxel::lighting {
+
+/// The filter over a completed gather pass of one surface (IlluminationMaps): a tent of radius
+/// r texels over the surface's own texels (never across to another surface, which may be
+/// across a crease), optionally weighing each neighbour by how well the two texels' noise
+/// explains their difference (IlluminationSettings::iim_filter_noise_sigmas).
+///
+/// It runs in slices (run()), so that filtering a large surface does not land in one budgeted
+/// unit of work: the filter reads 25 neighbours per texel (radius 2), which made the unit that
+/// completed a pass overrun small budgets (docs/PERFORMANCE.md, lighting budget).
+class IimPassFilter {
+  public:
+    /// `values`: the pass's (or the passes' mean) irradiance per texel, in the order of
+    /// `texels`; `noise`: per texel the variance of that mean summed over channels, or empty
+    /// for the plain tent. Copies what it needs: the surface may change while it runs.
+    IimPassFilter(const std::vector<SurfaceTexel>& texels, std::vector<glm::vec3> values,
+                  std::vector<double> noise, int radius, double noise_sigmas);
+
+    /// Filters up to `max_texels` more texels; returns how many.
+    std::size_t run(std::size_t max_texels);
+    [[nodiscard]] bool done() const { return cursor_ >= values_.size(); }
+    /// The filtered irradiance per texel (complete once done()).
+    [[nodiscard]] const std::vector<glm::vec3>& filtered() const { return filtered_; }
+    /// The texels' bounding rectangle on the page (x0, y0, x1, y1 inclusive).
+    [[nodiscard]] glm::ivec4 bounds() const {
+        return {x0_, y0_, x0_ + width_ - 1, y0_ + height_ - 1};
+    }
+
+  private:
+    std::vector<glm::ivec2> positions_;  ///< texel (x, y) on the page
+    std::vector<glm::vec3> values_;
+    std::vector<double> noise_;
+    std::vector<std::int32_t> index_;  ///< texel index by position in the bounds; -1: none
+    std::vector<glm::vec3> filtered_;
+    int x0_ = 0;
+    int y0_ = 0;
+    int width_ = 0;
+    int height_ = 0;
+    int radius_ = 0;
+    double sigmas_ = 0.0;
+    std::size_t cursor_ = 0;
+};
+
+}  // namespace luxel::lighting
