@@ -12,14 +12,6 @@ constexpr double kPi = 3.14159265358979323846264338327950288;
 constexpr double kTwoPi = 2.0 * kPi;
 constexpr double kFourPi = 4.0 * kPi;
 
-float smoothstep(float edge0, float edge1, float x) {
-    if (!(edge1 > edge0)) {
-        return x >= edge1 ? 1.0f : 0.0f;
-    }
-    const float t = std::clamp((x - edge0) / (edge1 - edge0), 0.0f, 1.0f);
-    return t * t * (3.0f - 2.0f * t);
-}
-
 /// Half angle of a cone in radians (pi for the full sphere of directions).
 double half_angle(const DirectionCone& cone) {
     return std::acos(std::clamp(cone.cos_half_angle, -1.0, 1.0));
@@ -162,7 +154,7 @@ EmittedPhoton CausticEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
             photon.origin = origin_;
             photon.direction = direction_in_cone(cone_, d);
             const float falloff =
-                smoothstep(cos_outer_, cos_inner_, glm::dot(photon.direction, spot_axis_));
+                spot_falloff(cos_outer_, cos_inner_, glm::dot(photon.direction, spot_axis_));
             photon.power = power_scale_ * static_cast<float>(share) * falloff;
             break;
         }

@@ -13,14 +13,6 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586476925286766559;
 
-float smoothstep(float edge0, float edge1, float x) {
-    if (!(edge1 > edge0)) {
-        return x >= edge1 ? 1.0f : 0.0f;
-    }
-    const float t = std::clamp((x - edge0) / (edge1 - edge0), 0.0f, 1.0f);
-    return t * t * (3.0f - 2.0f * t);
-}
-
 /// A direction inside the cone of half angle `angle` around `axis`, uniform in solid angle.
 glm::vec3 cone_direction(const glm::vec3& axis, float angle, const glm::dvec2& u) {
     const double cos_max = std::cos(static_cast<double>(angle));
@@ -97,6 +89,21 @@ glm::vec3 cosine_direction(const glm::vec3& n, const glm::dvec2& u) {
     return glm::normalize(x * t + y * b + z * n);
 }
 
+float spot_falloff(double cos_outer, double cos_inner, double cos_axis) {
+    if (!(cos_inner > cos_outer)) {
+        return cos_axis >= cos_inner ? 1.0f : 0.0f;
+    }
+    const double t = std::clamp((cos_axis - cos_outer) / (cos_inner - cos_outer), 0.0, 1.0);
+    return static_cast<float>(t * t * (3.0 - 2.0 * t));
+}
+
+float spot_falloff(const LightSource& light, double cos_axis) {
+    return spot_falloff(
+        std::cos(static_cast<double>(light.outer_cone)),
+        std::cos(static_cast<double>(std::clamp(light.inner_cone, 0.0f, light.outer_cone))),
+        cos_axis);
+}
+
 PhotonEmitter::PhotonEmitter(LightSource light, const BoundingSphere& scene_bounds)
     : light_(std::move(light)), bounds_(scene_bounds) {
     constexpr float pi = glm::pi<float>();
@@ -137,8 +144,7 @@ EmittedPhoton PhotonEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
             photon.origin = light_.position;
             photon.direction = cone_direction(light_.direction, light_.outer_cone, d);
             // Intensity falls off smoothly from the inner to the outer cone.
-            photon.power *= smoothstep(std::cos(light_.outer_cone), std::cos(light_.inner_cone),
-                                       glm::dot(photon.direction, light_.direction));
+            photon.power *= spot_falloff(light_, glm::dot(photon.direction, light_.direction));
             break;
         }
         case LightKind::Directional: {

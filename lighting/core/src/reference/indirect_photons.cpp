@@ -21,19 +21,6 @@ double channel_sum(const glm::dvec3& v) {
     return v.x + v.y + v.z;
 }
 
-/// The spot falloff of the reference's direct light (PathEstimator): smoothstep from the outer
-/// to the inner cone's cosine. Repeated here so the two estimates of one light agree.
-double spot_falloff(const LightSource& light, double cos_axis) {
-    const double cos_outer = std::cos(static_cast<double>(light.outer_cone));
-    const double cos_inner =
-        std::cos(static_cast<double>(std::clamp(light.inner_cone, 0.0f, light.outer_cone)));
-    if (!(cos_inner > cos_outer)) {
-        return cos_axis >= cos_inner ? 1.0 : 0.0;
-    }
-    const double t = std::clamp((cos_axis - cos_outer) / (cos_inner - cos_outer), 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
-}
-
 /// A direction at angle acos(cos_theta) from `axis`, azimuth 2 pi u.
 glm::vec3 around(const glm::vec3& axis, double cos_theta, double u) {
     glm::vec3 tangent;

@@ -15,19 +15,6 @@ bool finite(const glm::dvec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-/// The spot falloff PhotonEmitter and CausticEmitter apply: smoothstep from the outer to the
-/// inner cone's cosine.
-double spot_falloff(const LightSource& light, double cos_axis) {
-    const double cos_outer = std::cos(static_cast<double>(light.outer_cone));
-    const double cos_inner =
-        std::cos(static_cast<double>(std::clamp(light.inner_cone, 0.0f, light.outer_cone)));
-    if (!(cos_inner > cos_outer)) {
-        return cos_axis >= cos_inner ? 1.0 : 0.0;
-    }
-    const double t = std::clamp((cos_axis - cos_outer) / (cos_inner - cos_outer), 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
-}
-
 /// Power-heuristic weight of a strategy of density `mine` against one of density `other`.
 double power_heuristic(double mine, double other) {
     const double a = mine * mine;

@@ -95,4 +95,12 @@ void orthonormal_basis(const glm::vec3& n, glm::vec3& tangent, glm::vec3& bitang
 /// A cosine-distributed direction around n from a 2D sample in [0,1)^2.
 [[nodiscard]] glm::vec3 cosine_direction(const glm::vec3& n, const glm::dvec2& u);
 
+/// A spot light's falloff for a direction at cosine `cos_axis` from its axis: 1 inside the inner
+/// cone, 0 outside the outer, smoothstep between (a hard edge when the cones coincide). One
+/// definition for the photon and caustic emitters and the reference, so their estimates of one
+/// light agree.
+[[nodiscard]] float spot_falloff(double cos_outer, double cos_inner, double cos_axis);
+/// The same for a spot LightSource (its inner cone clamped to the outer).
+[[nodiscard]] float spot_falloff(const LightSource& light, double cos_axis);
+
 }  // namespace luxel::lighting
