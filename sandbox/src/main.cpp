@@ -14,6 +14,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "luxel/runtime/cli.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/gl_context.hpp"
@@ -22,6 +23,7 @@
 #include "luxel/runtime/log.hpp"
 #include "luxel/runtime/render_target.hpp"
 #include "luxel/runtime/shader_library.hpp"
+#include "luxel/runtime/tool_main.hpp"
 #include "runs.hpp"
 #include "sandbox_level.hpp"
 
@@ -85,9 +87,7 @@ std::string parse_terms(const std::string& text, luxel::lighting::FrameTerms& te
     return {};
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
     CLI::App app{
         "luxel sandbox: runs a level with moving objects through the lighting system, headless "
         "(the default when there is no display) or in a window."};
@@ -151,37 +151,28 @@ int main(int argc, char** argv) {
             }
         },
         "framebuffer size WxH (default 640x360)");
-    app.add_option("--threads", options.app.threads, "job threads (0 = all cores)")
-        ->check(CLI::Range(0, 1024))
-        ->capture_default_str();
-    app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error or off");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+    luxel::cli::add_threads(app, options.app.threads);
+    luxel::cli::add_log_level(app);
+    if (!luxel::cli::parse(app, argc, argv)) {
+        return 0;
     }
     options.app.width = size.width;
     options.app.height = size.height;
-    try {
-        if (!options.log_level.empty()) {
-            luxel::log::set_level(luxel::log::parse_level(options.log_level));
-        }
-        // Fail on a bad level before starting GL: the message should be about the level.
-        (void)luxel::sandbox::resolve_level(options.app.level);
-        luxel::JobSystem jobs(options.app.threads);
-        luxel::GlContextOptions context_options;
-        context_options.backend = luxel::parse_backend(options.gl);
-        context_options.width = size.width;
-        context_options.height = size.height;
-        context_options.window_title = "luxel sandbox";
-        auto context = luxel::create_gl_context(context_options);
-        return context->has_window() ? luxel::sandbox::run_window(options, jobs, *context)
-                                     : luxel::sandbox::run_headless(options, jobs, *context);
-    } catch (const luxel::Error& e) {
-        std::cerr << "luxel-sandbox: error: " << e.what() << "\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "luxel-sandbox: internal error: " << e.what() << "\n";
-        return 2;
-    }
+    // Fail on a bad level before starting GL: the message should be about the level.
+    (void)luxel::sandbox::resolve_level(options.app.level);
+    luxel::JobSystem jobs(options.app.threads);
+    luxel::GlContextOptions context_options;
+    context_options.backend = luxel::parse_backend(options.gl);
+    context_options.width = size.width;
+    context_options.height = size.height;
+    context_options.window_title = "luxel sandbox";
+    auto context = luxel::create_gl_context(context_options);
+    return context->has_window() ? luxel::sandbox::run_window(options, jobs, *context)
+                                 : luxel::sandbox::run_headless(options, jobs, *context);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    return luxel::run_tool("luxel-sandbox", run, argc, argv);
 }

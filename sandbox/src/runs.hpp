@@ -17,9 +17,8 @@ struct RunOptions {
     std::optional<std::filesystem::path> report;  ///< default: <out>/report.json
     bool exr = false;
     /// Display exposure for PNG and the window; 0: automatic (metered per frame).
-    double exposure = 0.0;  ///< also write each frame as EXR
-    int png_every = 1;      ///< write every n-th frame as PNG (0: last only)
-    std::string log_level;
+    double exposure = 0.0;
+    int png_every = 1;  ///< write every n-th frame as PNG (0: last only)
     /// Headless camera: "path" follows the level's scripted path; "fixed" stays at its start
     /// (tests compare frames where only the objects move).
     std::string camera = "path";

@@ -18,6 +18,7 @@
 #include "bench_options.hpp"
 #include "bench_run.hpp"
 #include "level.hpp"
+#include "luxel/runtime/cli.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/tool_main.hpp"
@@ -89,29 +90,29 @@ int run(int argc, char** argv) {
     app.add_option("--ref-seed", options.reference.seed, "reference: seed")->capture_default_str();
     app.add_flag("--dump-maps", options.dump_maps,
                  "also write every run's per-texel light maps and reference to OUT/maps/");
-    app.add_option("--threads", options.threads, "worker threads (0: all)")->capture_default_str();
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+    cli::add_threads(app, options.threads);
+    if (!cli::parse(app, argc, argv)) {
+        return 0;
     }
-    if (!budgets.empty()) {
-        options.budgets = bench::parse_budgets(budgets);
-    }
-    if (!image_size.empty()) {
-        if (no_image) {
-            throw Error("--image " + image_size + " and --no-image: give one or the other");
+    cli::check_usage([&] {
+        if (!budgets.empty()) {
+            options.budgets = bench::parse_budgets(budgets);
         }
-        bench::parse_image_size(image_size, options.image);
-    }
-    options.image.enabled = !no_image;
-    for (const std::string& s : sweeps) {
-        options.sweeps.push_back(bench::parse_sweep(s));
-    }
-    if (options.change != "auto" && options.change != "none") {
-        options.parsed_change = bench::parse_change(options.change);
-    }
-    bench::validate(options);
+        if (!image_size.empty()) {
+            if (no_image) {
+                throw Error("--image " + image_size + " and --no-image: give one or the other");
+            }
+            bench::parse_image_size(image_size, options.image);
+        }
+        options.image.enabled = !no_image;
+        for (const std::string& s : sweeps) {
+            options.sweeps.push_back(bench::parse_sweep(s));
+        }
+        if (options.change != "auto" && options.change != "none") {
+            options.parsed_change = bench::parse_change(options.change);
+        }
+        bench::validate(options);
+    });
 
     const std::filesystem::path file = ref::resolve_level(options.level);
     std::string command = "luxel-bench";

@@ -16,6 +16,7 @@
 
 #include "luxel/prep/page_images.hpp"
 #include "luxel/prep/prep.hpp"
+#include "luxel/runtime/cli.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/jobs.hpp"
@@ -54,14 +55,12 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--report", report_file,
                    "write the report as JSON here (page PNGs go beside it)");
-    app.add_option("--threads", options.threads, "worker threads (0: all)")->capture_default_str();
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+    luxel::cli::add_threads(app, options.threads);
+    if (!luxel::cli::parse(app, argc, argv)) {
+        return 0;
     }
 
-    luxel::prep::validate(options);
+    luxel::cli::check_usage([&] { luxel::prep::validate(options); });
     luxel::JobSystem jobs(options.threads);
     luxel::Stopwatch stopwatch;
     const luxel::scene::Scene scene = luxel::scene::load_gltf(input);

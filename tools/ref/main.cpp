@@ -18,6 +18,7 @@
 #include "lightmap_output.hpp"
 #include "luxel/lighting/core/reference/reference_frame.hpp"
 #include "luxel/lighting/core/reference/reference_integrator.hpp"
+#include "luxel/runtime/cli.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/image.hpp"
@@ -71,22 +72,22 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--max-vertices", options.max_vertices, "longest path (scattering events)")
         ->capture_default_str();
-    app.add_option("--threads", options.threads, "worker threads (0: all)")->capture_default_str();
+    cli::add_threads(app, options.threads);
     app.add_option("-o,--output", options.image, "the frame as OpenEXR (linear RGB radiance)");
     app.add_option("--png", options.preview, "also a tone-mapped PNG preview of the frame");
     app.add_flag("--no-caustic-bounce", options.no_caustic_bounce,
                  "leave out delta-light caustics reflected onward by diffuse surfaces");
     app.add_option("--lightmaps", options.lightmaps,
                    "per-texel irradiance: .json, or .exr (one file per page and component)");
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+    if (!cli::parse(app, argc, argv)) {
+        return 0;
     }
-    if (!camera_text.empty()) {
-        options.camera = ref::parse_camera(camera_text);
-    }
-    ref::validate(options);
+    cli::check_usage([&] {
+        if (!camera_text.empty()) {
+            options.camera = ref::parse_camera(camera_text);
+        }
+        ref::validate(options);
+    });
 
     const std::filesystem::path file = ref::resolve_level(options.level);
     JobSystem jobs(options.threads);

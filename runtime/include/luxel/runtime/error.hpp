@@ -12,4 +12,12 @@ class Error : public std::runtime_error {
     explicit Error(const std::string& message) : std::runtime_error(message) {}
 };
 
+/// A mistake on the command line (unknown flag, bad value, missing argument, flags that
+/// contradict each other), as opposed to a failure while running: tools exit 2 for it, 1 for
+/// every other Error (luxel/runtime/tool_main.hpp). what() names the flag.
+class UsageError : public Error {
+  public:
+    using Error::Error;
+};
+
 }  // namespace luxel
