@@ -24,7 +24,7 @@ SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const Shade
       width_(settings.width),
       height_(settings.height) {
     const Stopwatch loading;
-    scene_ = std::make_shared<scene::Scene>(scene::load_gltf(level_file_));
+    scene_ = std::make_shared<scene::Scene>(scene::load_gltf(level_file_, settings.load_limits));
     instance_ = lighting::instantiate(registry_, scene_);
     const std::size_t bounces = add_bounces(registry_, instance_, *scene_);
     transforms_.update();
@@ -65,27 +65,9 @@ SandboxApp::FrameResult SandboxApp::frame(double time, double dt,
     const lighting::LightingStats& stats = lighting_->update(budget_ms_, time);
     result.lighting_ms = lighting_watch.elapsed_ms();
 
-    // 5. Render. The caustic pass exists only while the FeaturePlan has caustic data; the
-    // renderer calls it between its G-buffer and its composite, so the photons are splatted
-    // against this frame's depth and composited into this frame.
-    const bool want_caustics = lighting_->plan().caustic_data();
-    if (want_caustics && !caustics_) {
-        caustics_.emplace(lighting::CausticPassSettings{}, glm::ivec2(width_, height_), *shaders_);
-        renderer_->set_caustic_stage(
-            [this](const lighting::FrameCamera& frame_camera, GLuint depth) {
-                caustics_->upload(lighting_->photons().caustics());
-                lighting::CausticCamera caustic_camera;
-                caustic_camera.view = frame_camera.view;
-                caustic_camera.projection = frame_camera.projection;
-                caustic_camera.viewport = {width_, height_};
-                caustics_->render(caustic_camera, depth);
-                return lighting::CausticInput{caustics_->irradiance_texture(), true};
-            });
-    } else if (!want_caustics && caustics_) {
-        renderer_->set_caustic_stage({});
-        renderer_->set_caustics({});
-        caustics_.reset();
-    }
+    // 5. Render. The renderer makes the caustic pass while the FeaturePlan has caustic data
+    // and runs it between its G-buffer and its composite, so the photons are splatted against
+    // this frame's depth and composited into this frame.
     const lighting::FrameTimings& timings = renderer_->render(camera, time);
 
     RunReport::Frame& report = result.report;

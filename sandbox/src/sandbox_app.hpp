@@ -12,6 +12,7 @@
 #include "luxel/lighting/gpu/caustic_pass.hpp"
 #include "luxel/lighting/gpu/frame_renderer.hpp"
 #include "luxel/runtime/jobs.hpp"
+#include "luxel/runtime/scene/gltf.hpp"
 #include "luxel/runtime/shader_library.hpp"
 #include "run_report.hpp"
 #include "sandbox_level.hpp"
@@ -26,6 +27,7 @@ struct AppSettings {
     int threads = 0;
     /// Wall-time limit of the lighting warm-up at load (0: none, start dark).
     double warm_up_ms = 20'000.0;
+    scene::LoadOptions load_limits;  ///< --limit
 };
 
 /// The game: a level in an ECS registry, the game systems that move it, the lighting system and
@@ -56,8 +58,6 @@ class SandboxApp {
     [[nodiscard]] double budget_ms() const { return budget_ms_; }
     [[nodiscard]] double warm_up_ms() const { return warm_up_ms_; }
     void set_budget_ms(double budget) { budget_ms_ = budget; }
-    /// Whether the caustic pass exists now (only while the plan has caustic data).
-    [[nodiscard]] bool caustics_allocated() const { return caustics_.has_value(); }
 
   private:
     std::string level_name_;
@@ -68,7 +68,6 @@ class SandboxApp {
     ecs::TransformSystem transforms_{registry_};
     std::unique_ptr<lighting::LightingSystem> lighting_;
     std::unique_ptr<lighting::FrameRenderer> renderer_;
-    std::optional<lighting::CausticPass> caustics_;
     const ShaderLibrary* shaders_;
     CameraPath path_;
     double budget_ms_;

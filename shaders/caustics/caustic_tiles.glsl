@@ -2,13 +2,14 @@
 // CAUSTIC_TILE x CAUSTIC_TILE pixel tile (set by the splat), the counters read back into
 // CausticPassStats, and the compacted list of tiles to filter. The first three counters are
 // the indirect dispatch's (x, y, z), so the compaction appends straight into the dispatch.
+// Binding points and layouts: caustic_interface.h, shared with lighting/gpu's CausticPass.
 
-#define CAUSTIC_TILE 16
+#include "caustic_interface.h"
 
-layout(std430, binding = 1) buffer CausticTileFlags {
+layout(std430, binding = CAUSTIC_TILE_FLAGS_BINDING) buffer CausticTileFlags {
     uint tile_flags[];
 };
-layout(std430, binding = 2) buffer CausticControl {
+layout(std430, binding = CAUSTIC_CONTROL_BINDING) buffer CausticControl {
     uint dispatch_x;  // tiles in tile_list
     uint dispatch_y;
     uint dispatch_z;
@@ -16,7 +17,7 @@ layout(std430, binding = 2) buffer CausticControl {
     uint tiles_marked;
     uint tiles_filtered;
 };
-layout(std430, binding = 3) buffer CausticTileList {
+layout(std430, binding = CAUSTIC_TILE_LIST_BINDING) buffer CausticTileList {
     uint tile_list[];
 };
 

@@ -2,7 +2,9 @@
 // -z; view depth z = -position.z). Perspective projections only. Shared by the caustic splat
 // (depth test, surface slope) and the world-space filter (depth of each tap).
 
-layout(binding = 0) uniform sampler2D u_depth;
+#include "caustic_interface.h"
+
+layout(binding = CAUSTIC_DEPTH_UNIT) uniform sampler2D u_depth;
 uniform mat4 u_inverse_projection;
 uniform ivec2 u_viewport;
 // Depth values are NDC z as they are (GL_ZERO_TO_ONE, reversed depth) rather than 2d - 1.

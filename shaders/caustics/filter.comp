@@ -11,9 +11,9 @@
 
 layout(local_size_x = CAUSTIC_TILE, local_size_y = CAUSTIC_TILE) in;
 
-layout(binding = 1) uniform sampler2D u_splat;
-layout(rgba32f, binding = 0) writeonly uniform image2D u_output;
-layout(std430, binding = 4) readonly buffer CausticWeights {
+layout(binding = CAUSTIC_SPLAT_UNIT) uniform sampler2D u_splat;
+layout(rgba32f, binding = CAUSTIC_OUTPUT_IMAGE) writeonly uniform image2D u_output;
+layout(std430, binding = CAUSTIC_WEIGHTS_BINDING) readonly buffer CausticWeights {
     float weights[];  // (2 RADIUS + 1)^2, row-major, summing to 1
 };
 

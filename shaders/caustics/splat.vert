@@ -5,15 +5,10 @@
 // its depth test and its pixel area all use the same pixel. A photon that fails is moved
 // outside the clip volume, which drops the point.
 
+#include "caustic_interface.h"
 #include "caustic_view.glsl"
 
-struct Photon {
-    vec3 position;  // world, metres
-    int surface;
-    vec3 power;  // watts per channel
-    uint direction_bits;
-};
-layout(std430, binding = 0) readonly buffer Photons {
+layout(std430, binding = CAUSTIC_PHOTONS_BINDING) readonly buffer Photons {
     Photon photons[];
 };
 

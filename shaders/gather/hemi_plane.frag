@@ -10,11 +10,13 @@ flat in int v_surface;
 // Per surface, two entries: [2s] x = layer (-1: no page), y = page size / layer size,
 // zw = UV clamp range; [2s + 1] rgb = the radiance the surface's front emits (area lights: the
 // radiance leaving a surface is what it emits plus what it reflects, RadianceAtlas::sample).
-layout(std430, binding = 1) readonly buffer SurfacePages {
+#include "gather_interface.h"
+
+layout(std430, binding = GATHER_SURFACE_PAGES_BINDING) readonly buffer SurfacePages {
     vec4 surface_pages[];
 };
 
-layout(binding = 0) uniform sampler2DArray u_radiance;
+layout(binding = GATHER_RADIANCE_UNIT) uniform sampler2DArray u_radiance;
 uniform bool u_mirrored;  // the model matrix flips winding: front faces wind clockwise
 
 layout(location = 0) out vec4 o_radiance;

@@ -4,13 +4,13 @@
 // and then into that texel's tile of the tile atlas. Clip distances keep the instance inside
 // its tile: the atlas-wide frustum alone would let a triangle spill into a neighbour's tile.
 
-#include "hemi_plane_view.glsl"
+#include "gather_interface.h"
 
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec2 a_lightmap_uv;
 layout(location = 2) in int a_surface;
 
-layout(std430, binding = 0) readonly buffer Views {
+layout(std430, binding = GATHER_VIEWS_BINDING) readonly buffer Views {
     GatherView views[];
 };
 

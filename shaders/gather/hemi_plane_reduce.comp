@@ -7,12 +7,14 @@
 #define GROUP_SIZE 256
 layout(local_size_x = GROUP_SIZE) in;
 
-layout(binding = 1) uniform sampler2D u_tiles;
+#include "gather_interface.h"
 
-layout(std430, binding = 2) readonly buffer Weights {
+layout(binding = GATHER_TILES_UNIT) uniform sampler2D u_tiles;
+
+layout(std430, binding = GATHER_WEIGHTS_BINDING) readonly buffer Weights {
     float weights[];
 };
-layout(std430, binding = 3) writeonly buffer Sums {
+layout(std430, binding = GATHER_SUMS_BINDING) writeonly buffer Sums {
     vec4 sums[];
 };
 

@@ -1,5 +1,5 @@
 #version 450 core
-// The frame in linear HDR radiance (DESIGN.md §3):
+// The frame in linear HDR radiance (docs/METHOD.md §8.1):
 //     L = L_indirect + L_caustics + L_specular + sum_i L_direct(i) * shadow(i)   (+ L_emitted)
 // each term weighted 0 or 1 by its toggle. The caustic input is either irradiance (multiplied
 // by albedo / pi here) or radiance. Tone mapping happens later, for display only.

@@ -1,7 +1,7 @@
-// Caustic filter benchmark (issue 9; seed 002 §7: 37.6 ms untiled full screen, 0.38 ms for 1%
-// of 512 x 512). A 512 x 512 frame of a plane facing the camera; 20,000 caustic photons at
-// random pixel centres of a centred square covering `coverage` percent of the frame. One
-// iteration is one CausticPass::render() and glFinish.
+// Caustic filter benchmark (issue 9; the paper's figures, docs/METHOD.md §7.5: 37.6 ms untiled
+// full screen, 0.38 ms for 1% of 512 x 512). A 512 x 512 frame of a plane facing the camera;
+// 20,000 caustic photons at random pixel centres of a centred square covering `coverage`
+// percent of the frame. One iteration is one CausticPass::render() and glFinish.
 //   CausticFilter/<coverage %>/<mode>   mode 0 = Full (untiled), 1 = EarlyOut, 2 = Indirect
 // The reported time is the filter's GPU time (GL_TIME_ELAPSED: tile compaction + filter);
 // counters: splat_ms (clears + splat), wall_ms (render + glFinish), tiles filtered.

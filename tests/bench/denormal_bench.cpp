@@ -87,7 +87,8 @@ struct PoweredLevel {
         JobSystem jobs(2);
         photons = std::make_unique<PhotonWorld>(registry);
         photons->sync();
-        photons->update(0, jobs);
+        photons->probe(0, jobs);
+        photons->retrace_pending(jobs);
         maps = std::make_unique<IlluminationMaps>(registry, *photons);
         maps->sync();
         for (const MapRequest& request : maps->aim_requests()) {

@@ -272,7 +272,8 @@ void FullTrace(benchmark::State& state) {
         level.photons = std::make_unique<lighting::PhotonWorld>(level.registry);
         state.ResumeTiming();
         level.photons->sync();
-        level.photons->update(0, jobs);
+        level.photons->probe(0, jobs);
+        level.photons->retrace_pending(jobs);
         bytes = level.photons->photon_map().bytes_used();
         hits = level.photons->photon_map().stored_hit_count();
         hops = level.photons->photon_map().hop_count();
@@ -312,7 +313,8 @@ void PaperFrame(benchmark::State& state) {
     Level level(true, settings);
     JobSystem jobs(static_cast<int>(state.range(0)));
     // Warm up: every group traced, every caustic slice filled, before anything moves.
-    level.photons->update(0, jobs);
+    level.photons->probe(0, jobs);
+    level.photons->retrace_pending(jobs);
     for (std::uint64_t frame = 0; frame < 8; ++frame) {
         level.photons->update_caustics(frame, jobs);
     }
@@ -337,7 +339,8 @@ void PaperFrame(benchmark::State& state) {
         Stopwatch clock;
         level.photons->sync();
         const double after_sync = clock.elapsed_ms();
-        const lighting::PhotonFrameStats global = level.photons->update(frame, jobs);
+        const lighting::EmissionStats probes = level.photons->probe(frame, jobs);
+        const lighting::EmissionStats retraces = level.photons->retrace_pending(jobs);
         const double after_global = clock.elapsed_ms();
         const lighting::CausticFrameStats caustics = level.photons->update_caustics(frame, jobs);
         const double after_caustics = clock.elapsed_ms();
@@ -350,11 +353,10 @@ void PaperFrame(benchmark::State& state) {
         sync_ms.push_back(after_sync);
         global_ms.push_back(after_global - after_sync);
         caustic_ms.push_back(after_caustics - after_global);
-        retraced_groups += global.retraces.groups_retraced;
-        most_groups_in_a_frame = std::max(most_groups_in_a_frame, global.retraces.groups_retraced);
+        retraced_groups += retraces.groups_retraced;
+        most_groups_in_a_frame = std::max(most_groups_in_a_frame, retraces.groups_retraced);
         caustic_photons += caustics.trace.photons;
-        segments +=
-            global.probes.trace.segments + global.retraces.trace.segments + caustics.trace.segments;
+        segments += probes.trace.segments + retraces.trace.segments + caustics.trace.segments;
         ++frame;
     }
     const auto frames = static_cast<double>(total_ms.size());

@@ -36,7 +36,8 @@ TEST_P(LevelMaps, TexelsMatchTheLayoutAndEveryValueIsFinite) {
     JobSystem jobs(2);
     lighting::PhotonWorld photons(registry);
     photons.sync();
-    photons.update(0, jobs);
+    photons.probe(0, jobs);
+    photons.retrace_pending(jobs);
     lighting::IlluminationMaps maps(registry, photons);
     maps.sync();
 
@@ -94,7 +95,8 @@ TEST_P(LevelMaps, TexelsMatchTheLayoutAndEveryValueIsFinite) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltInLevels, LevelMaps,
-                         ::testing::Values("cornell", "two-rooms", "caustics", "sandbox", "furnace"),
+                         ::testing::Values("cornell", "two-rooms", "caustics", "sandbox",
+                                           "furnace"),
                          [](const auto& param_info) {
                              std::string name = param_info.param;
                              std::replace(name.begin(), name.end(), '-', '_');

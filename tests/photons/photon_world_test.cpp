@@ -44,7 +44,8 @@ struct Level {
         transforms.update();
         photons = std::make_unique<lighting::PhotonWorld>(registry);
         photons->sync();
-        photons->update(0, jobs);
+        photons->probe(0, jobs);
+        photons->retrace_pending(jobs);
     }
     void step() {
         transforms.update();

@@ -1,5 +1,5 @@
-// Surfaces (thesis ch. 8): faces of one material joined across edges flatter than the crease
-// angle, split further by the texel budget.
+// Surfaces (docs/METHOD.md §3.1): faces of one material joined across edges flatter than the
+// crease angle, split further by the texel budget.
 
 #include <cmath>
 #include <iostream>

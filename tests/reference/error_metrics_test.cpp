@@ -1,4 +1,4 @@
-// DESIGN.md §4's relRMSE on hand-made arrays and images.
+// docs/METHOD.md §10.2's relRMSE on hand-made arrays and images.
 
 #include <cmath>
 #include <limits>

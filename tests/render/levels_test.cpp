@@ -100,6 +100,16 @@ TEST_P(BuiltInLevels, FramesHoldNoNanInfOrNegative) {
         write_png(dir / (GetParam() + "-indirect.png"), renderer.read(FrameImage::Indirect));
         write_png(dir / (GetParam() + "-specular.png"), renderer.read(FrameImage::Specular));
     }
+    // The renderer makes its caustic pass exactly while the plan has caustic data, and none
+    // when the settings ask for none.
+    EXPECT_EQ(renderer.caustic_pass() != nullptr, world.lighting->plan().caustic_data())
+        << GetParam();
+    FrameSettings no_caustics = settings;
+    no_caustics.caustics.reset();
+    FrameRenderer bare(world.registry, *world.lighting, no_caustics);
+    bare.render(level_camera(world.registry), world.time);
+    EXPECT_EQ(bare.caustic_pass(), nullptr);
+
     const FrameCounters& counters = renderer.counters();
     EXPECT_EQ(counters.shadow_maps, counters.lights) << "one shadow map per enabled light";
     if (world.lighting->plan().reflections()) {

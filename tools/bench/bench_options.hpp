@@ -10,6 +10,8 @@
 
 #include <glm/glm.hpp>
 
+#include "luxel/runtime/scene/gltf.hpp"
+
 namespace luxel::bench {
 
 /// One --sweep KNOB=V1,V2,...: the knob and its values as given (checked by parse_sweep).
@@ -38,7 +40,7 @@ struct ReferenceSpec {
     std::uint32_t seed = 1;
 };
 
-/// The image error (DESIGN.md §4): the real-time frame of the level's camera against a
+/// The image error (docs/METHOD.md §10.2): the real-time frame of the level's camera against a
 /// reference frame of the same camera and size, at every checkpoint.
 struct ImageSpec {
     bool enabled = true;  ///< --no-image: off, and no GL context unless backend=gpu is swept
@@ -49,6 +51,7 @@ struct ImageSpec {
 
 struct Options {
     std::string level;
+    scene::LoadOptions load_limits;  ///< --limit
     std::vector<double> budgets{1.0, 2.0, 4.0, 8.0};
     std::uint32_t frames = 150;  ///< static frames per configuration
     std::uint32_t after = 90;    ///< frames after the scripted change

@@ -7,8 +7,11 @@
 namespace luxel::bench {
 namespace {
 
-lighting::FrameSettings frame_settings(const lighting::reference::ReferenceCamera& camera) {
+lighting::FrameSettings frame_settings(const lighting::reference::ReferenceCamera& camera,
+                                       lighting::CausticKernel kernel) {
     lighting::FrameSettings settings;
+    settings.caustics = lighting::CausticPassSettings{};
+    settings.caustics->kernel = kernel;
     settings.width = camera.width;
     settings.height = camera.height;
     // The timings reported are this frame's, not a frame still in flight.
@@ -75,40 +78,16 @@ lighting::FrameCamera frame_camera(const lighting::reference::ReferenceCamera& c
 FrameView::FrameView(ecs::Registry& registry, lighting::LightingSystem& lighting,
                      const lighting::reference::ReferenceCamera& camera,
                      lighting::CausticKernel kernel, const ShaderLibrary& shaders)
-    : lighting_(&lighting),
-      shaders_(&shaders),
-      camera_(frame_camera(camera)),
-      renderer_(registry, lighting, frame_settings(camera), shaders) {
-    caustic_camera_.view = camera_.view;
-    caustic_camera_.projection = camera_.projection;
-    caustic_camera_.viewport = {camera.width, camera.height};
-    caustic_settings_.kernel = kernel;
-}
+    : camera_(frame_camera(camera)),
+      renderer_(registry, lighting, frame_settings(camera, kernel), shaders) {}
 
 FrameShot FrameView::render(double now_seconds) {
-    // As the sandbox: the caustic pass exists while the FeaturePlan has caustic data, and the
-    // renderer runs it between its G-buffer and its composite (the caustic stage), so the
-    // photons are splatted against this frame's depth and composited into this frame.
-    const bool want_caustics = lighting_->plan().caustic_data();
-    if (want_caustics && !caustics_) {
-        caustics_.emplace(caustic_settings_, caustic_camera_.viewport, *shaders_);
-        renderer_.set_caustic_stage([this](const lighting::FrameCamera& camera, GLuint depth) {
-            caustics_->upload(lighting_->photons().caustics());
-            lighting::CausticCamera caustic_camera = caustic_camera_;
-            caustic_camera.view = camera.view;
-            caustic_camera.projection = camera.projection;
-            caustics_->render(caustic_camera, depth);
-            return lighting::CausticInput{caustics_->irradiance_texture(), true};
-        });
-    } else if (!want_caustics && caustics_) {
-        renderer_.set_caustic_stage({});
-        renderer_.set_caustics({});
-        caustics_.reset();
-    }
+    // As the sandbox: the renderer's own caustic pass runs between its G-buffer and its
+    // composite while the FeaturePlan has caustic data, so this frame's caustics are in it.
     FrameShot shot;
     shot.frame_gpu_ms = renderer_.render(camera_, now_seconds).total();
-    if (caustics_) {
-        const lighting::CausticPassStats& stats = caustics_->stats();
+    if (lighting::CausticPass* caustics = renderer_.caustic_pass(); caustics != nullptr) {
+        const lighting::CausticPassStats& stats = caustics->stats();
         shot.caustic_gpu_ms = stats.splat_ms + stats.filter_ms;
     }
     shot.image = renderer_.read(lighting::FrameImage::Frame);

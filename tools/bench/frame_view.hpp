@@ -38,8 +38,7 @@ struct FrameShot {
     double caustic_gpu_ms = 0.0;  ///< CausticPass splat + filter (GPU); 0 without caustics
 };
 
-/// One run's renderer. Needs the context current for its whole life; not movable (the caustic
-/// stage it gives the renderer holds `this`).
+/// One run's renderer. Needs the context current for its whole life.
 class FrameView {
   public:
     FrameView(ecs::Registry& registry, lighting::LightingSystem& lighting,
@@ -53,13 +52,8 @@ class FrameView {
     [[nodiscard]] FrameShot render(double now_seconds);
 
   private:
-    lighting::LightingSystem* lighting_;
-    const ShaderLibrary* shaders_;
     lighting::FrameCamera camera_;
-    lighting::CausticCamera caustic_camera_;
-    lighting::CausticPassSettings caustic_settings_;
     lighting::FrameRenderer renderer_;
-    std::optional<lighting::CausticPass> caustics_;
 };
 
 }  // namespace luxel::bench

@@ -1,7 +1,8 @@
 #pragma once
 
-// Reference frames for luxel-bench's image error (DESIGN.md §4): the level's camera path traced
-// by ReferenceFrame as luxel-ref renders it, cached on disk beside the light-map references.
+// Reference frames for luxel-bench's image error (docs/METHOD.md §10.2): the level's camera path
+// traced by ReferenceFrame as luxel-ref renders it, cached on disk beside the light-map
+// references.
 
 #include <filesystem>
 #include <string>

@@ -1,6 +1,7 @@
 #pragma once
 
-// The real-time light maps as irradiance per reference texel, and their error (DESIGN.md §4).
+// The real-time light maps as irradiance per reference texel, and their error (docs/METHOD.md
+// §10.2).
 
 #include <cstddef>
 #include <filesystem>

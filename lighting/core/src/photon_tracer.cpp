@@ -124,8 +124,8 @@ void trace_photon(const RayScene& scene, std::span<const TraceMaterial> material
             }
             ++counters.diffuse_hits;
             hops.push_back({hit->position, power, hit->surface, hit->object, bounces});
-            // Russian roulette (thesis ch. 9): survive with p = max albedo channel, and keep
-            // the expected power by dividing by p.
+            // Russian roulette (docs/METHOD.md §4.3): survive with p = max albedo channel, and
+            // keep the expected power by dividing by p.
             const float survival =
                 std::max(material.albedo.r, std::max(material.albedo.g, material.albedo.b));
             const double xi = photon_sample(index, dim++, seed);

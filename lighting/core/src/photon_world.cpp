@@ -604,11 +604,4 @@ EmissionStats PhotonWorld::retrace_pending(JobSystem& jobs, std::size_t max_grou
     return retrace_groups(scene_, materials_, lights, *map_, batch, jobs);
 }
 
-PhotonFrameStats PhotonWorld::update(std::uint64_t frame, JobSystem& jobs) {
-    PhotonFrameStats stats;
-    stats.probes = probe(frame, jobs);
-    stats.retraces = retrace_pending(jobs);
-    return stats;
-}
-
 }  // namespace luxel::lighting

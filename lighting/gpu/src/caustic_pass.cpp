@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <string>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "caustic_photon_buffer.hpp"
+#include "caustics/caustic_interface.h"
 #include "gl_state_guard.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/program.hpp"
@@ -25,17 +27,27 @@
 namespace luxel::lighting {
 namespace {
 
-// Binding points shared with shaders/caustics/*.
-constexpr GLuint kPhotonsBinding = 0;
-constexpr GLuint kTileFlagsBinding = 1;
-constexpr GLuint kControlBinding = 2;
-constexpr GLuint kTileListBinding = 3;
-constexpr GLuint kWeightsBinding = 4;
-constexpr GLuint kDepthUnit = 0;
-constexpr GLuint kSplatUnit = 1;
-constexpr GLuint kOutputImage = 0;
+// Binding points shared with shaders/caustics/* (caustic_interface.h, which both include).
+constexpr GLuint kPhotonsBinding = CAUSTIC_PHOTONS_BINDING;
+constexpr GLuint kTileFlagsBinding = CAUSTIC_TILE_FLAGS_BINDING;
+constexpr GLuint kControlBinding = CAUSTIC_CONTROL_BINDING;
+constexpr GLuint kTileListBinding = CAUSTIC_TILE_LIST_BINDING;
+constexpr GLuint kWeightsBinding = CAUSTIC_WEIGHTS_BINDING;
+constexpr GLuint kDepthUnit = CAUSTIC_DEPTH_UNIT;
+constexpr GLuint kSplatUnit = CAUSTIC_SPLAT_UNIT;
+constexpr GLuint kOutputImage = CAUSTIC_OUTPUT_IMAGE;
+static_assert(kCausticTileSize == CAUSTIC_TILE);
+static_assert(kPhotonsBinding < kWeightsBinding && kWeightsBinding - kPhotonsBinding == 4,
+              "unbind() walks the storage bindings from photons to weights");
 
-/// std430 mirror of CausticControl in shaders/caustics/caustic_tiles.glsl.
+// The photon buffer holds CausticPhoton as it is: its layout must be std430's struct Photon.
+static_assert(sizeof(CausticPhoton) == CAUSTIC_PHOTON_SIZE);
+static_assert(offsetof(CausticPhoton, position) == CAUSTIC_PHOTON_POSITION);
+static_assert(offsetof(CausticPhoton, surface) == CAUSTIC_PHOTON_SURFACE);
+static_assert(offsetof(CausticPhoton, power) == CAUSTIC_PHOTON_POWER);
+static_assert(offsetof(CausticPhoton, direction_bits) == CAUSTIC_PHOTON_DIRECTION_BITS);
+
+/// std430 CausticControl of shaders/caustics/caustic_tiles.glsl (caustic_interface.h).
 struct Control {
     GLuint dispatch_x = 0;
     GLuint dispatch_y = 1;
@@ -44,6 +56,7 @@ struct Control {
     GLuint tiles_marked = 0;
     GLuint tiles_filtered = 0;
 };
+static_assert(sizeof(Control) == CAUSTIC_CONTROL_SIZE);
 
 void validate(const CausticPassSettings& s) {
     if (s.kernel_radius < 0 || s.kernel_radius > kMaxCausticKernelRadius) {

@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -90,8 +91,10 @@ struct FrameRenderer::Impl {
     FrameTimings timings;
     FrameCounters counters;
     FrameTerms terms;
-    CausticInput caustics;
+    CausticInput caustics;  ///< set_caustics(): a caustic term made elsewhere
     CausticStage caustic_stage;
+    ShaderLibrary shader_library;             ///< for the passes made later (the caustic pass)
+    std::optional<CausticPass> own_caustics;  ///< FrameSettings::caustics, while the plan has data
     LightBatches batches;
     gl::Texture black = gl::Texture::create_2d(GL_RGBA16F, 1, 1);
     ecs::Observer<MeshInstance> mesh_changes;
@@ -121,6 +124,7 @@ struct FrameRenderer::Impl {
           targets(s.width, s.height),
           shadows(s.cube_shadow_size, s.map_shadow_size, s.filtered_shadows),
           probes(shaders, s.specular_cube_size, s.specular_faces_per_frame),
+          shader_library(shaders),
           mesh_changes(r.observe<MeshInstance>(ecs::ObserverStart::WithExisting)),
           moves(r.observe<ecs::WorldTransform>()) {
         const std::array<std::uint16_t, 4> zero{};  // half floats: 0
@@ -281,6 +285,30 @@ struct FrameRenderer::Impl {
         draw_fullscreen();
     }
 
+    /// The caustic pass exists exactly while the FeaturePlan has caustic data (and the
+    /// settings ask for one): created on the first frame that needs it, freed when none does.
+    void sync_own_caustics() {
+        const bool wanted = settings.caustics.has_value() && lighting.plan().caustic_data();
+        if (wanted && !own_caustics) {
+            own_caustics.emplace(*settings.caustics, glm::ivec2(settings.width, settings.height),
+                                 shader_library);
+        } else if (!wanted && own_caustics) {
+            own_caustics.reset();
+        }
+    }
+
+    /// The caustic stage the renderer runs itself: this frame's photons, splatted against this
+    /// frame's depth from this frame's camera.
+    CausticInput own_caustic_stage(const FrameCamera& camera) {
+        own_caustics->upload(lighting.photons().caustics());
+        CausticCamera caustic_camera;
+        caustic_camera.view = camera.view;
+        caustic_camera.projection = camera.projection;
+        caustic_camera.viewport = {settings.width, settings.height};
+        own_caustics->render(caustic_camera, targets.depth.id());
+        return CausticInput{own_caustics->irradiance_texture(), true};
+    }
+
     void render(const FrameCamera& camera, double now_seconds) {
         const GlStateGuard guard;
         const GLboolean seamless = glIsEnabled(GL_TEXTURE_CUBE_MAP_SEAMLESS);
@@ -366,9 +394,12 @@ struct FrameRenderer::Impl {
         previous_page_uploads = lightmaps.uploads();
         counters.specular_probes = probes.count();
         counters.specular_faces = probes.faces_rendered();
-        if (caustic_stage && terms.caustics) {
+        sync_own_caustics();
+        const CausticInput external = caustics;
+        if (terms.caustics && (caustic_stage || (caustics.texture == 0 && own_caustics))) {
             // The stage draws with its own state and timers: outside the composite's query.
-            caustics = caustic_stage(camera, targets.depth.id());
+            caustics = caustic_stage ? caustic_stage(camera, targets.depth.id())
+                                     : own_caustic_stage(camera);
             glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
             glDisable(GL_DEPTH_TEST);
             glDisable(GL_BLEND);
@@ -380,6 +411,9 @@ struct FrameRenderer::Impl {
         timer.begin(RenderPass::Composite);
         composite_pass(direct, indirect, specular);
         timer.end(RenderPass::Composite);
+        if (!caustic_stage) {
+            caustics = external;  // the own pass's texture is not an external term
+        }
 
         timer.collect(timings, settings.wait_for_timings);
         meshes.evict(frame);
@@ -428,6 +462,11 @@ void FrameRenderer::resize(int width, int height) {
     validate(settings);
     impl_->targets = FrameTargets(width, height);
     impl_->settings = settings;
+    impl_->own_caustics.reset();  // made again at the new size by the next frame that needs it
+}
+
+CausticPass* FrameRenderer::caustic_pass() {
+    return impl_->own_caustics ? &*impl_->own_caustics : nullptr;
 }
 
 GLuint FrameRenderer::frame_texture() const {

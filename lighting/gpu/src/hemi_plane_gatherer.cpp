@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <string>
 #include <vector>
 
 #include <glm/gtc/constants.hpp>
 
+#include "gather/gather_interface.h"
 #include "gather_geometry.hpp"
 #include "gl_state_guard.hpp"
 #include "luxel/lighting/gpu/hemi_plane_geometry.hpp"
@@ -18,22 +20,26 @@
 namespace luxel::lighting {
 namespace {
 
-/// std430 mirror of GatherView in shaders/gather/hemi_plane_view.glsl.
+/// std430 GatherView of shaders/gather/gather_interface.h, which the shaders include too.
 struct GpuView {
     glm::vec4 origin;
     glm::vec4 right;
     glm::vec4 up;
     glm::vec4 forward;
 };
-static_assert(sizeof(GpuView) == 64);
+static_assert(sizeof(GpuView) == GATHER_VIEW_SIZE);
+static_assert(offsetof(GpuView, origin) == GATHER_VIEW_ORIGIN);
+static_assert(offsetof(GpuView, right) == GATHER_VIEW_RIGHT);
+static_assert(offsetof(GpuView, up) == GATHER_VIEW_UP);
+static_assert(offsetof(GpuView, forward) == GATHER_VIEW_FORWARD);
 
-// Shader binding points (shaders/gather/*).
-constexpr GLuint kViewsBinding = 0;
-constexpr GLuint kSurfacePagesBinding = 1;
-constexpr GLuint kWeightsBinding = 2;
-constexpr GLuint kSumsBinding = 3;
-constexpr GLuint kRadianceUnit = 0;
-constexpr GLuint kTilesUnit = 1;
+// Shader binding points (gather_interface.h).
+constexpr GLuint kViewsBinding = GATHER_VIEWS_BINDING;
+constexpr GLuint kSurfacePagesBinding = GATHER_SURFACE_PAGES_BINDING;
+constexpr GLuint kWeightsBinding = GATHER_WEIGHTS_BINDING;
+constexpr GLuint kSumsBinding = GATHER_SUMS_BINDING;
+constexpr GLuint kRadianceUnit = GATHER_RADIANCE_UNIT;
+constexpr GLuint kTilesUnit = GATHER_TILES_UNIT;
 
 bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);

@@ -20,7 +20,7 @@ class ShaderLibrary;
 
 namespace luxel::lighting {
 
-/// The specular pass (DESIGN.md §2 "reflections"): one dynamic cube map ("probe") per entity
+/// The specular pass (reflections, docs/METHOD.md §8.3): one dynamic cube map ("probe") per entity
 /// with a mirror or glass material, centred on its bounds, at reduced resolution. Faces are
 /// rendered with forward shading of the diffuse scene (emitted + first light batch with
 /// shadows + IIM; specular objects are left out of each other's probes) and refreshed on a

@@ -9,7 +9,6 @@
 #include "luxel/ecs/errors.hpp"
 #include "luxel/ecs/hierarchy.hpp"
 #include "luxel/ecs/observer.hpp"
-#include "luxel/ecs/pipeline.hpp"
 #include "luxel/ecs/registry.hpp"
 #include "luxel/ecs/signal.hpp"
 #include "luxel/ecs/sparse_set.hpp"

@@ -47,7 +47,7 @@ class TransformSystem {
     /// Brings every WorldTransform up to date. O(dirty entities x log + their subtrees' sizes).
     void update();
     /// update(), after checking that `registry` is the one this system was made for (throws
-    /// EcsError otherwise): the form a Pipeline system calls.
+    /// EcsError otherwise): for game loops that hand each system the registry.
     void update(Registry& registry);
 
     /// How many entities the last update() visited (recomputed or checked): a measure of the

@@ -7,7 +7,7 @@
 
 #include "luxel/lighting/core/light_source.hpp"
 
-/// Emission of caustic photons toward one caustic generator (seed 002 §5, seed 003 §4.2): a
+/// Emission of caustic photons toward one caustic generator (docs/METHOD.md §7.1): a
 /// light spends its caustic photons only on the directions that can reach the generator's
 /// bounding sphere, and each photon carries the share of the power the light sends that way.
 namespace luxel::lighting {

@@ -12,7 +12,7 @@
 #include "luxel/lighting/core/ray_scene.hpp"
 #include "luxel/runtime/jobs.hpp"
 
-/// Caustic photons (seed 002 §5, seed 003 §4.2, DESIGN.md §3): per (generator, light) pair, QMC
+/// Caustic photons (docs/METHOD.md §7.1-7.2): per (generator, light) pair, QMC
 /// photons emitted toward the generator, followed through specular reflection and refraction,
 /// and stored at their first diffuse hit when at least one specular interaction came before it
 /// (L S+ D paths). Photons whose first hit is diffuse are dropped: that light is the global

@@ -7,12 +7,12 @@
 
 namespace luxel::lighting {
 
-/// The kinds of lighting work the Scheduler spreads across frames (DESIGN.md §2, step 3-4).
+/// The kinds of lighting work the Scheduler spreads across frames (docs/METHOD.md §1.2-1.3).
 enum class WorkKind : std::uint8_t {
     PhotonProbe,   ///< one photon per group, round robin
     GroupRetrace,  ///< retrace of one invalidated photon group
     CausticSlice,  ///< 1/K of a caustic photon list
-    AimRebuild,    ///< rebuild of one surface's accumulated irradiance map
+    AimRebuild,    ///< rebuild of one surface's approximated illumination map
     IimGather,     ///< a batch of IIM texel gathers (size = texels)
     IimBlend,      ///< one step of the IIM front/back blend
 };

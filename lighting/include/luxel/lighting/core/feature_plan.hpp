@@ -30,7 +30,7 @@ struct SceneCensus {
     bool operator==(const SceneCensus&) const = default;
 };
 
-/// The passes and the per-frame work they imply (DESIGN.md §2).
+/// The passes and the per-frame work they imply (docs/METHOD.md §1.3).
 enum class Pass : std::uint8_t {
     PhotonTracing,    ///< global photons: group retraces (and the photon map they feed)
     SelectiveProbes,  ///< probe photons that find the groups a change invalidated

@@ -6,7 +6,7 @@
 
 #include <glm/glm.hpp>
 
-/// Final gathering (seed 002 §4, thesis ch. 11): irradiance at a light-map texel centre from
+/// Final gathering (docs/METHOD.md §6): irradiance at a light-map texel centre from
 /// the AIM-lit scene, E = integral over the hemisphere of L(w) cos(theta) dw. One contract, two
 /// backends: Embree rays on the CPU (CpuGatherer) and the hemi-plane on the GPU
 /// (lighting/gpu HemiPlaneGatherer).

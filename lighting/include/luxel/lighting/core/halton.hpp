@@ -4,8 +4,8 @@
 
 #include <glm/glm.hpp>
 
-/// Quasi-Monte Carlo points (thesis ch. 6). Photon i of a light always gets the same sample, so a
-/// retraced photon follows the same initial direction and results do not depend on threads.
+/// Quasi-Monte Carlo points (docs/METHOD.md §2). Photon i of a light always gets the same sample,
+/// so a retraced photon follows the same initial direction and results do not depend on threads.
 namespace luxel::lighting {
 
 /// The radical inverse Phi_b(i) = sum_j a_j(i) b^(-j-1), where a_j(i) are the base-b digits of

@@ -22,7 +22,7 @@
 #include "luxel/lighting/core/surface_footprint.hpp"
 #include "luxel/lighting/core/surface_texels.hpp"
 
-/// Photons into light maps (seed 002 §3-4, thesis ch. 10-11): the AIM of each light-mapped
+/// Photons into light maps (docs/METHOD.md §5-6): the AIM of each light-mapped
 /// surface from its photons, and the IIM from final gathering over the AIM-lit scene.
 namespace luxel::lighting {
 

@@ -9,7 +9,7 @@
 
 #include "luxel/lighting/core/photon_map.hpp"
 
-/// The AIM's density estimate (seed 002 §3, thesis ch. 10): irradiance at a point from the N
+/// The AIM's density estimate (docs/METHOD.md §5.1-5.3): irradiance at a point from the N
 /// nearest stored photon hits, E = sum of their power / (pi r^2), r the distance to the N-th
 /// (the N-th itself, on the rim, is not summed: see photon_density.cpp).
 /// A kd-tree (nanoflann) is built over the hits of one surface and of the surfaces that can

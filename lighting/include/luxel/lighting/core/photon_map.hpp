@@ -9,8 +9,8 @@
 #include "luxel/lighting/core/compensated_sum.hpp"
 #include "luxel/lighting/core/ray_scene.hpp"
 
-/// Where photon hits live (thesis ch. 9-10): per surface, in contiguous arrays, each hit knowing
-/// which path hop put it there so that invalidating a path removes its hits in O(1) each.
+/// Where photon hits live (docs/METHOD.md §4.3-4.4): per surface, in contiguous arrays, each hit
+/// knowing which path hop put it there so that invalidating a path removes its hits in O(1) each.
 namespace luxel::lighting {
 
 /// One photon hit on a light-mapped surface: 32 bytes.

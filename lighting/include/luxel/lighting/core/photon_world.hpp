@@ -36,14 +36,6 @@ struct SurfaceInfo {
     int layout_id = -1;  ///< the layout's surface id; -1 for implicit surfaces
 };
 
-/// Counters of one PhotonWorld::update.
-struct PhotonFrameStats {
-    EmissionStats probes;
-    EmissionStats retraces;
-    std::uint32_t lights_invalidated = 0;
-    std::uint32_t objects_moved = 0;
-};
-
 /// The caustic photons of one (generator, light) pair.
 struct CausticPair {
     ecs::Entity generator;
@@ -95,11 +87,6 @@ class PhotonWorld {
     /// Run after the TransformSystem.
     void sync();
 
-    /// One frame of selective emission: probes (photon frame mod M of every group of every
-    /// enabled light), then a retrace of every invalid group. The scheduler (issue 8) splits
-    /// this work across frames; this call does all of it.
-    PhotonFrameStats update(std::uint64_t frame, JobSystem& jobs);
-
     /// Caustics: retraces one slice of every list that needs it (see CausticPhotonList for
     /// which slice), all lists together in one parallel pass.
     CausticFrameStats update_caustics(std::uint64_t frame, JobSystem& jobs);
@@ -119,9 +106,11 @@ class PhotonWorld {
 
     /// Groups waiting for a retrace (invalidated by probes or by light changes).
     [[nodiscard]] const std::vector<std::uint32_t>& pending_groups() const { return pending_; }
-    /// Runs only the probes of `frame`, adding divergent groups to pending_groups().
+    /// Selective emission, in the two steps the LightingSystem schedules as separate units:
+    /// the probes of `frame` (photon frame mod M of every group of every enabled light), which
+    /// add the groups whose paths diverge to pending_groups() ...
     EmissionStats probe(std::uint64_t frame, JobSystem& jobs);
-    /// Retraces up to `max_groups` pending groups (all when 0), oldest first.
+    /// ... and the retrace of up to `max_groups` pending groups (all when 0), oldest first.
     EmissionStats retrace_pending(JobSystem& jobs, std::size_t max_groups = 0);
 
     [[nodiscard]] const RayScene& ray_scene() const { return scene_; }

@@ -25,9 +25,9 @@ struct WorkUnit {
 };
 
 struct SchedulerSettings {
-    /// Weight of each kind's priorities, in DESIGN.md §2's order: photon probes, retraces,
-    /// caustic slices, AIM rebuilds, IIM gathers, IIM blend steps. Photons come first because
-    /// everything downstream is computed from them.
+    /// Weight of each kind's priorities, in docs/METHOD.md §1.2's order: photon probes,
+    /// retraces, caustic slices, AIM rebuilds, IIM gathers, IIM blend steps. Photons come first
+    /// because everything downstream is computed from them.
     PerKind<double> weight = {6.0, 5.0, 4.0, 3.0, 2.0, 1.0};
     /// Added to a unit's effective priority for each frame it has waited, so that low-priority
     /// work rises over time instead of waiting behind a stream of fresh high-priority units.
@@ -99,8 +99,9 @@ struct SchedulerTotals {
     PerKind<KindTotals> kinds{};
 };
 
-/// Queues of lighting work units, run in priority order within a frame budget (DESIGN.md §2,
-/// step 3). Every unit's duration is measured on the injected clock and teaches the CostModel.
+/// Queues of lighting work units, run in priority order within a frame budget (docs/METHOD.md
+/// §1.2 step 3, §1.3). Every unit's duration is measured on the injected clock and teaches the
+/// CostModel.
 ///
 /// Within run(budget_ms), units are taken in this order: overdue units (waited >=
 /// max_wait_frames), oldest first; then by effective priority = priority * weight[kind] +

@@ -8,7 +8,7 @@
 #include "luxel/lighting/core/photon_tracer.hpp"
 #include "luxel/runtime/jobs.hpp"
 
-/// Selective photon emission (seed 002 §2, thesis ch. 9): a light's photons are split into G
+/// The paper's selective photon emission (docs/METHOD.md §4): a light's photons are split into G
 /// groups of M photons with similar initial directions. Each frame one probe photon per group is
 /// retraced; a group whose probe path diverges from the stored one is retraced whole.
 namespace luxel::lighting {

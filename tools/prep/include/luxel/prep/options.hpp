@@ -11,8 +11,8 @@ namespace luxel::prep {
 struct PrepOptions {
     /// World size of one texel edge, in metres.
     double texel_size = 0.05;
-    /// Faces of one material whose normals differ by less than this share a surface (thesis
-    /// 8.1: the shared edge is "connected").
+    /// Faces of one material whose normals differ by less than this share a surface
+    /// (docs/METHOD.md §3.1: the shared edge is "connected").
     double crease_degrees = 45.0;
     /// Texels of gutter around every chart, on every side, owned by that chart alone: bilinear
     /// filtering at a chart's edge then reads only the chart's own (dilated) texels.

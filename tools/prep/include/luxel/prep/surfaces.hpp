@@ -6,9 +6,9 @@
 
 namespace luxel::prep {
 
-/// Faces of one material joined across edges flatter than the crease angle (thesis 8.1): mark
-/// every edge connected when its two faces share a material and their normals differ by less
-/// than the crease angle, then take the connected components.
+/// Faces of one material joined across edges flatter than the crease angle (docs/METHOD.md
+/// §3.1): mark every edge connected when its two faces share a material and their normals
+/// differ by less than the crease angle, then take the connected components.
 struct CreaseSurface {
     std::vector<int> faces;  ///< ascending face indices
     int material = -1;

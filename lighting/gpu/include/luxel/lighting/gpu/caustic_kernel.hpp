@@ -2,7 +2,7 @@
 
 #include <vector>
 
-/// The screen-space caustic filter kernels (seed 002 eq. 4, seed 003 §4.4.1, DESIGN.md §3),
+/// The screen-space caustic filter kernels (docs/METHOD.md §7.3),
 /// computed on the CPU so tests can check them and the filter shader reads them as they are.
 namespace luxel::lighting {
 

@@ -35,8 +35,8 @@ struct CausticPassSettings {
     /// Divide each photon's power by the pixel's area on the surface (orientation from the
     /// depth buffer's slope: a pixel on a surface seen at angle theta covers 1 / cos(theta)
     /// times the area it covers on a camera-facing one). Off: the camera-facing area
-    /// (2 z tan(fov/2) / height)^2 of seed 002, which overestimates irradiance on oblique
-    /// surfaces by 1 / cos(theta).
+    /// (2 z tan(fov/2) / height)^2 (docs/METHOD.md §7.4), which overestimates irradiance on
+    /// oblique surfaces by 1 / cos(theta).
     bool account_for_orientation = true;
     /// The smallest cos(theta) used for the orientation: a grazing pixel's footprint is
     /// unbounded, and a noisy depth slope must not send irradiance to zero.
@@ -83,7 +83,7 @@ struct CausticPassStats {
 
 inline constexpr int kCausticTileSize = 16;
 
-/// The screen-space caustic pass (seed 002 §5, seed 003 §4.4): caustic photons are drawn as
+/// The screen-space caustic pass (docs/METHOD.md §7.3-7.5): caustic photons are drawn as
 /// GL_POINTS into an RGBA32F splat buffer with additive blending, each adding
 /// power / (the world-space area of its pixel), depth-tested in the vertex shader against the
 /// caller's scene depth; the splat marks the 16 x 16 tiles it touches, and a compute filter

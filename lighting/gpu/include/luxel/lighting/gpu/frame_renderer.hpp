@@ -4,9 +4,11 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string_view>
 
 #include "luxel/ecs/registry.hpp"
+#include "luxel/lighting/gpu/caustic_pass.hpp"
 #include "luxel/lighting/gpu/frame_camera.hpp"
 #include "luxel/runtime/gl.hpp"
 #include "luxel/runtime/image.hpp"
@@ -33,6 +35,11 @@ struct FrameSettings {
     /// re-rendered `specular_faces_per_frame` faces per frame.
     int specular_cube_size = 128;
     int specular_faces_per_frame = 1;
+    /// The caustic render pass the renderer creates while the FeaturePlan has caustic data (and
+    /// frees when it has none), run on each frame's own depth between the G-buffer and the
+    /// composite. nullopt: the renderer makes no caustics itself (set_caustics or
+    /// set_caustic_stage may still supply them).
+    std::optional<CausticPassSettings> caustics = CausticPassSettings{};
 };
 
 /// Which terms of the composition go into the frame (the sandbox's keys, README pictures).
@@ -100,7 +107,7 @@ enum class FrameImage : std::uint8_t {
 };
 
 /// The frame: shadows -> G-buffer -> direct -> IIM -> specular -> composite, in linear HDR
-/// radiance W/(m^2 sr) (DESIGN.md §2 step 5, §3 Composition).
+/// radiance W/(m^2 sr) (docs/METHOD.md §1.2 step 5, §8 composition).
 ///
 ///     FrameRenderer renderer(registry, lighting, {.width = 1280, .height = 720});
 ///     each frame, after lighting.update(budget, t):
@@ -144,8 +151,12 @@ class FrameRenderer {
     /// A caustic term made elsewhere, composited into the next frames ({} to remove it).
     void set_caustics(const CausticInput& caustics);
     /// The caustic term made during each frame (see CausticStage; {} to remove it). While a
-    /// stage is set it replaces set_caustics().
+    /// stage is set it replaces set_caustics(), and set_caustics() replaces the renderer's own
+    /// caustic pass (FrameSettings::caustics).
     void set_caustic_stage(CausticStage stage);
+    /// The renderer's own caustic pass (its statistics), or null while the plan has no caustic
+    /// data or FrameSettings::caustics is nullopt.
+    [[nodiscard]] CausticPass* caustic_pass();
     /// Reallocates the frame's targets.
     void resize(int width, int height);
 

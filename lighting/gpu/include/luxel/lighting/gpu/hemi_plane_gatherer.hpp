@@ -38,7 +38,7 @@ struct HemiPlaneStats {
     std::uint64_t page_uploads = 0;    ///< AIM pages uploaded
 };
 
-/// The GPU backend of final gathering: the hemi-plane (seed 002 §4, DESIGN §3). From each texel
+/// The GPU backend of final gathering: the hemi-plane (docs/METHOD.md §6.2-6.3). From each texel
 /// centre the AIM-lit scene is rendered onto one plane of half-width a at unit distance along
 /// the normal, each pixel is weighted by dA / (pi (x^2 + y^2 + 1)^2), the weighted radiance is
 /// summed in 32-bit float by a compute shader, and E = pi * sum / F(a).

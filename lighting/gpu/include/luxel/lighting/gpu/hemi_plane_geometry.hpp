@@ -4,7 +4,7 @@
 
 #include <glm/glm.hpp>
 
-/// The geometry of the hemi-plane: its frame and its pixel weights (seed 002 §4, DESIGN §3): the
+/// The geometry of the hemi-plane: its frame and its pixel weights (docs/METHOD.md §6.2): the
 /// plane z = 1 in the texel's tangent frame, [-a, a]^2, rasterised at `resolution` x `resolution`
 /// pixels. A pixel centred at (x, y) sees the solid angle dA cos / r^2 with cos = 1 / r and r^2 =
 /// x^2 + y^2 + 1, so integral L cos dw over the plane is sum L dA / r^4. Dividing by pi makes the

@@ -9,15 +9,15 @@
 #include "luxel/lighting/core/reference/reference_scene.hpp"
 #include "luxel/runtime/jobs.hpp"
 
-/// The dense photon estimate of caustics from point, spot and directional lights (DESIGN.md
-/// §4): paths from a surface cannot reach a delta light through glass or a mirror, so the
+/// The dense photon estimate of caustics from point, spot and directional lights (docs/METHOD.md
+/// §10.1): paths from a surface cannot reach a delta light through glass or a mirror, so the
 /// reference shoots photons from the lights instead and bins them at texel resolution.
 namespace luxel::lighting::reference {
 
 struct CausticReferenceSettings {
     /// Photons per pass over all (delta light, specular object) pairs, split evenly between
     /// them. Tests use 1e6 in all; a reference worth judging a method by wants 1e8 or more
-    /// (DESIGN.md §4), run over as many passes as it takes.
+    /// (docs/METHOD.md §10.1), run over as many passes as it takes.
     std::uint64_t photons_per_pass = 1'000'000;
     /// A photon still bouncing between specular surfaces after this many interactions is
     /// dropped (counted as truncated).

@@ -6,7 +6,7 @@
 
 #include "luxel/runtime/image.hpp"
 
-/// The error measures of DESIGN.md §4.
+/// The error measures of docs/METHOD.md §10.2.
 namespace luxel::lighting::reference {
 
 /// relRMSE = sqrt(sum_t w_t (x_t - r_t)^2 / sum_t w_t r_t^2): the area-weighted relative RMS

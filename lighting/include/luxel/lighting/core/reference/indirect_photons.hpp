@@ -8,12 +8,12 @@
 #include "luxel/lighting/core/reference/reference_scene.hpp"
 #include "luxel/runtime/jobs.hpp"
 
-/// A dense photon estimate of the indirect component (DESIGN.md §4), the reference's answer to
-/// scenes where a light sits close to a surface. Path tracing from a texel finds such a hot
-/// spot only through the rare cosine samples that land in it, each with a huge weight (Cornell:
-/// a point light 10 cm under the ceiling, 318 W/m^2; relative standard error 0.64 at 32 spp).
-/// NEE or a direct-map lookup at the first bounce cannot help: for a point light the direct
-/// irradiance at the hit is already deterministic, the variance is in where the hit lands.
+/// A dense photon estimate of the indirect component (docs/METHOD.md §10.1), the reference's
+/// answer to scenes where a light sits close to a surface. Path tracing from a texel finds such
+/// a hot spot only through the rare cosine samples that land in it, each with a huge weight
+/// (Cornell: a point light 10 cm under the ceiling, 318 W/m^2; relative standard error 0.64 at
+/// 32 spp). NEE or a direct-map lookup at the first bounce cannot help: for a point light the
+/// direct irradiance at the hit is already deterministic, the variance is in where the hit lands.
 /// Photons from the lights reach the hot spot in proportion to its power instead, so each
 /// texel's error depends only on how many photons it receives.
 namespace luxel::lighting::reference {

@@ -9,8 +9,8 @@
 #include "luxel/lighting/core/reference/reference_scene.hpp"
 #include "luxel/lighting/core/reference/sample_stream.hpp"
 
-/// Path tracing with next-event estimation for the reference (DESIGN.md §4): irradiance at a
-/// light-map texel split by how the light got there, and radiance along a camera ray.
+/// Path tracing with next-event estimation for the reference (docs/METHOD.md §10.1): irradiance
+/// at a light-map texel split by how the light got there, and radiance along a camera ray.
 namespace luxel::lighting::reference {
 
 /// How light reached a texel: straight from a light (direct), through one or more specular

@@ -11,7 +11,7 @@
 #include "luxel/runtime/image.hpp"
 #include "luxel/runtime/jobs.hpp"
 
-/// Reference frames (DESIGN.md §4): the linear HDR image of a camera by path tracing with
+/// Reference frames (docs/METHOD.md §10.1): the linear HDR image of a camera by path tracing with
 /// next-event estimation, the image error's reference.
 namespace luxel::lighting::reference {
 

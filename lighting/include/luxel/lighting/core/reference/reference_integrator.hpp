@@ -11,8 +11,8 @@
 #include "luxel/lighting/core/reference/reference_scene.hpp"
 #include "luxel/runtime/jobs.hpp"
 
-/// The reference light maps (DESIGN.md §4): per-texel irradiance of every light-mapped surface,
-/// split into direct, indirect and caustic, with its own standard error.
+/// The reference light maps (docs/METHOD.md §10.1): per-texel irradiance of every light-mapped
+/// surface, split into direct, indirect and caustic, with its own standard error.
 namespace luxel::lighting::reference {
 
 /// How the indirect component is estimated. Paths: from each texel, NEE at every diffuse
@@ -74,8 +74,8 @@ class ReferenceIntegrator {
     /// irradiance() of every texel in global order.
     [[nodiscard]] std::vector<glm::dvec3> irradiance(Component component) const;
     /// The reference's own expected relRMSE for a component: sqrt(sum_t A_t se_t^2 /
-    /// sum_t A_t E_t^2) over texels and channels, the same weighting as DESIGN.md §4's error,
-    /// so a reference is converged enough to judge an error e when this is below e / 10.
+    /// sum_t A_t E_t^2) over texels and channels, the same weighting as docs/METHOD.md §10.2's
+    /// error, so a reference is converged enough to judge an error e when this is below e / 10.
     /// 0 when the component is zero everywhere.
     [[nodiscard]] double relative_standard_error(Component component) const;
 

@@ -16,9 +16,10 @@ class PhotonWorld;
 class IlluminationMaps;
 }  // namespace luxel::lighting
 
-/// What the reference integrator (DESIGN.md §4) knows of a scene: the geometry and materials
-/// of a PhotonWorld's RayScene, its lights, and the light-map texels to estimate. Nothing of the
-/// real-time estimate (photon maps, AIM, IIM) is shared, so the reference can judge it.
+/// What the reference integrator (docs/METHOD.md §10.1) knows of a scene: the geometry and
+/// materials of a PhotonWorld's RayScene, its lights, and the light-map texels to estimate.
+/// Nothing of the real-time estimate (photon maps, AIM, IIM) is shared, so the reference can
+/// judge it.
 namespace luxel::lighting::reference {
 
 /// A light-map texel whose irradiance the reference estimates.
@@ -33,7 +34,7 @@ struct ReferenceTexel {
     std::int32_t x = 0;  ///< page texel
     std::int32_t y = 0;
     /// World m^2 of the surface inside the texel's square (less than a full texel at a chart's
-    /// border); the weight of DESIGN.md §4's relRMSE and the divisor of the caustic bins.
+    /// border); the weight of docs/METHOD.md §10.2's relRMSE and the divisor of the caustic bins.
     double area = 0.0;
 };
 
