@@ -13,6 +13,7 @@
 #include <tinyexr.h>
 
 #include "luxel/runtime/error.hpp"
+#include "luxel/runtime/pending_file.hpp"
 
 namespace luxel {
 namespace {
@@ -97,12 +98,14 @@ void write_exr(const std::filesystem::path& path, const Image& image) {
     }
     ensure_parent_directory(path);
     const char* raw_message = nullptr;
+    PendingFile pending(path);  // whole or not at all
     const int code = SaveEXR(image.rgba.data(), image.width, image.height, 4,
-                             /*save_as_fp16=*/0, path.c_str(), &raw_message);
+                             /*save_as_fp16=*/0, pending.path().c_str(), &raw_message);
     const ExrMessage message(raw_message);
     if (code != TINYEXR_SUCCESS) {
         throw Error(path.string() + ": cannot write EXR: " + exr_reason(raw_message, code));
     }
+    pending.commit();
 }
 
 Image read_exr(const std::filesystem::path& path) {
@@ -166,10 +169,12 @@ void write_png(const std::filesystem::path& path, const Image& image,
                 static_cast<std::uint8_t>(std::clamp(value, 0.0f, 255.0f));
         }
     }
-    if (stbi_write_png(path.c_str(), image.width, image.height, 3, encoded.data(),
+    PendingFile pending(path);  // whole or not at all
+    if (stbi_write_png(pending.path().c_str(), image.width, image.height, 3, encoded.data(),
                        image.width * 3) == 0) {
         throw Error(path.string() + ": cannot write PNG");
     }
+    pending.commit();
 }
 
 Image8 read_png(const std::filesystem::path& path) {

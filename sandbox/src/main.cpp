@@ -153,6 +153,7 @@ int run(int argc, char** argv) {
         "framebuffer size WxH (default 640x360)");
     luxel::cli::add_threads(app, options.app.threads);
     luxel::cli::add_log_level(app);
+    luxel::cli::add_load_limits(app, options.app.load_limits);
     if (!luxel::cli::parse(app, argc, argv)) {
         return 0;
     }

@@ -31,6 +31,8 @@ const Tool kRef{"luxel-ref", LUXEL_REF_EXECUTABLE};
 const Tool kBench{"luxel-bench", LUXEL_BENCH_EXECUTABLE};
 const Tool kMakeLevels{"luxel-make-levels", LUXEL_MAKE_LEVELS_EXECUTABLE};
 
+const std::string kCornell = std::string(LUXEL_TEST_SOURCE_DIR) + "/assets/levels/cornell.glb";
+
 struct Case {
     Tool tool;
     std::string arguments;  ///< "@" stands for a fresh temporary folder
@@ -106,6 +108,10 @@ INSTANTIATE_TEST_SUITE_P(Tools, ExitCodes, ::testing::Values(
     Case{kPrep, "@/in.glb -o @/out.glb --texel-size -1", 2, "--texel-size"},
     Case{kPrep, "@/in.glb -o @/out.glb --padding many", 2, "--padding"},
     Case{kPrep, "@/missing.glb -o @/out.glb", 1, "@/missing.glb"},
+    Case{kPrep, "@/in.glb -o @/out.glb --limit bogus=1", 2, "--limit"},
+    Case{kPrep, "@/in.glb -o @/out.glb --limit nodes=many", 2, "--limit"},
+    Case{kPrep, kCornell + " -o @/out.glb --limit nodes=1", 1, "more than the limit of 1 nodes"},
+    Case{kPrep, "@/blocker -o @/blocker", 2, "is the input"},
     // luxel-ref
     Case{kRef, "--level cornell -o @/f.exr --no-such-flag", 2, "--no-such-flag"},
     Case{kRef, "--level cornell -o @/f.exr --threads -1", 2, "--threads"},
@@ -114,6 +120,7 @@ INSTANTIATE_TEST_SUITE_P(Tools, ExitCodes, ::testing::Values(
     Case{kRef, "--level cornell -o @/f.png", 2, "-o"},
     Case{kRef, "--level cornell -o @/f.exr --camera 1,2:3", 2, "--camera"},
     Case{kRef, "--level @/missing.glb -o @/f.exr", 1, "@/missing.glb"},
+    Case{kRef, "--level cornell -o @/f.exr --limit lights", 2, "--limit"},
     // luxel-bench
     Case{kBench, "--level cornell --no-such-flag", 2, "--no-such-flag"},
     Case{kBench, "--level cornell --threads -1", 2, "--threads"},
@@ -121,6 +128,7 @@ INSTANTIATE_TEST_SUITE_P(Tools, ExitCodes, ::testing::Values(
     Case{kBench, "--level cornell --budgets 1,x", 2, "--budgets"},
     Case{kBench, "--level cornell --sweep nonsense=1", 2, "nonsense"},
     Case{kBench, "--level @/missing.glb --out @/run", 1, "@/missing.glb"},
+    Case{kBench, "--level cornell --limit triangles=1G1", 2, "--limit"},
     // luxel-make-levels
     Case{kMakeLevels, "--no-such-flag", 2, "--no-such-flag"},
     Case{kMakeLevels, "--level no-such-level --out @/levels", 2, "no-such-level"},

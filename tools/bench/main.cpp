@@ -1,5 +1,5 @@
 // luxel-bench: the real-time path's light-map and image error against the reference, next to
-// its cost (DESIGN.md §4, issue 11).
+// its cost (docs/METHOD.md §10, issue 11).
 //   luxel-bench --level NAME|PATH [--budgets 1,2,4,8] [--frames N] [--after N] [--out DIR]
 //               [--sweep KNOB=V1,V2 ...] [--change NODE:dx,dy,dz|auto|none] [--ref-* ...]
 //               [--image WxH] [--image-spp N] [--no-image]
@@ -91,6 +91,7 @@ int run(int argc, char** argv) {
     app.add_flag("--dump-maps", options.dump_maps,
                  "also write every run's per-texel light maps and reference to OUT/maps/");
     cli::add_threads(app, options.threads);
+    cli::add_load_limits(app, options.load_limits);
     if (!cli::parse(app, argc, argv)) {
         return 0;
     }

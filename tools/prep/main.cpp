@@ -6,11 +6,12 @@
 
 #include <exception>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <new>
+#include <span>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -20,10 +21,46 @@
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/jobs.hpp"
+#include "luxel/runtime/pending_file.hpp"
 #include "luxel/runtime/scene/gltf.hpp"
 #include "luxel/runtime/tool_main.hpp"
 
 namespace {
+
+/// The files a run writes besides the page pictures: the output, its .bin when it is a .gltf,
+/// and the report.
+std::vector<std::filesystem::path> outputs_of(const std::filesystem::path& output,
+                                              const std::filesystem::path& report) {
+    std::vector<std::filesystem::path> outputs{output};
+    if (output.extension() == ".gltf") {
+        outputs.push_back(std::filesystem::path(output).replace_extension(".bin"));
+    }
+    if (!report.empty()) {
+        outputs.push_back(report);
+    }
+    return outputs;
+}
+
+/// Refuses, before any work, to write over the input or a file it reads (its .bin, its
+/// images), and an output whose folder does not exist.
+void check_outputs(const std::vector<std::filesystem::path>& outputs,
+                   const std::vector<std::filesystem::path>& inputs) {
+    for (const auto& output : outputs) {
+        std::error_code error;
+        for (const auto& input : inputs) {
+            if (std::filesystem::equivalent(output, input, error)) {
+                throw luxel::UsageError(output.string() + ": is the input " + input.string() +
+                                        " (or a file it reads); write the output elsewhere");
+            }
+        }
+        const std::filesystem::path folder =
+            output.has_parent_path() ? output.parent_path() : std::filesystem::path(".");
+        if (output == outputs.front() && !std::filesystem::is_directory(folder, error)) {
+            throw luxel::Error(output.string() + ": the folder " + folder.string() +
+                               " does not exist");
+        }
+    }
+}
 
 /// Where the page pictures go: beside the report, named after it, or beside the output.
 std::filesystem::path image_stem(const std::filesystem::path& output,
@@ -56,15 +93,27 @@ int run(int argc, char** argv) {
     app.add_option("--report", report_file,
                    "write the report as JSON here (page PNGs go beside it)");
     luxel::cli::add_threads(app, options.threads);
+    luxel::scene::LoadOptions load_limits;
+    luxel::cli::add_load_limits(app, load_limits);
     if (!luxel::cli::parse(app, argc, argv)) {
         return 0;
     }
 
     luxel::cli::check_usage([&] { luxel::prep::validate(options); });
+    const std::vector<std::filesystem::path> outputs = outputs_of(output, report_file);
+    check_outputs(outputs, {input});
     luxel::JobSystem jobs(options.threads);
     luxel::Stopwatch stopwatch;
-    const luxel::scene::Scene scene = luxel::scene::load_gltf(input);
+    const luxel::scene::Scene scene = luxel::scene::load_gltf(input, load_limits);
+    check_outputs(outputs, scene.report.external_files);
     const double load_ms = stopwatch.elapsed_ms();
+    std::vector<std::filesystem::path> replaced;
+    for (const auto& file : outputs) {
+        std::error_code ignored;
+        if (std::filesystem::exists(file, ignored)) {
+            replaced.push_back(file);
+        }
+    }
 
     luxel::prep::TerminalProgress progress;
     luxel::prep::PrepResult result;
@@ -93,13 +142,13 @@ int run(int argc, char** argv) {
         if (report_file.has_parent_path()) {
             std::filesystem::create_directories(report_file.parent_path(), ignored);
         }
-        std::ofstream out(report_file);
-        out << luxel::prep::to_json(report).dump(2) << "\n";
-        if (!out) {
-            throw luxel::Error(report_file.string() + ": cannot write the report");
-        }
+        const std::string text = luxel::prep::to_json(report).dump(2) + "\n";
+        luxel::write_file_atomically(report_file, std::as_bytes(std::span(text)));
     }
     std::cout << luxel::prep::summary(report);
+    for (const auto& file : replaced) {
+        std::cout << "  replaced: " << file.string() << "\n";
+    }
     for (const auto& image : images) {
         std::cout << "  page picture: " << image.string() << "\n";
     }

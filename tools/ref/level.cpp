@@ -42,11 +42,12 @@ std::filesystem::path resolve_level(const std::string& level) {
     throw Error("no level named '" + level + "' (looked for " + list + ")");
 }
 
-std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file, double time) {
+std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file, double time,
+                                        const scene::LoadOptions& limits) {
     auto level = std::make_unique<LoadedLevel>();
     std::shared_ptr<const scene::Scene> source;
     try {
-        source = std::make_shared<scene::Scene>(scene::load_gltf(file));
+        source = std::make_shared<scene::Scene>(scene::load_gltf(file, limits));
     } catch (const Error& e) {
         throw Error(file.string() + ": " + e.what());
     }

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "luxel/ecs/registry.hpp"
+#include "luxel/runtime/scene/gltf.hpp"
 #include "luxel/lighting/core/illumination_maps.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
 #include "luxel/lighting/core/reference/reference_frame.hpp"
@@ -30,9 +31,11 @@ struct LoadedLevel {
     std::unique_ptr<lighting::reference::ReferenceScene> scene;
 };
 
-/// Loads `file` and poses it at `time` seconds (animations and light switches advanced).
+/// Loads `file` within `limits` and poses it at `time` seconds (animations and light switches
+/// advanced).
 [[nodiscard]] std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file,
-                                                      double time);
+                                                      double time,
+                                                      const scene::LoadOptions& limits = {});
 
 /// The level's first camera (node order) for a width x height image, if it has one.
 [[nodiscard]] std::optional<lighting::reference::ReferenceCamera> level_camera(

@@ -1,4 +1,5 @@
-// luxel-ref: reference renders of any level at any animation time (DESIGN.md §4, issue 11).
+// luxel-ref: reference renders of any level at any animation time (docs/METHOD.md §10,
+// issue 11).
 //   luxel-ref --level NAME|PATH [--time T] [--camera x,y,z:tx,ty,tz:fov] [--width W]
 //             [--height H] --spp N [--passes P] [--photons N] [--seed S] [--threads N]
 //             [-o OUT.exr] [--lightmaps OUT.json|OUT.exr]
@@ -73,6 +74,7 @@ int run(int argc, char** argv) {
     app.add_option("--max-vertices", options.max_vertices, "longest path (scattering events)")
         ->capture_default_str();
     cli::add_threads(app, options.threads);
+    cli::add_load_limits(app, options.load_limits);
     app.add_option("-o,--output", options.image, "the frame as OpenEXR (linear RGB radiance)");
     app.add_option("--png", options.preview, "also a tone-mapped PNG preview of the frame");
     app.add_flag("--no-caustic-bounce", options.no_caustic_bounce,
@@ -92,7 +94,7 @@ int run(int argc, char** argv) {
     const std::filesystem::path file = ref::resolve_level(options.level);
     JobSystem jobs(options.threads);
     Stopwatch clock;
-    const auto level = ref::load_level(file, options.time);
+    const auto level = ref::load_level(file, options.time, options.load_limits);
     const ReferenceScene& scene = *level->scene;
     std::fprintf(stderr,
                  "luxel-ref: %s at t = %.3f s: %zu light-mapped surfaces, %zu texels, %zu "

@@ -9,6 +9,8 @@
 
 #include <glm/glm.hpp>
 
+#include "luxel/runtime/scene/gltf.hpp"
+
 namespace luxel::ref {
 
 /// --camera x,y,z:tx,ty,tz:fov (fov: vertical, degrees).
@@ -37,6 +39,7 @@ struct Options {
     /// --indirect: "photons" (IndirectPhotons, texel-binned) or "paths" (NEE at every vertex).
     std::string indirect = "photons";
     std::uint64_t indirect_photons = 20'000'000;  ///< in all, over the passes
+    scene::LoadOptions load_limits;               ///< --limit
 };
 
 /// Parses --camera's value; throws luxel::Error naming the flag and what is wrong.

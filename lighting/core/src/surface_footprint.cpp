@@ -68,7 +68,11 @@ SurfaceFootprint::SurfaceFootprint(const scene::Primitive& primitive, const Surf
     if (corners_.empty()) {
         return;
     }
-    // One cell of margin all round, so cells outside the triangles exist to measure from.
+    // One cell of margin all round, so cells outside the triangles exist to measure from. The
+    // grid never reaches beyond the page: texels are only there, and UVs far off the page (a
+    // hostile file) must not size the grid.
+    low = glm::clamp(low, glm::dvec2(0.0), glm::dvec2(size));
+    high = glm::clamp(high, glm::dvec2(0.0), glm::dvec2(size));
     x0_ = static_cast<int>(std::floor(low.x)) - 1;
     y0_ = static_cast<int>(std::floor(low.y)) - 1;
     width_ = static_cast<int>(std::ceil(high.x)) + 1 - x0_;
@@ -78,12 +82,10 @@ SurfaceFootprint::SurfaceFootprint(const scene::Primitive& primitive, const Surf
         const glm::dvec2 offset(x0_, y0_);
         scene::for_each_covered_texel(
             corners_[3 * t] - offset, corners_[3 * t + 1] - offset, corners_[3 * t + 2] - offset,
-            [&](int x, int y) {
-                if (x >= 0 && y >= 0 && x < width_ && y < height_) {
-                    cells_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-                           static_cast<std::size_t>(x)]
-                        .push_back(static_cast<std::uint32_t>(t));
-                }
+            {0, 0, width_, height_}, [&](int x, int y) {
+                cells_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
+                       static_cast<std::size_t>(x)]
+                    .push_back(static_cast<std::uint32_t>(t));
             });
     }
     // Distance from each texel's point to the nearest empty cell: a brute-force search over

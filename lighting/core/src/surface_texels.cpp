@@ -87,10 +87,7 @@ SurfaceTexels rasterize_surface(const scene::Primitive& primitive, int page, int
         const glm::dvec2 b = glm::dvec2(uvs[i1]) * size;
         const glm::dvec2 c = glm::dvec2(uvs[i2]) * size;
         uv_area += 0.5 * std::abs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
-        scene::for_each_covered_texel(a, b, c, [&](int x, int y) {
-            if (x < 0 || y < 0 || x >= page_size || y >= page_size) {
-                return;
-            }
+        scene::for_each_covered_texel(a, b, c, {0, 0, page_size, page_size}, [&](int x, int y) {
             const glm::dvec2 centre(x + 0.5, y + 0.5);
             const glm::dvec3 weights = nearest_barycentric(a, b, c, centre);
             const double distance = distance_to_triangle(a, b, c, centre, weights);
@@ -130,6 +127,7 @@ SurfaceTexels rasterize_surface(const scene::Primitive& primitive, int page, int
         texel.y = static_cast<std::int32_t>(key / page_size);
         texel.position = glm::vec3(position);
         texel.normal = glm::vec3(glm::normalize(normal));
+        texel.face_normal = glm::length(face) > 0.0 ? glm::vec3(glm::normalize(face)) : texel.normal;
         glm::dvec2 point(0.0);
         for (std::size_t k = 0; k < 3; ++k) {
             point += w[static_cast<glm::length_t>(k)] * glm::dvec2(uvs[corner[k]]) * size;

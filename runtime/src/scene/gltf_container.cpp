@@ -1,5 +1,5 @@
-// The GLB container (reading and writing its chunk table), the JSON pre-check that runs before
-// tinygltf sees a byte, and base64 for embedded buffers.
+// The GLB container (reading and writing its chunk table) and base64 for embedded buffers.
+// The JSON pre-check is in gltf_json_check.cpp.
 
 #include <algorithm>
 #include <cstring>
@@ -33,59 +33,6 @@ std::string chunk_type_name(std::uint32_t type) {
     }
     return name;
 }
-
-/// Counts nesting while nlohmann's parser walks the text, stopping it once too deep: the
-/// document is never built, so a hostile file cannot make tinygltf recurse without bound.
-class DepthCheck {
-  public:
-    using json = nlohmann::json;
-    explicit DepthCheck(std::size_t max_depth) : max_depth_(max_depth) {}
-
-    bool null() { return true; }
-    bool boolean(bool /*value*/) { return true; }
-    bool number_integer(json::number_integer_t /*value*/) { return true; }
-    bool number_unsigned(json::number_unsigned_t /*value*/) { return true; }
-    bool number_float(json::number_float_t /*value*/, const json::string_t& /*text*/) {
-        return true;
-    }
-    bool string(json::string_t& /*value*/) { return true; }
-    bool binary(json::binary_t& /*value*/) { return true; }
-    bool key(json::string_t& /*value*/) { return true; }
-    bool start_object(std::size_t /*elements*/) { return enter(); }
-    bool end_object() { return leave(); }
-    bool start_array(std::size_t /*elements*/) { return enter(); }
-    bool end_array() { return leave(); }
-    bool parse_error(std::size_t /*position*/, const std::string& /*last_token*/,
-                     const nlohmann::detail::exception& error) {
-        std::string message = error.what();
-        // Drop nlohmann's "[json.exception.parse_error.101] " tag; keep line and column.
-        if (const auto tag_end = message.find("] "); tag_end != std::string::npos) {
-            message.erase(0, tag_end + 2);
-        }
-        problem_ = "invalid JSON: " + message;
-        return false;
-    }
-
-    [[nodiscard]] const std::string& problem() const { return problem_; }
-
-  private:
-    bool enter() {
-        if (++depth_ > max_depth_) {
-            problem_ =
-                "invalid glTF: JSON nested deeper than " + std::to_string(max_depth_) + " levels";
-            return false;
-        }
-        return true;
-    }
-    bool leave() {
-        --depth_;
-        return true;
-    }
-
-    std::size_t max_depth_;
-    std::size_t depth_ = 0;
-    std::string problem_;
-};
 
 }  // namespace
 
@@ -166,16 +113,6 @@ GlbLayout parse_glb(std::span<const std::uint8_t> bytes, std::string& problem) {
         return {};
     }
     return layout;
-}
-
-std::string check_json(std::span<const std::uint8_t> text, std::size_t max_depth) {
-    DepthCheck check(max_depth);
-    const auto* first = reinterpret_cast<const char*>(text.data());
-    const bool ok = nlohmann::json::sax_parse(first, first + text.size(), &check);
-    if (ok) {
-        return {};
-    }
-    return check.problem().empty() ? std::string("invalid JSON") : check.problem();
 }
 
 std::vector<std::uint8_t> build_glb(const std::string& json, std::span<const std::uint8_t> bin) {

@@ -210,6 +210,55 @@ void import_transform(const ImportContext& context, const tinygltf::Node& source
     node.rotation = rotation / length;
 }
 
+/// Checks the types of the `extras.luxel` keys luxel reads (docs/LEVELS.md), so that the
+/// systems that read them later (switches, bounces, waves) never meet a string where a number
+/// belongs: a wrong type here names the file, the node and the key.
+void check_extras_types(const ImportContext& context, const nlohmann::json& luxel,
+                        const std::string& where) {
+    struct Shape {
+        const char* key;
+        std::initializer_list<const char*> numbers;  ///< finite numbers inside the object
+    };
+    static const Shape kObjects[] = {
+        {"switch", {"period", "on", "phase"}},
+        {"bounce", {"height", "period"}},
+        {"wave", {"amplitude", "wavelength", "speed"}},
+    };
+    for (const Shape& shape : kObjects) {
+        const auto found = luxel.find(shape.key);
+        if (found == luxel.end()) {
+            continue;
+        }
+        const std::string name = where + ": extras.luxel." + shape.key;
+        if (!found->is_object()) {
+            context.fail(name + " must be a JSON object, got " + found->type_name());
+        }
+        for (const char* field : shape.numbers) {
+            const auto value = found->find(field);
+            if (value != found->end() &&
+                (!value->is_number() || !std::isfinite(value->get<double>()))) {
+                context.fail(name + "." + field + " must be a finite number, got " + value->dump());
+            }
+        }
+    }
+    if (const auto wave = luxel.find("wave"); wave != luxel.end() && wave->contains("direction")) {
+        const nlohmann::json& direction = wave->at("direction");
+        if (!direction.is_array() || direction.size() != 2 || !direction[0].is_number() ||
+            !direction[1].is_number()) {
+            context.fail(where + ": extras.luxel.wave.direction must be two numbers [x, z]");
+        }
+    }
+    if (const auto furnace = luxel.find("furnace");
+        furnace != luxel.end() && !furnace->is_boolean()) {
+        context.fail(where + ": extras.luxel.furnace must be true or false");
+    }
+    if (const auto lightmap = luxel.find("lightmap");
+        lightmap != luxel.end() && !lightmap->is_object()) {
+        context.fail(where +
+                     ": extras.luxel.lightmap must be a JSON object (luxel-prep writes it)");
+    }
+}
+
 /// Reads `extras.luxel` into NodeFlags. Wrong types fail: a misspelt flag silently ignored
 /// would light a level wrongly with no hint why.
 void import_flags(const ImportContext& context, const tinygltf::Node& source, Node& node,
@@ -234,6 +283,7 @@ void import_flags(const ImportContext& context, const tinygltf::Node& source, No
         }
         node.flags.light_enabled = luxel.at("enabled").get<bool>();
     }
+    check_extras_types(context, luxel, where);
     node.flags.raw = luxel;
 }
 

@@ -75,6 +75,9 @@ class ImportContext {
 // --- the parts of the scene (gltf_import_*.cpp) ----------------------------------------------
 
 void import_materials(ImportContext& context);
+/// The limits on how the parts combine (gltf_import_limits.cpp): instanced triangles, light-map
+/// texels over all pages, decoded image pixels. Run after import_nodes.
+void check_combined_limits(const ImportContext& context);
 void import_meshes(ImportContext& context);
 void import_lights(ImportContext& context);
 void import_cameras(ImportContext& context);
@@ -99,9 +102,11 @@ struct GlbLayout {
 /// returns a description of the first problem in `problem` and an empty layout when invalid.
 [[nodiscard]] GlbLayout parse_glb(std::span<const std::uint8_t> bytes, std::string& problem);
 
-/// Checks that `text` is JSON nested no deeper than `max_depth`, without building a document;
-/// returns an empty string or the problem.
-[[nodiscard]] std::string check_json(std::span<const std::uint8_t> text, std::size_t max_depth);
+/// Checks, in one streaming pass without building a document (gltf_json_check.cpp), that
+/// `text` is JSON nested within the limit, that its top-level arrays and its lights are within
+/// their limits, and that every index and count the glTF schema declares is a whole number
+/// >= 0. Returns an empty string or the problem.
+[[nodiscard]] std::string check_json(std::span<const std::uint8_t> text, const LoadOptions& limits);
 
 /// Assembles a GLB from its JSON text and binary buffer (padding both chunks).
 [[nodiscard]] std::vector<std::uint8_t> build_glb(const std::string& json,

@@ -68,13 +68,17 @@ constexpr std::array<std::string_view, 4> kSupportedRequiredExtensions = {
 /// What tinygltf's file callbacks may touch: regular files inside the asset's directory, each
 /// and all together within the limits.
 struct ExternalFiles {
-    std::filesystem::path base_dir;  ///< absolute and normal; empty: no external files at all
+    std::filesystem::path base_dir;       ///< absolute and normal; empty: no external files at all
+    std::filesystem::path real_base_dir;  ///< base_dir with every symbolic link resolved
     const LoadOptions* options = nullptr;
     std::uint64_t bytes_read = 0;
-    std::vector<std::string> refusals;  ///< why a file was refused, for the error message
+    std::vector<std::filesystem::path> read;  ///< real paths of the files read, in order
+    std::vector<std::string> refusals;        ///< why a file was refused, for the error message
 
-    /// The path if it lies inside base_dir and is a regular file; empty (and a refusal
-    /// recorded) otherwise.
+    /// The file's real path if it lies inside base_dir and is a regular file; empty (and a
+    /// refusal recorded) otherwise. Both checks look at the path as written and at the real
+    /// path with every symbolic link resolved: a link inside the level's folder that points
+    /// out of it is refused like a "../" (docs/LEVELS.md, "Files a level may read").
     std::filesystem::path admit(const std::string& requested) {
         if (base_dir.empty()) {
             refusals.push_back("'" + requested +
@@ -93,7 +97,20 @@ struct ExternalFiles {
             refusals.push_back("'" + absolute.string() + "' does not exist or is not a file");
             return {};
         }
-        return absolute;
+        if (real_base_dir.empty()) {
+            refusals.push_back("'" + requested + "': the file's directory " + base_dir.string() +
+                               " cannot be resolved");
+            return {};
+        }
+        const std::filesystem::path real = std::filesystem::canonical(absolute, error);
+        const std::filesystem::path real_relative =
+            error ? std::filesystem::path() : real.lexically_relative(real_base_dir);
+        if (real_relative.empty() || *real_relative.begin() == "..") {
+            refusals.push_back("'" + requested +
+                               "' is a symbolic link to a file outside the file's directory");
+            return {};
+        }
+        return real;  // what gets opened: the path that was checked, with no link left in it
     }
 };
 
@@ -137,6 +154,7 @@ bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const st
             return false;
         }
         files.bytes_read += size;
+        files.read.push_back(admitted);
         return true;
     } catch (const std::exception& e) {  // nothing may unwind through tinygltf's C-style API
         *err = e.what();
@@ -281,8 +299,7 @@ Scene load(std::span<const std::uint8_t> bytes, const std::string& display_name,
             glb_for_tinygltf = rebuilt_glb;
         }
     }
-    if (const std::string problem = gltf_detail::check_json(json, options.max_json_depth);
-        !problem.empty()) {
+    if (const std::string problem = gltf_detail::check_json(json, options); !problem.empty()) {
         fail(problem);
     }
 
@@ -291,6 +308,9 @@ Scene load(std::span<const std::uint8_t> bytes, const std::string& display_name,
     if (!base_dir.empty()) {
         std::error_code error;
         files.base_dir = std::filesystem::absolute(base_dir, error).lexically_normal();
+        // A folder that cannot be resolved (gone, or given for a file loaded from memory) lets
+        // no external file in; a level with everything embedded still loads.
+        files.real_base_dir = std::filesystem::canonical(files.base_dir, error);
     }
     tinygltf::Model model;
     tinygltf::TinyGLTF parser;
@@ -333,6 +353,7 @@ Scene load(std::span<const std::uint8_t> bytes, const std::string& display_name,
     }
 
     Scene scene;
+    scene.report.external_files = std::move(files.read);
     ImportContext context(model, display_name, options, scene);
     if (!warning.empty()) {
         context.warn(trimmed(warning));
@@ -344,6 +365,7 @@ Scene load(std::span<const std::uint8_t> bytes, const std::string& display_name,
         gltf_detail::import_lights(context);
         gltf_detail::import_cameras(context);
         gltf_detail::import_nodes(context);
+        gltf_detail::check_combined_limits(context);
         collect_roots(context);
         gltf_detail::import_animations(context);
     } catch (const std::bad_alloc&) {

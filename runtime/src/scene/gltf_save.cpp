@@ -2,12 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
-#include <cstring>
-#include <fstream>
 
 #include "gltf_internal.hpp"
 #include "luxel/runtime/error.hpp"
+#include "luxel/runtime/pending_file.hpp"
 
 namespace luxel::scene {
 namespace {
@@ -38,15 +36,8 @@ std::string uri_for_file_name(const std::string& name) {
 }
 
 void write_file(const std::filesystem::path& file, const void* data, std::size_t size) {
-    std::ofstream stream(file, std::ios::binary | std::ios::trunc);
-    if (!stream) {
-        throw Error(file.string() + ": cannot open for writing: " + std::strerror(errno));
-    }
-    stream.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
-    stream.close();
-    if (!stream) {
-        throw Error(file.string() + ": cannot write: " + std::strerror(errno));
-    }
+    // Whole or not at all: an interrupted save leaves the previous file in place.
+    write_file_atomically(file, {static_cast<const std::byte*>(data), size});
 }
 
 EncodedGltf encode_validated(const Scene& scene, const std::string& display_name) {

@@ -115,7 +115,7 @@ std::string image_label(const Image& image, int index) {
     return text;
 }
 
-DecodedImage decode_image(const Image& image, int index) {
+ImageSize read_image_size(const Image& image, int index) {
     const std::string where = image_label(image, index);
     const std::vector<std::uint8_t>& bytes = image.encoded;
     if (bytes.empty()) {
@@ -148,6 +148,16 @@ DecodedImage decode_image(const Image& image, int index) {
         }
     };
     check_size(width, height);
+    return {width, height};
+}
+
+DecodedImage decode_image(const Image& image, int index) {
+    const std::string where = image_label(image, index);
+    const auto [width, height] = read_image_size(image, index);
+    const std::vector<std::uint8_t>& bytes = image.encoded;
+    const int length = static_cast<int>(bytes.size());
+    const char* format = is_png(bytes) ? "PNG" : "JPEG";
+    int channels = 0;
     int decoded_width = 0;
     int decoded_height = 0;
     const std::unique_ptr<stbi_uc, StbDeleter> pixels(stbi_load_from_memory(

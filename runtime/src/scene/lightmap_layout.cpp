@@ -76,8 +76,8 @@ std::optional<LightmapLayout> read_lightmap_layout(const nlohmann::json& luxel_e
     }
     layout.texel_size = static_cast<float>(texel_size);
     const std::int64_t page_size = integer(object, "page_size", "");
-    if (page_size < 1 || page_size > 65536) {
-        malformed(".page_size", "must be within 1..65536");
+    if (page_size < 1 || page_size > kMaxLightmapPageSize) {
+        malformed(".page_size", "must be within 1.." + std::to_string(kMaxLightmapPageSize));
     }
     layout.page_size = static_cast<int>(page_size);
     const auto& surfaces = member(object, "surfaces", "");

@@ -152,6 +152,113 @@ void validate_meshes(const Scene& scene) {
     }
 }
 
+/// The largest colour x intensity (or emission x strength) a scene may hold. Each factor can be
+/// finite while their product, and the powers and sums derived from it (x 4 pi, x photons,
+/// x texels), overflow float; 1e20 leaves 18 orders of magnitude of headroom and is still far
+/// beyond any physical source (the Sun's luminous intensity is about 3e27 cd, seen from 1 AU
+/// as a directional light of 1.3e5 lx).
+constexpr double kMaxRadiometric = 1e20;
+constexpr const char* kMaxRadiometricText = "1e20";
+
+bool below_radiometric_limit(const glm::vec3& color, float scale) {
+    const double largest = std::max(
+        {static_cast<double>(color.r), static_cast<double>(color.g), static_cast<double>(color.b)});
+    return largest * static_cast<double>(scale) <= kMaxRadiometric;
+}
+
+/// The largest distance from the origin, and the largest scale, any node may reach in any pose,
+/// in metres: far beyond a game level (1e6 m is a thousand kilometres), far below float's
+/// overflow once multiplied by a vertex and a ray's length.
+constexpr double kMaxWorldExtent = 1e6;
+constexpr double kMaxWorldScale = 1e6;
+
+/// Largest |component| over a sampler's values. A cubic spline can overshoot its keys: with
+/// Hermite basis functions in [0, 1] (and the tangents scaled by the key interval),
+/// |p(t)| <= |p0| + |p1| + dt (|m0| + |m1|).
+double sampler_reach(const AnimationSampler& sampler) {
+    double largest = 0.0;
+    for (const glm::vec4& value : sampler.values) {
+        largest = std::max({largest, std::abs(static_cast<double>(value.x)),
+                            std::abs(static_cast<double>(value.y)),
+                            std::abs(static_cast<double>(value.z))});
+    }
+    if (sampler.interpolation != Interpolation::CubicSpline) {
+        return largest;
+    }
+    double longest_interval = 0.0;
+    for (std::size_t k = 1; k < sampler.times.size(); ++k) {
+        longest_interval = std::max(longest_interval,
+                                    static_cast<double>(sampler.times[k] - sampler.times[k - 1]));
+    }
+    return largest * (2.0 + 2.0 * longest_interval);
+}
+
+/// Bounds every node's world position and scale over every pose its animations can give it,
+/// so that no transform, camera or ray built from the scene overflows to Inf (Embree asserts on
+/// non-finite rays; GL would draw black). Conservative: each node's largest scale and
+/// translation, over its rest pose and its animation values, composed down the hierarchy.
+/// Cameras must also not collapse: a zero scale up their chain has no view.
+void validate_transform_bounds(const Scene& scene) {
+    const std::size_t count = scene.nodes.size();
+    std::vector<double> scale(count, 0.0);
+    std::vector<double> reach(count, 0.0);
+    std::vector<bool> scale_animated(count, false);
+    for (std::size_t i = 0; i < count; ++i) {
+        const Node& node = scene.nodes[i];
+        scale[i] = std::max({std::abs(static_cast<double>(node.scale.x)),
+                             std::abs(static_cast<double>(node.scale.y)),
+                             std::abs(static_cast<double>(node.scale.z))});
+        reach[i] = static_cast<double>(glm::length(node.translation));
+    }
+    for (const Animation& animation : scene.animations) {
+        for (const AnimationChannel& channel : animation.channels) {
+            if (!in_range(channel.node, count) ||
+                !in_range(channel.sampler, animation.samplers.size())) {
+                continue;  // validate_animations names it
+            }
+            const auto n = static_cast<std::size_t>(channel.node);
+            const double value =
+                sampler_reach(animation.samplers[static_cast<std::size_t>(channel.sampler)]);
+            if (channel.property == AnimatedProperty::Scale) {
+                scale[n] = std::max(scale[n], value);
+                scale_animated[n] = true;
+            } else if (channel.property == AnimatedProperty::Translation) {
+                reach[n] = std::max(reach[n], std::sqrt(3.0) * value);
+            }
+        }
+    }
+    std::vector<double> world_scale(count, 1.0);
+    std::vector<double> world_reach(count, 0.0);
+    for (const std::size_t i : scene.parent_first_order()) {
+        const Node& node = scene.nodes[i];
+        const bool has_parent = in_range(node.parent, count);
+        const auto parent = static_cast<std::size_t>(has_parent ? node.parent : 0);
+        const double parent_scale = has_parent ? world_scale[parent] : 1.0;
+        world_scale[i] = parent_scale * scale[i];
+        world_reach[i] = (has_parent ? world_reach[parent] : 0.0) + parent_scale * reach[i];
+        const std::string where = "node " + std::to_string(i) + quoted_name(node.name);
+        if (!(world_scale[i] <= kMaxWorldScale) || !(world_reach[i] <= kMaxWorldExtent)) {
+            invalid(where + ": its transform, composed with its parents' and animated, can reach " +
+                    "a scale of " + std::to_string(world_scale[i]) + " or a distance of " +
+                    std::to_string(world_reach[i]) + " m (the limits are 1e6 and 1e6 m)");
+        }
+    }
+    // A camera's view needs its world matrix invertible in the rest pose; an animated scale is
+    // checked where the view is built.
+    const std::vector<glm::mat4> world = scene.world_matrices();
+    for (std::size_t i = 0; i < count; ++i) {
+        if (scene.nodes[i].camera < 0) {
+            continue;
+        }
+        const double det = std::abs(static_cast<double>(glm::determinant(glm::mat3(world[i]))));
+        if (!(det > 1e-18)) {
+            invalid("node " + std::to_string(i) + quoted_name(scene.nodes[i].name) +
+                    ": holds a camera but its world transform has no volume (a zero scale on it "
+                    "or a parent): the view is undefined");
+        }
+    }
+}
+
 void validate_materials(const Scene& scene) {
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& material = scene.materials[i];
@@ -169,6 +276,10 @@ void validate_materials(const Scene& scene) {
             material.emissive.r < 0.0f || material.emissive.g < 0.0f ||
             material.emissive.b < 0.0f || material.emissive_strength < 0.0f) {
             invalid(where + ": emission must be finite and not negative");
+        }
+        if (!below_radiometric_limit(material.emissive, material.emissive_strength)) {
+            invalid(where + ": emissive factor times emissive strength exceeds " +
+                    kMaxRadiometricText + " W/(m^2 sr)");
         }
         // KHR_materials_ior allows 0 (a perfect mirror's limit) or any value from 1 up.
         if (!finite(material.ior) || (material.ior != 0.0f && material.ior < 1.0f)) {
@@ -194,6 +305,10 @@ void validate_materials(const Scene& scene) {
     }
 }
 
+constexpr float kMinYfov = 1e-4f;   ///< radians (0.006 degrees)
+constexpr float kMinZnear = 1e-6f;  ///< metres
+constexpr float kMinAspect = 1e-4f;
+
 void validate_lights_and_cameras(const Scene& scene) {
     constexpr float kHalfPi = std::numbers::pi_v<float> / 2.0f;
     for (std::size_t i = 0; i < scene.lights.size(); ++i) {
@@ -203,6 +318,11 @@ void validate_lights_and_cameras(const Scene& scene) {
             light.color.b < 0.0f || !finite(light.intensity) || light.intensity < 0.0f ||
             !finite(light.range) || light.range < 0.0f) {
             invalid(where + ": colour, intensity and range must be finite and not negative");
+        }
+        if (!below_radiometric_limit(light.color, light.intensity)) {
+            invalid(where + ": colour times intensity exceeds " + kMaxRadiometricText +
+                    " (each is finite alone, their product would not stay so in the light's "
+                    "power)");
         }
         if (light.type == LightType::Spot &&
             !(light.inner_cone_angle >= 0.0f && light.inner_cone_angle < light.outer_cone_angle &&
@@ -217,17 +337,23 @@ void validate_lights_and_cameras(const Scene& scene) {
             !camera.zfar || (finite(*camera.zfar) && *camera.zfar > camera.znear);
         bool valid = finite(camera.znear) && far_valid;
         if (camera.perspective) {
-            valid = valid && finite(camera.yfov) && camera.yfov > 0.0f &&
-                    camera.yfov < std::numbers::pi_v<float> && camera.znear > 0.0f &&
+            // Bounded away from 0 as well: a yfov of 1e-30 or a denormal znear passes "> 0"
+            // and then turns the projection's inverse, and every ray made from it, into Inf.
+            valid = valid && finite(camera.yfov) && camera.yfov >= kMinYfov &&
+                    camera.yfov < std::numbers::pi_v<float> && camera.znear >= kMinZnear &&
                     (!camera.aspect_ratio ||
-                     (finite(*camera.aspect_ratio) && *camera.aspect_ratio > 0.0f));
+                     (finite(*camera.aspect_ratio) && *camera.aspect_ratio >= kMinAspect &&
+                      *camera.aspect_ratio <= 1.0f / kMinAspect));
         } else {
             valid = valid && camera.zfar.has_value() && camera.znear >= 0.0f &&
                     finite(camera.xmag) && finite(camera.ymag) && camera.xmag != 0.0f &&
                     camera.ymag != 0.0f;
         }
         if (!valid) {
-            invalid(where + ": projection parameters out of range");
+            invalid(where +
+                    ": projection parameters out of range (perspective: yfov in [1e-4, pi) "
+                    "radians, znear at least 1e-6 m, zfar beyond it, aspect ratio in "
+                    "[1e-4, 1e4])");
         }
     }
 }
@@ -292,10 +418,11 @@ glm::mat4 Node::local_matrix() const {
            glm::scale(glm::mat4(1.0f), scale);
 }
 
-std::vector<glm::mat4> Scene::world_matrices() const {
+std::vector<std::size_t> Scene::parent_first_order() const {
     const std::size_t count = nodes.size();
-    std::vector<glm::mat4> world(count, glm::mat4(1.0f));
-    // 0: not yet computed, 1: waiting for its ancestors, 2: done. The explicit chain keeps
+    std::vector<std::size_t> order;
+    order.reserve(count);
+    // 0: not yet placed, 1: waiting for its ancestors, 2: placed. The explicit chain keeps
     // deep hierarchies off the call stack, and a node met again while waiting is a cycle.
     std::vector<unsigned char> state(count, 0);
     std::vector<std::size_t> chain;
@@ -315,15 +442,21 @@ std::vector<glm::mat4> Scene::world_matrices() const {
             }
         }
         for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
-            const Node& node = nodes[*it];
-            const bool has_parent =
-                node.parent >= 0 && static_cast<std::size_t>(node.parent) < count;
-            world[*it] = has_parent
-                             ? world[static_cast<std::size_t>(node.parent)] * node.local_matrix()
-                             : node.local_matrix();
+            order.push_back(*it);
             state[*it] = 2;
         }
         chain.clear();
+    }
+    return order;
+}
+
+std::vector<glm::mat4> Scene::world_matrices() const {
+    std::vector<glm::mat4> world(nodes.size(), glm::mat4(1.0f));
+    for (const std::size_t i : parent_first_order()) {
+        const Node& node = nodes[i];
+        world[i] = in_range(node.parent, nodes.size())
+                       ? world[static_cast<std::size_t>(node.parent)] * node.local_matrix()
+                       : node.local_matrix();
     }
     return world;
 }
@@ -367,6 +500,7 @@ std::size_t Scene::triangle_count() const {
 
 void Scene::validate() const {
     validate_nodes(*this);
+    validate_transform_bounds(*this);
     validate_meshes(*this);
     validate_materials(*this);
     validate_lights_and_cameras(*this);

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "luxel/runtime/error.hpp"
+#include "luxel/runtime/scene/lightmap_layout.hpp"
 
 namespace luxel::prep {
 
@@ -19,17 +20,17 @@ void validate(const PrepOptions& options) {
         throw Error("--padding must be within 0..64 texels, got " +
                     std::to_string(options.padding));
     }
-    // Page UVs are stored as floats; beyond 8192 texels their rounding reaches a texel's
-    // thousandth, the margin charts keep from their rectangle's border.
-    if (options.page_size != 0 &&
-        (options.page_size < 2 * options.padding + 1 || options.page_size > 8192)) {
+    const std::string max = std::to_string(scene::kMaxLightmapPageSize);
+    if (options.page_size != 0 && (options.page_size < 2 * options.padding + 1 ||
+                                   options.page_size > scene::kMaxLightmapPageSize)) {
         throw Error("--page-size must be 0 (automatic) or within " +
-                    std::to_string(2 * options.padding + 1) + "..8192 texels, got " +
+                    std::to_string(2 * options.padding + 1) + ".." + max + " texels, got " +
                     std::to_string(options.page_size));
     }
-    if (options.auto_page_limit < 2 * options.padding + 1 || options.auto_page_limit > 8192) {
+    if (options.auto_page_limit < 2 * options.padding + 1 ||
+        options.auto_page_limit > scene::kMaxLightmapPageSize) {
         throw Error("the automatic page size limit must be within " +
-                    std::to_string(2 * options.padding + 1) + "..8192 texels");
+                    std::to_string(2 * options.padding + 1) + ".." + max + " texels");
     }
     if (!(options.surface_texel_budget >= 1.0) || !(options.max_stretch > 1.0)) {
         throw Error("the surface texel budget must be >= 1 and the stretch bound > 1");

@@ -128,9 +128,12 @@ CoverageMask cover(const std::vector<glm::dvec2>& uv,
     mask.covered.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), 0);
     std::int64_t spilled = 0;
     for (const auto& triangle : triangles) {
+        // A window a chart's size beyond the mask on each side: spills are counted, and UVs
+        // far off (which prep never makes) cost no more than that.
         for_each_covered_texel(
             uv[static_cast<std::size_t>(triangle[0])], uv[static_cast<std::size_t>(triangle[1])],
-            uv[static_cast<std::size_t>(triangle[2])], [&](int x, int y) {
+            uv[static_cast<std::size_t>(triangle[2])], {-width, -height, 2 * width, 2 * height},
+            [&](int x, int y) {
                 if (x < 0 || y < 0 || x >= width || y >= height) {
                     ++spilled;
                     return;

@@ -20,6 +20,9 @@ struct SurfaceTexel {
     std::int32_t y = 0;
     glm::vec3 position{0.0f};
     glm::vec3 normal{0.0f, 1.0f, 0.0f};  ///< unit
+    /// The geometric normal of the triangle the point lies on (unit, object space, the winding's
+    /// side): the face under the texel, which decides which directions leave the surface.
+    glm::vec3 face_normal{0.0f, 1.0f, 0.0f};
     /// That point in page-texel units (the texel centre, or the nearest point of the surface
     /// to it for a border texel whose centre lies off the surface).
     glm::vec2 page_point{0.0f};

@@ -38,6 +38,16 @@ struct DecodedImage {
 /// number alone).
 [[nodiscard]] std::string image_label(const Image& image, int index);
 
+struct ImageSize {
+    int width = 0;
+    int height = 0;
+};
+
+/// The size a PNG or JPEG's header declares, read without decoding, after the same checks as
+/// decode_image up to that point (data, signature, header, 1..kMaxImageEdge per edge): what
+/// the loader sums to bound the memory a file's images will take.
+[[nodiscard]] ImageSize read_image_size(const Image& image, int index = -1);
+
 /// Decodes a PNG or JPEG to RGBA8. Throws luxel::Error naming the image (image_label) and the
 /// problem for empty data, bytes that are neither PNG nor JPEG, undecodable or truncated data,
 /// and sizes outside 1..kMaxImageEdge per edge.

@@ -50,6 +50,11 @@ struct LightmapSurface {
     friend bool operator==(const LightmapSurface&, const LightmapSurface&) = default;
 };
 
+/// The largest light-map page edge, in texels. Page UVs are stored as floats; beyond 8192 texels
+/// their rounding reaches a texel's thousandth, the margin charts keep from their rectangle's
+/// border. luxel-prep writes no larger page, and the loader accepts none.
+inline constexpr int kMaxLightmapPageSize = 8192;
+
 struct LightmapLayout {
     float texel_size = 0.05f;
     int page_size = 1024;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,8 +23,8 @@ namespace luxel::scene {
 struct Primitive {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
-    std::vector<glm::vec2> texcoords0;  ///< material textures
-    std::vector<glm::vec2> texcoords1;  ///< light-map UVs (written by luxel-prep)
+    std::vector<glm::vec2> texcoords0;   ///< material textures
+    std::vector<glm::vec2> texcoords1;   ///< light-map UVs (written by luxel-prep)
     std::vector<std::uint32_t> indices;  ///< three per triangle, each < positions.size()
     int material = -1;
 
@@ -106,6 +107,9 @@ struct LoadReport {
     std::size_t degenerate_triangles_dropped = 0;
     std::size_t primitives_skipped = 0;  ///< non-triangle modes
     std::vector<std::string> warnings;
+    /// The files besides the glTF itself that the load read (buffers, images), by real path:
+    /// what a tool must not overwrite.
+    std::vector<std::filesystem::path> external_files;
 };
 
 struct Scene {
@@ -120,6 +124,8 @@ struct Scene {
     std::vector<Animation> animations;
     LoadReport report;
 
+    /// Every node index once, each after its parent. Throws luxel::Error on a cycle.
+    [[nodiscard]] std::vector<std::size_t> parent_first_order() const;
     /// Local-to-world matrices for every node in the rest pose (no animation applied).
     [[nodiscard]] std::vector<glm::mat4> world_matrices() const;
     /// True when the node has an explicit dynamic flag set, or (without one) when an animation

@@ -16,11 +16,21 @@ namespace luxel::scene {
 /// texel border, give or take float rounding, leaves the texel beyond it alone.
 inline constexpr double kCoverageTolerance = 1e-5;
 
-/// Calls visit(x, y) for every texel that a triangle overlaps with positive area: the
-/// conservative coverage, whose texels together contain the whole triangle. Zero-area
+/// The texels a caller can use, [x0, x1) x [y0, y1): coverage outside it is not visited, so a
+/// triangle whose UVs reach far beyond its page (a hostile file) costs no more than the window.
+struct TexelWindow {
+    int x0 = 0;
+    int y0 = 0;
+    int x1 = 0;
+    int y1 = 0;
+};
+
+/// Calls visit(x, y) for every texel of `window` that a triangle overlaps with positive area:
+/// the conservative coverage, whose texels together contain the whole triangle. Zero-area
 /// triangles cover nothing. Works for either winding.
 template <class Visit>
-void for_each_covered_texel(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, Visit&& visit) {
+void for_each_covered_texel(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, const TexelWindow& window,
+                            Visit&& visit) {
     const double twice_area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
     if (twice_area == 0.0 || !std::isfinite(twice_area)) {
         return;
@@ -41,10 +51,15 @@ void for_each_covered_texel(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, Visit&& vi
     }
     const glm::dvec2 low = glm::min(a, glm::min(b, c));
     const glm::dvec2 high = glm::max(a, glm::max(b, c));
-    const auto x0 = static_cast<int>(std::floor(low.x + kCoverageTolerance));
-    const auto x1 = static_cast<int>(std::ceil(high.x - kCoverageTolerance)) - 1;
-    const auto y0 = static_cast<int>(std::floor(low.y + kCoverageTolerance));
-    const auto y1 = static_cast<int>(std::ceil(high.y - kCoverageTolerance)) - 1;
+    // Clamped in double before the conversion: a coordinate beyond int's range is no UB.
+    const auto clamp_to = [](double value, int lo, int hi) {
+        return static_cast<int>(
+            std::clamp(value, static_cast<double>(lo), static_cast<double>(hi)));
+    };
+    const int x0 = clamp_to(std::floor(low.x + kCoverageTolerance), window.x0, window.x1);
+    const int x1 = clamp_to(std::ceil(high.x - kCoverageTolerance), window.x0, window.x1) - 1;
+    const int y0 = clamp_to(std::floor(low.y + kCoverageTolerance), window.y0, window.y1);
+    const int y1 = clamp_to(std::ceil(high.y - kCoverageTolerance), window.y0, window.y1) - 1;
     for (int y = y0; y <= y1; ++y) {
         for (int x = x0; x <= x1; ++x) {
             const glm::dvec2 centre(x + 0.5, y + 0.5);
