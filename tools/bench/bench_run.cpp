@@ -115,11 +115,8 @@ bool sweeps_gpu_backend(const Options& options) {
 
 Bench::Bench(const Options& options, const std::filesystem::path& level_file)
     : options_(&options), file_(level_file) {
-    try {
-        source_ = std::make_shared<scene::Scene>(scene::load_gltf(level_file, options.load_limits));
-    } catch (const Error& e) {
-        throw Error(level_file.string() + ": " + e.what());
-    }
+    // load_gltf's errors already start with the file's path.
+    source_ = std::make_shared<scene::Scene>(scene::load_gltf(level_file, options.load_limits));
     if (options.parsed_change) {
         change_ = options.parsed_change;
     } else if (options.change == "auto") {

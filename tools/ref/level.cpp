@@ -45,12 +45,9 @@ std::filesystem::path resolve_level(const std::string& level) {
 std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file, double time,
                                         const scene::LoadOptions& limits) {
     auto level = std::make_unique<LoadedLevel>();
-    std::shared_ptr<const scene::Scene> source;
-    try {
-        source = std::make_shared<scene::Scene>(scene::load_gltf(file, limits));
-    } catch (const Error& e) {
-        throw Error(file.string() + ": " + e.what());
-    }
+    // load_gltf's errors already start with the file's path.
+    const std::shared_ptr<const scene::Scene> source =
+        std::make_shared<scene::Scene>(scene::load_gltf(file, limits));
     lighting::InstantiateOptions options;
     options.play_animations = true;
     level->instance = lighting::instantiate(level->registry, source, options);
