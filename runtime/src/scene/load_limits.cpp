@@ -9,33 +9,32 @@
 namespace luxel::scene {
 namespace {
 
-constexpr std::array<LoadLimit, 14> kLimits = {{
-    {"file-bytes", &LoadOptions::max_file_size,
-     "bytes of the .gltf/.glb and of each file it names"},
-    {"external-bytes", &LoadOptions::max_external_bytes,
-     "bytes of every external buffer and image together"},
-    {"json-depth", &LoadOptions::max_json_depth, "nesting of JSON arrays and objects"},
-    {"nodes", &LoadOptions::max_nodes, "nodes"},
-    {"elements", &LoadOptions::max_array_elements,
-     "elements of any other top-level array (meshes, materials, accessors, ...)"},
-    {"lights", &LoadOptions::max_lights, "KHR_lights_punctual lights"},
-    {"node-depth", &LoadOptions::max_node_depth, "levels of the node hierarchy"},
-    {"accessor-elements", &LoadOptions::max_accessor_elements, "elements of one accessor"},
-    {"triangles", &LoadOptions::max_total_triangles, "triangles of every mesh, each mesh once"},
-    {"instanced-triangles", &LoadOptions::max_instanced_triangles,
-     "triangles counted once per node that draws them"},
-    {"lightmap-texels", &LoadOptions::max_lightmap_texels,
-     "light-map texels over every page the layouts name"},
-    {"image-pixels", &LoadOptions::max_image_pixels,
-     "pixels of every image together, read from their headers"},
-}};
+constexpr std::array kLimits = {
+    LoadLimit{"file-bytes", &LoadOptions::max_file_size,
+              "bytes of the .gltf/.glb and of each file it names"},
+    LoadLimit{"external-bytes", &LoadOptions::max_external_bytes,
+              "bytes of every external buffer and image together"},
+    LoadLimit{"json-depth", &LoadOptions::max_json_depth, "nesting of JSON arrays and objects"},
+    LoadLimit{"nodes", &LoadOptions::max_nodes, "nodes"},
+    LoadLimit{"elements", &LoadOptions::max_array_elements,
+              "elements of any other top-level array (meshes, materials, accessors, ...)"},
+    LoadLimit{"lights", &LoadOptions::max_lights, "KHR_lights_punctual lights"},
+    LoadLimit{"node-depth", &LoadOptions::max_node_depth, "levels of the node hierarchy"},
+    LoadLimit{"accessor-elements", &LoadOptions::max_accessor_elements, "elements of one accessor"},
+    LoadLimit{"triangles", &LoadOptions::max_total_triangles,
+              "triangles of every mesh, each mesh once"},
+    LoadLimit{"instanced-triangles", &LoadOptions::max_instanced_triangles,
+              "triangles counted once per node that draws them"},
+    LoadLimit{"lightmap-texels", &LoadOptions::max_lightmap_texels,
+              "light-map texels over every page the layouts name"},
+    LoadLimit{"image-pixels", &LoadOptions::max_image_pixels,
+              "pixels of every image together, read from their headers"},
+};
 
 std::string known_names() {
     std::string names;
     for (const LoadLimit& limit : kLimits) {
-        if (limit.name != nullptr) {
-            names += (names.empty() ? "" : ", ") + std::string(limit.name);
-        }
+        names += (names.empty() ? "" : ", ") + std::string(limit.name);
     }
     return names;
 }
@@ -43,12 +42,7 @@ std::string known_names() {
 }  // namespace
 
 std::span<const LoadLimit> load_limits() {
-    // The array's last entries may be unused when a limit is retired; stop at the first gap.
-    std::size_t used = 0;
-    while (used < kLimits.size() && kLimits[used].name != nullptr) {
-        ++used;
-    }
-    return {kLimits.data(), used};
+    return kLimits;
 }
 
 void set_load_limit(LoadOptions& options, const std::string& assignment) {

@@ -48,7 +48,7 @@ struct LoadOptions {
 struct LoadLimit {
     const char* name;                   ///< `--limit NAME=N`
     std::uint64_t LoadOptions::*value;  ///< the member it sets
-    const char* counts;                 ///< what it counts, for --help and docs/LEVELS.md
+    const char* counts;                 ///< what it counts (as docs/LEVELS.md's table says)
 };
 
 /// Every limit of LoadOptions, in the order docs/LEVELS.md lists them.
