@@ -56,7 +56,7 @@ int run_headless(const RunOptions& options, JobSystem& jobs, GlContext& context)
         const double time = frame * kStep;
         const CameraPose pose =
             app.camera_path().at(options.camera == "fixed" ? options.camera_at : time);
-        const lighting::FrameCamera camera = lighting::FrameCamera::look_at(
+        const renderer::FrameCamera camera = renderer::FrameCamera::look_at(
             pose.eye, pose.target, glm::vec3(0.0f, 1.0f, 0.0f), pose.vertical_fov, aspect);
         const Stopwatch watch;
         SandboxApp::FrameResult result = app.frame(time, frame == 0 ? 0.0 : kStep, camera, false);
@@ -66,7 +66,7 @@ int run_headless(const RunOptions& options, JobSystem& jobs, GlContext& context)
         const bool last = frame + 1 == frames;
         const bool png = last || (options.png_every > 0 && frame % options.png_every == 0);
         if (png || options.exr) {
-            const Image linear = app.renderer().read(lighting::FrameImage::Frame);
+            const Image linear = app.renderer().read(renderer::FrameImage::Frame);
             ToneMapSettings tone;
             tone.exposure = options.exposure > 0.0 ? static_cast<float>(options.exposure)
                                                    : exposure.update(linear);

@@ -24,6 +24,7 @@
 #include "luxel/runtime/render_target.hpp"
 #include "luxel/runtime/shader_library.hpp"
 #include "luxel/runtime/tool_main.hpp"
+#include "luxel/scene/load_limits_flag.hpp"
 #include "runs.hpp"
 #include "sandbox_level.hpp"
 
@@ -59,8 +60,8 @@ std::string parse_size(const std::string& text, Size& size) {
 }
 
 /// "direct,indirect,caustics,specular,emission" (any subset, or "all").
-std::string parse_terms(const std::string& text, luxel::lighting::FrameTerms& terms) {
-    luxel::lighting::FrameTerms parsed{false, false, false, false, false};
+std::string parse_terms(const std::string& text, luxel::renderer::FrameTerms& terms) {
+    luxel::renderer::FrameTerms parsed{false, false, false, false, false};
     std::size_t start = 0;
     while (start <= text.size()) {
         const std::size_t comma = std::min(text.find(',', start), text.size());

@@ -25,7 +25,7 @@ struct RunOptions {
     /// With camera "fixed": the time along the scripted path the camera stays at.
     double camera_at = 0.0;
     /// Lighting terms to draw (all by default): the README's pictures leave one out at a time.
-    lighting::FrameTerms terms;
+    renderer::FrameTerms terms;
 };
 
 /// Headless: the level's scripted camera for N frames at a fixed 1/30 s step (repeatable);

@@ -1,9 +1,9 @@
 #include "sandbox_app.hpp"
 
-#include "luxel/lighting/core/animation_system.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/log.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/animation_system.hpp"
 
 namespace luxel::sandbox {
 
@@ -25,15 +25,15 @@ SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const Shade
       height_(settings.height) {
     const Stopwatch loading;
     scene_ = std::make_shared<scene::Scene>(scene::load_gltf(level_file_, settings.load_limits));
-    instance_ = lighting::instantiate(registry_, scene_);
+    instance_ = world::instantiate(registry_, scene_);
     const std::size_t bounces = add_bounces(registry_, instance_, *scene_);
     transforms_.update();
     path_ = camera_path_for(level_name_, *scene_);
     lighting_ = std::make_unique<lighting::LightingSystem>(registry_, jobs);
-    lighting::FrameSettings frame;
+    renderer::FrameSettings frame;
     frame.width = width_;
     frame.height = height_;
-    renderer_ = std::make_unique<lighting::FrameRenderer>(registry_, *lighting_, frame, shaders);
+    renderer_ = std::make_unique<renderer::FrameRenderer>(registry_, *lighting_, frame, shaders);
     // The loading screen: the first photon maps, AIMs and IIMs are built at once, so the game
     // starts lit and the per-frame budget only has to follow changes.
     const Stopwatch warming;
@@ -50,12 +50,12 @@ SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const Shade
 }
 
 SandboxApp::FrameResult SandboxApp::frame(double time, double dt,
-                                          const lighting::FrameCamera& camera, bool frozen) {
+                                          const renderer::FrameCamera& camera, bool frozen) {
     FrameResult result;
     // 1. Game systems move entities: glTF animations, light switches, the bounce system.
     if (!frozen) {
-        lighting::update_animations(registry_, dt);
-        lighting::update_light_switches(registry_, dt);
+        world::update_animations(registry_, dt);
+        world::update_light_switches(registry_, dt);
         update_bounces(registry_, time);
     }
     transforms_.update();
@@ -68,13 +68,13 @@ SandboxApp::FrameResult SandboxApp::frame(double time, double dt,
     // 5. Render. The renderer makes the caustic pass while the FeaturePlan has caustic data
     // and runs it between its G-buffer and its composite, so the photons are splatted against
     // this frame's depth and composited into this frame.
-    const lighting::FrameTimings& timings = renderer_->render(camera, time);
+    const renderer::FrameTimings& timings = renderer_->render(camera, time);
 
     RunReport::Frame& report = result.report;
     report.lighting_ms = result.lighting_ms;
     report.budget_ms = budget_ms_;
-    for (std::size_t pass = 0; pass < lighting::kRenderPassCount; ++pass) {
-        report.pass_ms[std::string(lighting::name(static_cast<lighting::RenderPass>(pass)))] =
+    for (std::size_t pass = 0; pass < renderer::kRenderPassCount; ++pass) {
+        report.pass_ms[std::string(renderer::name(static_cast<renderer::RenderPass>(pass)))] =
             timings.milliseconds[pass];
     }
     report.counters["photons_traced"] = static_cast<double>(stats.photons_traced);

@@ -8,12 +8,12 @@
 #include "luxel/ecs/registry.hpp"
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
 #include "luxel/lighting/gpu/caustic_pass.hpp"
-#include "luxel/lighting/gpu/frame_renderer.hpp"
+#include "luxel/renderer/frame_renderer.hpp"
 #include "luxel/runtime/jobs.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
 #include "luxel/runtime/shader_library.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/scene_instance.hpp"
 #include "run_report.hpp"
 #include "sandbox_level.hpp"
 
@@ -47,9 +47,9 @@ class SandboxApp {
     };
     /// Advances the game by `dt` seconds to `time` and renders from `camera`. With `frozen`,
     /// nothing moves (the lighting still converges).
-    FrameResult frame(double time, double dt, const lighting::FrameCamera& camera, bool frozen);
+    FrameResult frame(double time, double dt, const renderer::FrameCamera& camera, bool frozen);
 
-    [[nodiscard]] lighting::FrameRenderer& renderer() { return *renderer_; }
+    [[nodiscard]] renderer::FrameRenderer& renderer() { return *renderer_; }
     [[nodiscard]] const lighting::LightingSystem& lighting() const { return *lighting_; }
     [[nodiscard]] const scene::Scene& scene() const { return *scene_; }
     [[nodiscard]] const std::string& level_name() const { return level_name_; }
@@ -64,10 +64,10 @@ class SandboxApp {
     std::filesystem::path level_file_;
     std::shared_ptr<const scene::Scene> scene_;
     ecs::Registry registry_;
-    lighting::SceneInstance instance_;
+    world::SceneInstance instance_;
     ecs::TransformSystem transforms_{registry_};
     std::unique_ptr<lighting::LightingSystem> lighting_;
-    std::unique_ptr<lighting::FrameRenderer> renderer_;
+    std::unique_ptr<renderer::FrameRenderer> renderer_;
     const ShaderLibrary* shaders_;
     CameraPath path_;
     double budget_ms_;

@@ -45,7 +45,7 @@ std::filesystem::path resolve_level(const std::string& name_or_path) {
     return path;
 }
 
-std::size_t add_bounces(ecs::Registry& registry, const lighting::SceneInstance& instance,
+std::size_t add_bounces(ecs::Registry& registry, const world::SceneInstance& instance,
                         const scene::Scene& scene) {
     std::size_t added = 0;
     for (std::size_t node = 0; node < instance.nodes.size() && node < scene.nodes.size(); ++node) {
@@ -65,8 +65,8 @@ std::size_t add_bounces(ecs::Registry& registry, const lighting::SceneInstance& 
                         "': extras.luxel.bounce needs a positive period and a finite height");
         }
         registry.emplace<Bounce>(entity, bounce);
-        if (!registry.has<lighting::Dynamic>(entity)) {
-            registry.emplace<lighting::Dynamic>(entity);
+        if (!registry.has<scene::Dynamic>(entity)) {
+            registry.emplace<scene::Dynamic>(entity);
         }
         ++added;
     }

@@ -8,8 +8,8 @@
 #include <glm/glm.hpp>
 
 #include "luxel/ecs/registry.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
-#include "luxel/runtime/scene/scene.hpp"
+#include "luxel/scene/scene.hpp"
+#include "luxel/world/scene_instance.hpp"
 
 /// The game side of the sandbox: which level to load, the game systems that move things the
 /// way a game would (besides glTF animations), and the scripted camera of headless runs.
@@ -33,7 +33,7 @@ struct Bounce {
 
 /// Finds the nodes of `instance` that carry extras.luxel.bounce and gives their entities a
 /// Bounce; returns how many.
-std::size_t add_bounces(ecs::Registry& registry, const lighting::SceneInstance& instance,
+std::size_t add_bounces(ecs::Registry& registry, const world::SceneInstance& instance,
                         const scene::Scene& scene);
 /// The bounce system: sets each Bounce entity's Transform for game time `seconds`.
 void update_bounces(ecs::Registry& registry, double seconds);

@@ -58,8 +58,8 @@ class FreeCamera {
                  (static_cast<float>(held(GLFW_KEY_E)) - static_cast<float>(held(GLFW_KEY_Q))));
     }
 
-    [[nodiscard]] lighting::FrameCamera camera(float aspect) const {
-        return lighting::FrameCamera::look_at(eye_, eye_ + direction(), glm::vec3(0, 1, 0), fov_,
+    [[nodiscard]] renderer::FrameCamera camera(float aspect) const {
+        return renderer::FrameCamera::look_at(eye_, eye_ + direction(), glm::vec3(0, 1, 0), fov_,
                                               aspect);
     }
 
@@ -92,7 +92,7 @@ class KeyPresses {
 };
 
 void draw_panel(const SandboxApp& app, const RunReport::Frame& frame, double frame_ms,
-                const lighting::FrameTerms& terms, bool frozen, float& budget) {
+                const renderer::FrameTerms& terms, bool frozen, float& budget) {
     ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowBgAlpha(0.75f);
     ImGui::Begin("luxel");
@@ -137,7 +137,7 @@ int run_window(const RunOptions& options, JobSystem& jobs, GlContext& context) {
     }
     const ShaderLibrary shaders;
     SandboxApp app(options.app, jobs, shaders);
-    lighting::FrameTerms terms = options.terms;
+    renderer::FrameTerms terms = options.terms;
     app.renderer().set_terms(terms);
     const PresentPass present(shaders);
     FreeCamera camera(app.camera_path().at(0.0));
@@ -188,7 +188,7 @@ int run_window(const RunOptions& options, JobSystem& jobs, GlContext& context) {
         SandboxApp::FrameResult result =
             app.frame(game_time, frozen ? 0.0 : dt, camera.camera(aspect), frozen);
         if (frame % 15 == 0 || screenshot) {
-            exposure.update(app.renderer().read(lighting::FrameImage::Frame));
+            exposure.update(app.renderer().read(renderer::FrameImage::Frame));
         }
         ToneMapSettings tone;
         tone.exposure = exposure.exposure();
@@ -204,7 +204,7 @@ int run_window(const RunOptions& options, JobSystem& jobs, GlContext& context) {
             std::filesystem::create_directories(options.out);
             char name[64];
             std::snprintf(name, sizeof(name), "screenshot_%03d.png", screenshots++);
-            write_png(options.out / name, app.renderer().read(lighting::FrameImage::Frame), tone);
+            write_png(options.out / name, app.renderer().read(renderer::FrameImage::Frame), tone);
             std::cout << "wrote " << (options.out / name).string() << "\n";
         }
         context.swap_buffers();
@@ -216,7 +216,7 @@ int run_window(const RunOptions& options, JobSystem& jobs, GlContext& context) {
         std::filesystem::create_directories(options.out);
         ToneMapSettings tone;
         tone.exposure = exposure.exposure();
-        write_png(options.out / "window_last.png", app.renderer().read(lighting::FrameImage::Frame),
+        write_png(options.out / "window_last.png", app.renderer().read(renderer::FrameImage::Frame),
                   tone);
     }
     ImGui_ImplOpenGL3_Shutdown();

@@ -1,4 +1,4 @@
-// Reading the IIM pages (lighting/gpu/src/lightmap_textures.hpp): bilinear, through the
+// Reading the IIM pages (lighting/gpu/include/luxel/lighting/gpu/lightmap_textures.hpp): bilinear, through the
 // per-texel front/back blend
 //     shown = mix(previous, current, clamp((now - committed) / blend, 0, 1)),
 // blended per texel before the bilinear weights, as IimPage::shown and RadiancePage::sample do

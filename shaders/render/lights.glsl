@@ -1,5 +1,5 @@
 // The light records of the direct pass (std140; mirrored by GpuLight in
-// lighting/gpu/src/frame_lights.hpp). Units: metres, watts, linear RGB.
+// renderer/src/frame_lights.hpp). Units: metres, watts, linear RGB.
 
 const int LIGHT_POINT = 0;
 const int LIGHT_SPOT = 1;

@@ -19,7 +19,7 @@
 #include "gltf_test_files.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/log.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
 #include "temp_dir.hpp"
 #include "test_scenes.hpp"
 

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "luxel/runtime/error.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
 #include "scene_compare.hpp"
 #include "temp_dir.hpp"
 #include "test_scenes.hpp"

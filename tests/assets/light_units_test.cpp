@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "luxel/runtime/scene/light.hpp"
+#include "luxel/scene/light.hpp"
 
 namespace {
 

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "luxel/runtime/scene/scene.hpp"
+#include "luxel/scene/scene.hpp"
 
 namespace luxel::testing {
 

@@ -6,7 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "luxel/runtime/error.hpp"
-#include "luxel/runtime/scene/scene.hpp"
+#include "luxel/scene/scene.hpp"
 #include "test_scenes.hpp"
 
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "luxel/runtime/scene/scene.hpp"
+#include "luxel/scene/scene.hpp"
 
 namespace luxel::testing {
 

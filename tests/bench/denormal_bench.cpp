@@ -35,9 +35,9 @@
 #include "luxel/lighting/core/cpu_gather.hpp"
 #include "luxel/lighting/core/illumination_maps.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
 #include "luxel/runtime/jobs.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/scene_instance.hpp"
 
 namespace {
 
@@ -67,19 +67,19 @@ double flush_modes() {
 /// `photon_power` watts per channel, photons traced once and every AIM built.
 struct PoweredLevel {
     ecs::Registry registry;
-    SceneInstance instance;
+    world::SceneInstance instance;
     ecs::TransformSystem transforms{registry};
     std::unique_ptr<PhotonWorld> photons;
     std::unique_ptr<IlluminationMaps> maps;
 
     explicit PoweredLevel(float light_power) {
-        InstantiateOptions options;
+        world::InstantiateOptions options;
         options.play_animations = false;
-        instance = instantiate(registry,
-                               std::make_shared<scene::Scene>(scene::load_gltf(
-                                   std::filesystem::path(LUXEL_SOURCE_DIR) / "assets" / "levels" /
-                                   "prepared" / "cornell.glb")),
-                               options);
+        instance = world::instantiate(registry,
+                                      std::make_shared<scene::Scene>(scene::load_gltf(
+                                          std::filesystem::path(LUXEL_SOURCE_DIR) / "assets" /
+                                          "levels" / "prepared" / "cornell.glb")),
+                                      options);
         for (auto [entity, light] : registry.view<PointLight>()) {
             light.power = glm::vec3(light_power);
         }

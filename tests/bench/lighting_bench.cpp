@@ -16,11 +16,11 @@
 #include <vector>
 
 #include "luxel/ecs/transform_system.hpp"
-#include "luxel/lighting/core/animation_system.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
 #include "luxel/runtime/clock.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/animation_system.hpp"
+#include "luxel/world/scene_instance.hpp"
 
 namespace {
 
@@ -50,9 +50,9 @@ struct Run {
 
 Run run_level(double budget_ms, int warmup, int frames) {
     ecs::Registry registry;
-    lighting::InstantiateOptions options;
+    world::InstantiateOptions options;
     options.play_animations = true;
-    lighting::instantiate(registry, prepared_cornell(), options);
+    world::instantiate(registry, prepared_cornell(), options);
     ecs::TransformSystem transforms(registry);
     transforms.update();
     JobSystem jobs(2);
@@ -62,7 +62,7 @@ Run run_level(double budget_ms, int warmup, int frames) {
     for (int frame = 0; frame < warmup + frames; ++frame) {
         const double dt = 1.0 / 30.0;
         time += dt;
-        lighting::update_animations(registry, dt);
+        world::update_animations(registry, dt);
         transforms.update();
         const Stopwatch watch;
         const lighting::LightingStats& stats = lighting.update(budget_ms, time);

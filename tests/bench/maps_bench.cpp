@@ -47,9 +47,9 @@
 #include "luxel/lighting/core/light_source.hpp"
 #include "luxel/lighting/core/photon_density.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
 #include "luxel/runtime/jobs.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/scene_instance.hpp"
 
 namespace {
 
@@ -199,15 +199,15 @@ std::filesystem::path prepared(const std::string& name) {
 /// light-mapped surface's AIM built.
 struct Level {
     ecs::Registry registry;
-    SceneInstance instance;
+    world::SceneInstance instance;
     ecs::TransformSystem transforms{registry};
     std::unique_ptr<PhotonWorld> photons;
     std::unique_ptr<IlluminationMaps> maps;
 
     explicit Level(const std::string& name) {
-        InstantiateOptions options;
+        world::InstantiateOptions options;
         options.play_animations = false;
-        instance = instantiate(
+        instance = world::instantiate(
             registry, std::make_shared<scene::Scene>(scene::load_gltf(prepared(name))), options);
         transforms.update();
         JobSystem jobs(2);

@@ -31,11 +31,11 @@
 #include <embree3/rtcore.h>
 
 #include "luxel/ecs/transform_system.hpp"
-#include "luxel/lighting/core/animation_system.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
 #include "luxel/runtime/clock.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/animation_system.hpp"
+#include "luxel/world/scene_instance.hpp"
 
 namespace {
 
@@ -50,14 +50,14 @@ std::shared_ptr<const scene::Scene> cornell_13k() {
 /// The level as a game holds it: registry, transforms and the photon world.
 struct Level {
     ecs::Registry registry;
-    lighting::SceneInstance instance;
+    world::SceneInstance instance;
     ecs::TransformSystem transforms{registry};
     std::unique_ptr<lighting::PhotonWorld> photons;
 
     explicit Level(bool play_animations, lighting::PhotonWorldSettings settings = {}) {
-        lighting::InstantiateOptions options;
+        world::InstantiateOptions options;
         options.play_animations = play_animations;
-        instance = lighting::instantiate(registry, cornell_13k(), options);
+        instance = world::instantiate(registry, cornell_13k(), options);
         transforms.update();
         photons = std::make_unique<lighting::PhotonWorld>(registry, settings);
         photons->sync();
@@ -330,7 +330,7 @@ void PaperFrame(benchmark::State& state) {
     std::uint64_t frame = 8;
     for (auto _ : state) {
         // The game's part of the frame: not counted.
-        lighting::update_animations(level.registry, 1.0 / 30.0);
+        world::update_animations(level.registry, 1.0 / 30.0);
         level.transforms.update();
 
         // Process CPU time as well: on a shared machine a frame that is preempted shows the

@@ -12,8 +12,8 @@
 #include <string>
 
 #include "luxel/ecs/transform.hpp"
-#include "luxel/lighting/gpu/frame_renderer.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/renderer/frame_renderer.hpp"
+#include "luxel/scene/gltf.hpp"
 #include "render_scenes.hpp"
 
 namespace {
@@ -26,31 +26,32 @@ constexpr int kSize = 512;
 void frame(benchmark::State& state, bool moving) {
     const std::unique_ptr<GlContext> context = test::make_render_context();
     test::RenderWorld world;
-    instantiate(world.registry,
-                std::make_shared<scene::Scene>(scene::load_gltf(test::prepared_level("cornell"))),
-                InstantiateOptions{false});
+    world::instantiate(
+        world.registry,
+        std::make_shared<scene::Scene>(scene::load_gltf(test::prepared_level("cornell"))),
+        world::InstantiateOptions{false});
     world.start();
     // Lit and gathered, so every pass has its real input.
     for (int i = 0; i < 20; ++i) {
         world.update();
     }
     ecs::Entity light;
-    FrameCamera camera;
-    for (auto [entity, component] : world.registry.view<CameraComponent>()) {
-        camera = FrameCamera::from_scene(
+    renderer::FrameCamera camera;
+    for (auto [entity, component] : world.registry.view<scene::CameraComponent>()) {
+        camera = renderer::FrameCamera::from_scene(
             component.camera, world.registry.get<ecs::WorldTransform>(entity).matrix, 1.0f);
     }
     for (auto [entity, point] : world.registry.view<PointLight>()) {
         light = entity;
     }
-    FrameSettings settings;
+    renderer::FrameSettings settings;
     settings.width = kSize;
     settings.height = kSize;
     settings.wait_for_timings = true;
-    FrameRenderer renderer(world.registry, *world.lighting, settings);
+    renderer::FrameRenderer renderer(world.registry, *world.lighting, settings);
     renderer.render(camera, world.time);  // allocations and first shadow maps out of the loop
 
-    std::array<double, kRenderPassCount> sums{};
+    std::array<double, renderer::kRenderPassCount> sums{};
     double total = 0.0;
     float offset = 0.01f;
     for (auto _ : state) {
@@ -60,14 +61,14 @@ void frame(benchmark::State& state, bool moving) {
             offset = -offset;
             world.transforms.update();
         }
-        const FrameTimings& timings = renderer.render(camera, world.time);
-        for (std::size_t pass = 0; pass < kRenderPassCount; ++pass) {
+        const renderer::FrameTimings& timings = renderer.render(camera, world.time);
+        for (std::size_t pass = 0; pass < renderer::kRenderPassCount; ++pass) {
             sums[pass] += timings.milliseconds[pass];
         }
         total += timings.total();
     }
-    for (std::size_t pass = 0; pass < kRenderPassCount; ++pass) {
-        state.counters[std::string(name(static_cast<RenderPass>(pass))) + "_ms"] =
+    for (std::size_t pass = 0; pass < renderer::kRenderPassCount; ++pass) {
+        state.counters[std::string(name(static_cast<renderer::RenderPass>(pass))) + "_ms"] =
             benchmark::Counter(sums[pass], benchmark::Counter::kAvgIterations);
     }
     state.counters["gpu_total_ms"] = benchmark::Counter(total, benchmark::Counter::kAvgIterations);

@@ -9,7 +9,7 @@
 
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/log.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     // Warnings about broken inputs are the point here, not news.

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
 #include "test_scenes.hpp"
 
 int main(int argc, char** argv) {

@@ -17,9 +17,9 @@
 #include "luxel/ecs/transform.hpp"
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/components.hpp"
-#include "luxel/lighting/core/animation_system.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/animation_system.hpp"
+#include "luxel/world/scene_instance.hpp"
 #include "validator.hpp"
 
 namespace {
@@ -44,11 +44,11 @@ std::size_t count(ecs::Registry& registry) {
 struct Loaded {
     ecs::Registry registry;
     std::shared_ptr<const scene::Scene> scene;
-    lighting::SceneInstance instance;
+    world::SceneInstance instance;
 
     explicit Loaded(const std::string& name)
         : scene(std::make_shared<scene::Scene>(scene::load_gltf(kLevels / (name + ".glb")))),
-          instance(lighting::instantiate(registry, scene)) {}
+          instance(world::instantiate(registry, scene)) {}
     ecs::Entity operator[](const std::string& node) const {
         const ecs::Entity e = instance.find(node);
         EXPECT_FALSE(e.is_null()) << "no node named " << node;
@@ -94,13 +94,13 @@ TEST(BuiltInLevels, CornellAtThreeTessellations) {
         EXPECT_LT(ratio, 1.15) << name;
         EXPECT_EQ(count<lighting::PointLight>(level.registry), 1u);
         EXPECT_EQ(count<lighting::CausticGenerator>(level.registry), 1u);
-        EXPECT_EQ(count<lighting::AnimationPlayer>(level.registry), 2u);
+        EXPECT_EQ(count<world::AnimationPlayer>(level.registry), 2u);
         const auto& glass = level.registry.get<lighting::CausticGenerator>(level["glass sphere"]);
         EXPECT_FLOAT_EQ(glass.ior, 1.5f);
-        EXPECT_TRUE(level.registry.has<lighting::Dynamic>(level["glass sphere"]));
-        EXPECT_TRUE(level.registry.has<lighting::Dynamic>(level["moving cube"]));
-        EXPECT_FALSE(level.registry.has<lighting::Dynamic>(level["floor"]));
-        EXPECT_FALSE(level.registry.has<lighting::Dynamic>(level["left wall"]));
+        EXPECT_TRUE(level.registry.has<scene::Dynamic>(level["glass sphere"]));
+        EXPECT_TRUE(level.registry.has<scene::Dynamic>(level["moving cube"]));
+        EXPECT_FALSE(level.registry.has<scene::Dynamic>(level["floor"]));
+        EXPECT_FALSE(level.registry.has<scene::Dynamic>(level["left wall"]));
         // 40 W of warm white under the ceiling.
         const auto& light = level.registry.get<lighting::PointLight>(level["ceiling light"]);
         EXPECT_NEAR(light.power.r, 40.0f, 1e-3f);
@@ -112,14 +112,14 @@ TEST(BuiltInLevels, TwoRoomsHasASwingingDoorAndSwitchedLights) {
     Loaded level("two-rooms");
     EXPECT_EQ(count<lighting::PointLight>(level.registry), 3u);
     EXPECT_EQ(count<lighting::SpotLight>(level.registry), 1u);
-    EXPECT_EQ(count<lighting::LightSwitch>(level.registry), 2u);
+    EXPECT_EQ(count<world::LightSwitch>(level.registry), 2u);
     EXPECT_EQ(count<lighting::CausticGenerator>(level.registry), 0u);
     const ecs::Entity hinge = level["door hinge"];
     const ecs::Entity door = level["door"];
     EXPECT_EQ(ecs::parent_of(level.registry, door), hinge);
-    EXPECT_TRUE(level.registry.has<lighting::Dynamic>(door));  // moved by its ancestor
+    EXPECT_TRUE(level.registry.has<scene::Dynamic>(door));  // moved by its ancestor
     // Half way through the opening (t = 3 s) the hinge has turned by 50 degrees.
-    lighting::update_animations(level.registry, 3.0);
+    world::update_animations(level.registry, 3.0);
     const glm::quat rotation = level.registry.get<ecs::Transform>(hinge).rotation;
     EXPECT_NEAR(glm::degrees(glm::angle(rotation)), 50.0f, 0.01f);
 }
@@ -136,9 +136,9 @@ TEST(BuiltInLevels, CausticsHasThreeGeneratorsAndEveryLightKind) {
     EXPECT_EQ(count<lighting::SpotLight>(level.registry), 1u);
     EXPECT_EQ(count<lighting::PointLight>(level.registry), 1u);
     EXPECT_EQ(count<lighting::DirectionalLight>(level.registry), 1u);
-    EXPECT_TRUE(level.registry.has<lighting::Dynamic>(level["water surface"]));
+    EXPECT_TRUE(level.registry.has<scene::Dynamic>(level["water surface"]));
     const auto& wave = level.scene->nodes.at(static_cast<std::size_t>(
-        level.registry.get<lighting::SceneNode>(level["water surface"]).index));
+        level.registry.get<scene::SceneNode>(level["water surface"]).index));
     EXPECT_TRUE(wave.flags.raw.contains("wave"));
 }
 
@@ -148,14 +148,14 @@ TEST(BuiltInLevels, SandboxHasEverythingTheGameLevelPromises) {
     // and a ball the game's bounce system moves (dynamic, no animation of its own).
     EXPECT_EQ(level.scene->animations.size(), 3u);
     EXPECT_EQ(count<lighting::PointLight>(level.registry), 4u);
-    EXPECT_EQ(count<lighting::LightSwitch>(level.registry), 1u);
+    EXPECT_EQ(count<world::LightSwitch>(level.registry), 1u);
     EXPECT_EQ(count<lighting::CausticGenerator>(level.registry), 1u);
     EXPECT_TRUE(level.registry.has<lighting::CausticGenerator>(level["glass sculpture"]));
-    EXPECT_TRUE(level.registry.has<lighting::Dynamic>(level["door"]));
-    EXPECT_TRUE(level.registry.has<lighting::Dynamic>(level["swinging lamp"]));
-    EXPECT_TRUE(level.registry.has<lighting::Dynamic>(level["ball"]));
+    EXPECT_TRUE(level.registry.has<scene::Dynamic>(level["door"]));
+    EXPECT_TRUE(level.registry.has<scene::Dynamic>(level["swinging lamp"]));
+    EXPECT_TRUE(level.registry.has<scene::Dynamic>(level["ball"]));
     const auto& ball = level.scene->nodes.at(
-        static_cast<std::size_t>(level.registry.get<lighting::SceneNode>(level["ball"]).index));
+        static_cast<std::size_t>(level.registry.get<scene::SceneNode>(level["ball"]).index));
     ASSERT_TRUE(ball.flags.raw.contains("bounce"));
     EXPECT_DOUBLE_EQ(ball.flags.raw["bounce"]["height"].get<double>(), 1.0);
     // The lamp swings: from its rest pose to t = 1.5 s (30 degrees) it moves sideways.
@@ -163,7 +163,7 @@ TEST(BuiltInLevels, SandboxHasEverythingTheGameLevelPromises) {
     transforms.update();
     const glm::vec3 before =
         level.registry.get<ecs::WorldTransform>(level["swinging lamp"]).position();
-    lighting::update_animations(level.registry, 1.5);
+    world::update_animations(level.registry, 1.5);
     transforms.update();
     const glm::vec3 after =
         level.registry.get<ecs::WorldTransform>(level["swinging lamp"]).position();

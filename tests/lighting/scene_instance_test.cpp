@@ -9,10 +9,10 @@
 #include "luxel/ecs/hierarchy.hpp"
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/components.hpp"
-#include "luxel/lighting/core/animation_system.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
 #include "luxel/runtime/error.hpp"
-#include "luxel/runtime/scene/lightmap_layout.hpp"
+#include "luxel/scene/lightmap_layout.hpp"
+#include "luxel/world/animation_system.hpp"
+#include "luxel/world/scene_instance.hpp"
 
 namespace {
 
@@ -89,39 +89,39 @@ std::shared_ptr<scene::Scene> make_scene() {
 TEST(SceneInstance, CreatesEntitiesComponentsAndHierarchy) {
     ecs::Registry registry;
     const auto source = make_scene();
-    const auto instance = lighting::instantiate(registry, source);
+    const auto instance = world::instantiate(registry, source);
     ASSERT_EQ(instance.nodes.size(), 6u);
     ASSERT_EQ(instance.animations.size(), 1u);
 
     const ecs::Entity root = instance.find("root");
     const ecs::Entity child = instance.find("glass child");
     EXPECT_EQ(ecs::parent_of(registry, child), root);
-    EXPECT_EQ(registry.get<lighting::Name>(child).value, "glass child");
+    EXPECT_EQ(registry.get<scene::Name>(child).value, "glass child");
 
     const auto& generator = registry.get<lighting::CausticGenerator>(child);
     EXPECT_FLOAT_EQ(generator.ior, 1.33f);
     EXPECT_FLOAT_EQ(generator.transmission, 1.0f);
-    EXPECT_EQ(registry.get<lighting::MeshInstance>(child).geometry().primitives.size(), 1u);
+    EXPECT_EQ(registry.get<scene::MeshInstance>(child).geometry().primitives.size(), 1u);
     EXPECT_FALSE(registry.has<lighting::AreaLight>(child));
 
     const ecs::Entity panel = instance.find("panel");
     EXPECT_TRUE(registry.has<lighting::AreaLight>(panel));
     EXPECT_FALSE(registry.has<lighting::CausticGenerator>(panel));
-    EXPECT_FALSE(registry.has<lighting::Dynamic>(panel));
+    EXPECT_FALSE(registry.has<scene::Dynamic>(panel));
 
     const auto& bulb = registry.get<lighting::PointLight>(instance.find("bulb"));
     EXPECT_NEAR(bulb.power.r, 4.0f * glm::pi<float>(), 1e-4f);
     EXPECT_TRUE(bulb.enabled);
-    EXPECT_TRUE(registry.has<lighting::LightSwitch>(instance.find("bulb")));
+    EXPECT_TRUE(registry.has<world::LightSwitch>(instance.find("bulb")));
     const auto& spot = registry.get<lighting::SpotLight>(instance.find("spot"));
     EXPECT_NEAR(spot.power.g, 10.0f, 1e-3f);
     EXPECT_FALSE(spot.enabled);
-    EXPECT_TRUE(registry.has<lighting::CameraComponent>(instance.find("camera")));
+    EXPECT_TRUE(registry.has<scene::CameraComponent>(instance.find("camera")));
 
     // The animated root and its child are dynamic; nothing else is.
-    EXPECT_TRUE(registry.has<lighting::Dynamic>(root));
-    EXPECT_TRUE(registry.has<lighting::Dynamic>(child));
-    EXPECT_FALSE(registry.has<lighting::Dynamic>(instance.find("bulb")));
+    EXPECT_TRUE(registry.has<scene::Dynamic>(root));
+    EXPECT_TRUE(registry.has<scene::Dynamic>(child));
+    EXPECT_FALSE(registry.has<scene::Dynamic>(instance.find("bulb")));
 
     ecs::TransformSystem transforms(registry);
     transforms.update();
@@ -132,12 +132,12 @@ TEST(SceneInstance, CreatesEntitiesComponentsAndHierarchy) {
 
 TEST(AnimationSystem, MovesTargetsAndReportsThemAsChanged) {
     ecs::Registry registry;
-    const auto instance = lighting::instantiate(registry, make_scene());
+    const auto instance = world::instantiate(registry, make_scene());
     ecs::TransformSystem transforms(registry);
     transforms.update();
     auto moved = registry.observe<ecs::WorldTransform>();
 
-    lighting::update_animations(registry, 0.5);  // a quarter of the way: x = 1.5
+    world::update_animations(registry, 0.5);  // a quarter of the way: x = 1.5
     transforms.update();
     const ecs::Entity root = instance.find("root");
     const ecs::Entity child = instance.find("glass child");
@@ -148,20 +148,20 @@ TEST(AnimationSystem, MovesTargetsAndReportsThemAsChanged) {
     EXPECT_EQ(updated.size(), 2u);
 
     // Looping wraps the time: 2.5 s into a 2 s animation samples at 0.5 s... plus 0.5 above.
-    lighting::update_animations(registry, 2.0);
+    world::update_animations(registry, 2.0);
     EXPECT_FLOAT_EQ(registry.get<ecs::Transform>(root).translation.x, 1.5f);
-    const auto& player = registry.get<lighting::AnimationPlayer>(instance.animations[0]);
+    const auto& player = registry.get<world::AnimationPlayer>(instance.animations[0]);
     EXPECT_NEAR(player.time, 0.5, 1e-12);
 }
 
 TEST(AnimationSystem, LongRunsKeepTheTimeBoundedAndExact) {
     ecs::Registry registry;
-    const auto instance = lighting::instantiate(registry, make_scene());
+    const auto instance = world::instantiate(registry, make_scene());
     // 100,000 frames at 60 Hz: 1666.67 s, i.e. 833 loops and 0.333... s into the next.
     for (int frame = 0; frame < 100'000; ++frame) {
-        lighting::update_animations(registry, 1.0 / 60.0);
+        world::update_animations(registry, 1.0 / 60.0);
     }
-    const auto& player = registry.get<lighting::AnimationPlayer>(instance.animations[0]);
+    const auto& player = registry.get<world::AnimationPlayer>(instance.animations[0]);
     EXPECT_GE(player.time, 0.0);
     EXPECT_LT(player.time, 2.0);
     EXPECT_NEAR(player.time, std::fmod(100'000.0 / 60.0, 2.0), 1e-9);
@@ -169,28 +169,28 @@ TEST(AnimationSystem, LongRunsKeepTheTimeBoundedAndExact) {
 
 TEST(AnimationSystem, NonLoopingStopsAtTheEndAndStaleTargetsAreSkipped) {
     ecs::Registry registry;
-    const auto instance = lighting::instantiate(registry, make_scene());
-    auto& player = registry.get<lighting::AnimationPlayer>(instance.animations[0]);
+    const auto instance = world::instantiate(registry, make_scene());
+    auto& player = registry.get<world::AnimationPlayer>(instance.animations[0]);
     player.loop = false;
     registry.destroy(instance.find("glass child"));  // not a target: nothing changes
-    lighting::update_animations(registry, 10.0);
-    EXPECT_FALSE(registry.get<lighting::AnimationPlayer>(instance.animations[0]).playing);
+    world::update_animations(registry, 10.0);
+    EXPECT_FALSE(registry.get<world::AnimationPlayer>(instance.animations[0]).playing);
     EXPECT_FLOAT_EQ(registry.get<ecs::Transform>(instance.find("root")).translation.x, 3.0f);
     registry.destroy(instance.find("root"));
-    auto& again = registry.get<lighting::AnimationPlayer>(instance.animations[0]);
+    auto& again = registry.get<world::AnimationPlayer>(instance.animations[0]);
     again.playing = true;
-    EXPECT_NO_THROW(lighting::update_animations(registry, 0.1));
+    EXPECT_NO_THROW(world::update_animations(registry, 0.1));
 }
 
 TEST(LightSwitch, TurnsTheLightOnAndOffOnSchedule) {
     ecs::Registry registry;
-    const auto instance = lighting::instantiate(registry, make_scene());
+    const auto instance = world::instantiate(registry, make_scene());
     const ecs::Entity bulb = instance.find("bulb");
     auto changes = registry.observe<lighting::PointLight>();
     // On for 1 s of every 4 s from t = 0.
     std::vector<bool> states;
     for (int step = 0; step < 16; ++step) {
-        lighting::update_light_switches(registry, 0.5);
+        world::update_light_switches(registry, 0.5);
         states.push_back(registry.get<lighting::PointLight>(bulb).enabled);
     }
     // t = 0.5 on, 1.0 .. 3.5 off, 4.0 4.5 on, ...
@@ -199,9 +199,9 @@ TEST(LightSwitch, TurnsTheLightOnAndOffOnSchedule) {
     EXPECT_EQ(states, expected);
     // Only flips are recorded as updates: at most one pending update for the bulb.
     EXPECT_EQ(changes.updated().size(), 1u);
-    EXPECT_TRUE(lighting::switch_is_on({4.0, 1.0, 0.0, 0.0}, 4.5));
-    EXPECT_FALSE(lighting::switch_is_on({4.0, 1.0, 0.0, 0.0}, 1.5));
-    EXPECT_TRUE(lighting::switch_is_on({4.0, 1.0, 3.5, 0.0}, 0.25));  // phase wraps
+    EXPECT_TRUE(world::switch_is_on({4.0, 1.0, 0.0, 0.0}, 4.5));
+    EXPECT_FALSE(world::switch_is_on({4.0, 1.0, 0.0, 0.0}, 1.5));
+    EXPECT_TRUE(world::switch_is_on({4.0, 1.0, 3.5, 0.0}, 0.25));  // phase wraps
 }
 
 }  // namespace
@@ -224,7 +224,7 @@ TEST(SceneInstance, ALightmapLayoutMakesALightmappedSurface) {
     s->nodes[1].flags.raw["lightmap"] = luxel::scene::to_json(layout);
     s->roots = {0, 1, 2};
     luxel::ecs::Registry registry;
-    const auto instance = luxel::lighting::instantiate(registry, s);
+    const auto instance = luxel::world::instantiate(registry, s);
     EXPECT_FALSE(registry.has<luxel::lighting::LightmappedSurface>(instance.nodes[0]));
     ASSERT_TRUE(registry.has<luxel::lighting::LightmappedSurface>(instance.nodes[1]));
     EXPECT_EQ(registry.get<luxel::lighting::LightmappedSurface>(instance.nodes[1]).layout, layout);
@@ -238,7 +238,7 @@ TEST(SceneInstance, ALightmapLayoutMakesALightmappedSurface) {
     bad->nodes[1].flags.raw.erase("lightmap");
     luxel::ecs::Registry other;
     try {
-        (void)luxel::lighting::instantiate(other, bad);
+        (void)luxel::world::instantiate(other, bad);
         FAIL() << "expected an error";
     } catch (const luxel::Error& e) {
         EXPECT_NE(std::string(e.what()).find("'plain'"), std::string::npos) << e.what();

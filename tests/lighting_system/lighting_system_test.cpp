@@ -9,10 +9,10 @@
 
 #include "cube_scene.hpp"
 #include "luxel/ecs/transform_system.hpp"
-#include "luxel/lighting/core/animation_system.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/animation_system.hpp"
+#include "luxel/world/scene_instance.hpp"
 
 namespace {
 
@@ -40,23 +40,23 @@ LightingConfig small_config() {
 
 struct Game {
     ecs::Registry registry;
-    SceneInstance instance;
+    world::SceneInstance instance;
     ecs::TransformSystem transforms{registry};
     JobSystem jobs{2};
     std::unique_ptr<LightingSystem> lighting;
     double time = 0.0;
 
     Game(const std::string& level, bool animate) {
-        InstantiateOptions options;
+        world::InstantiateOptions options;
         options.play_animations = animate;
-        instance = instantiate(registry, prepared(level), options);
+        instance = world::instantiate(registry, prepared(level), options);
         transforms.update();
         lighting = std::make_unique<LightingSystem>(registry, jobs, small_config());
     }
 
     const LightingStats& frame(double budget_ms, double dt = 1.0 / 60.0) {
         time += dt;
-        update_animations(registry, dt);
+        world::update_animations(registry, dt);
         transforms.update();
         return lighting->update(budget_ms, time);
     }
@@ -138,7 +138,7 @@ TEST(LightingSystem, NoGeneratorMeansNoCausticDataUntilOneIsAdded) {
     material.roughness = 0.0f;
     const auto glass = luxel::testing::cube_scene(0.2f, material, "glass cube");
     const ecs::Entity entity = game.registry.create();
-    game.registry.emplace<MeshInstance>(entity, glass, 0);
+    game.registry.emplace<scene::MeshInstance>(entity, glass, 0);
     game.registry.emplace<CausticGenerator>(entity, 1.5f, 1.0f, glm::vec3(1.0f));
     game.registry.emplace<ecs::Transform>(entity, glm::vec3(-2.0f, 0.5f, 0.0f));
     std::uint64_t traced = game.frame(kUnlimited).caustic_photons_traced;
@@ -167,8 +167,8 @@ TEST(LightingSystem, MotionBringsWorkBackAndStoppingConvergesAgain) {
     EXPECT_GT(traced, 0u);
     EXPECT_GT(gathered, 0u);
     // Stop every animation: within a probe cycle plus the work it finds, lighting goes idle.
-    game.registry.view<AnimationPlayer>().each(
-        [](ecs::Entity, AnimationPlayer& player) { player.playing = false; });
+    game.registry.view<world::AnimationPlayer>().each(
+        [](ecs::Entity, world::AnimationPlayer& player) { player.playing = false; });
     EXPECT_LE(game.converge(400), 400);
     EXPECT_EQ(game.frame(kUnlimited).photons_traced, 0u);
 }

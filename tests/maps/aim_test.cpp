@@ -146,7 +146,7 @@ TEST(AimEnclosure, TexelsUnderAnObjectRestingOnTheSurfaceGetNoLight) {
     // the plain one.
     luxel::testing::PlaneWorld world(kSide, kTexel, kPage, kAlbedo);
     const ecs::Entity cube = world.registry.create();
-    world.registry.emplace<lighting::MeshInstance>(
+    world.registry.emplace<scene::MeshInstance>(
         cube, luxel::testing::cube_scene(0.25f, scene::Material{}), 0);
     ecs::Transform placed;
     placed.translation = glm::vec3(1.0f, 0.251f, 1.0f);

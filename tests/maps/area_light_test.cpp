@@ -13,9 +13,9 @@
 
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
 #include "luxel/runtime/jobs.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/scene_instance.hpp"
 
 namespace {
 
@@ -36,9 +36,9 @@ struct Furnace {
         scene::Scene scene = scene::load_gltf(std::filesystem::path(LUXEL_TEST_SOURCE_DIR) /
                                               "assets" / "levels" / "prepared" / "furnace.glb");
         scene.materials.at(0).base_color = glm::vec4(glm::vec3(kAlbedo), 1.0f);
-        lighting::InstantiateOptions options;
+        world::InstantiateOptions options;
         options.play_animations = false;
-        lighting::instantiate(registry, std::make_shared<scene::Scene>(std::move(scene)), options);
+        world::instantiate(registry, std::make_shared<scene::Scene>(std::move(scene)), options);
         transforms.update();
         for (auto [entity, light] : registry.view<lighting::AreaLight>()) {
             emitter = entity;

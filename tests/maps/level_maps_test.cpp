@@ -7,9 +7,9 @@
 #include <gtest/gtest.h>
 
 #include "luxel/lighting/core/cpu_gather.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
 #include "luxel/runtime/jobs.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/scene_instance.hpp"
 #include "map_test_scenes.hpp"
 
 namespace {
@@ -27,10 +27,9 @@ TEST_P(LevelMaps, TexelsMatchTheLayoutAndEveryValueIsFinite) {
     const std::filesystem::path file = std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" /
                                        "levels" / "prepared" / (std::string(GetParam()) + ".glb");
     ecs::Registry registry;
-    lighting::InstantiateOptions options;
+    world::InstantiateOptions options;
     options.play_animations = false;
-    lighting::instantiate(registry, std::make_shared<scene::Scene>(scene::load_gltf(file)),
-                          options);
+    world::instantiate(registry, std::make_shared<scene::Scene>(scene::load_gltf(file)), options);
     ecs::TransformSystem transforms(registry);
     transforms.update();
     JobSystem jobs(2);

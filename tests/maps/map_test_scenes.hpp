@@ -67,7 +67,7 @@ struct PlaneWorld {
                lighting::IlluminationSettings settings = {},
                glm::mat4 transform = glm::mat4(1.0f)) {
         plane = registry.create();
-        registry.emplace<lighting::MeshInstance>(
+        registry.emplace<scene::MeshInstance>(
             plane, lightmapped_plane(side, 8, texel_size, page_size, albedo), 0);
         scene::LightmapLayout layout;
         layout.texel_size = texel_size;

@@ -12,9 +12,9 @@
 
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
 #include "luxel/runtime/jobs.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/scene_instance.hpp"
 
 namespace {
 
@@ -28,13 +28,13 @@ struct Cornell {
 
     Cornell(std::uint32_t rays, std::uint32_t refine_passes, int filter_radius = 2,
             float noise_sigmas = 0.0f) {
-        lighting::InstantiateOptions options;
+        world::InstantiateOptions options;
         options.play_animations = false;
-        lighting::instantiate(registry,
-                              std::make_shared<scene::Scene>(scene::load_gltf(
-                                  std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" /
-                                  "levels" / "prepared" / "cornell.glb")),
-                              options);
+        world::instantiate(registry,
+                           std::make_shared<scene::Scene>(
+                               scene::load_gltf(std::filesystem::path(LUXEL_TEST_SOURCE_DIR) /
+                                                "assets" / "levels" / "prepared" / "cornell.glb")),
+                           options);
         transforms.update();
         lighting::LightingConfig config;
         config.gather.rays_per_texel = rays;

@@ -9,7 +9,7 @@
 
 #include "luxel/lighting/components.hpp"
 #include "luxel/runtime/error.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
 
 namespace luxel::test {
 
@@ -76,9 +76,9 @@ std::filesystem::path level_path(const std::string& name) {
 }
 
 GatherLevel::GatherLevel(const std::string& name) {
-    lighting::InstantiateOptions options;
+    world::InstantiateOptions options;
     options.play_animations = false;
-    instance = lighting::instantiate(
+    instance = world::instantiate(
         registry, std::make_shared<scene::Scene>(scene::load_gltf(level_path(name))), options);
     transforms.update();
     world = std::make_unique<lighting::PhotonWorld>(registry);
@@ -89,7 +89,7 @@ GatherLevel::GatherLevel(const std::string& name) {
     for (const lighting::SurfaceInfo& info : world->surfaces()) {
         std::int32_t index = -1;
         const auto* layout = registry.try_get<lighting::LightmappedSurface>(info.entity);
-        const auto* mesh = registry.try_get<lighting::MeshInstance>(info.entity);
+        const auto* mesh = registry.try_get<scene::MeshInstance>(info.entity);
         if (layout != nullptr && mesh != nullptr && info.layout_id >= 0) {
             for (const scene::LightmapSurface& surface : layout->layout.surfaces) {
                 if (surface.id != info.layout_id) {

@@ -16,8 +16,8 @@
 #include "luxel/lighting/core/photon_world.hpp"
 #include "luxel/lighting/core/radiance_atlas.hpp"
 #include "luxel/lighting/core/ray_scene.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
 #include "luxel/runtime/gl_context.hpp"
+#include "luxel/world/scene_instance.hpp"
 
 namespace luxel::test {
 
@@ -43,7 +43,7 @@ namespace luxel::test {
 /// points at its page (other surfaces have none).
 struct GatherLevel {
     ecs::Registry registry;
-    lighting::SceneInstance instance;
+    world::SceneInstance instance;
     ecs::TransformSystem transforms{registry};
     std::unique_ptr<lighting::PhotonWorld> world;
     lighting::RadianceAtlas atlas;

@@ -7,10 +7,10 @@
 
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/components.hpp"
-#include "luxel/lighting/core/animation_system.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/animation_system.hpp"
+#include "luxel/world/scene_instance.hpp"
 
 namespace {
 
@@ -18,7 +18,7 @@ using namespace luxel;
 
 struct CausticLevel {
     ecs::Registry registry;
-    lighting::SceneInstance instance;
+    world::SceneInstance instance;
     ecs::TransformSystem transforms{registry};
     std::unique_ptr<lighting::PhotonWorld> photons;
     JobSystem jobs;
@@ -26,13 +26,13 @@ struct CausticLevel {
     explicit CausticLevel(const std::string& name, int threads = 2,
                           std::uint32_t photons_per_pair = 2'000)
         : jobs(threads) {
-        lighting::InstantiateOptions options;
+        world::InstantiateOptions options;
         options.play_animations = false;
-        instance = lighting::instantiate(registry,
-                                         std::make_shared<scene::Scene>(scene::load_gltf(
-                                             std::filesystem::path(LUXEL_TEST_SOURCE_DIR) /
-                                             "assets" / "levels" / (name + ".glb"))),
-                                         options);
+        instance = world::instantiate(registry,
+                                      std::make_shared<scene::Scene>(scene::load_gltf(
+                                          std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" /
+                                          "levels" / (name + ".glb"))),
+                                      options);
         transforms.update();
         lighting::PhotonWorldSettings settings;
         settings.caustics.photons_per_pair = photons_per_pair;
@@ -44,9 +44,9 @@ struct CausticLevel {
     lighting::CausticFrameStats frame(std::uint64_t index, double dt = 0.0) {
         if (dt > 0.0) {
             for (ecs::Entity animation : instance.animations) {
-                registry.get<lighting::AnimationPlayer>(animation).playing = true;
+                registry.get<world::AnimationPlayer>(animation).playing = true;
             }
-            lighting::update_animations(registry, dt);
+            world::update_animations(registry, dt);
         }
         transforms.update();
         photons->sync();

@@ -9,10 +9,10 @@
 #include "cube_scene.hpp"
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/components.hpp"
-#include "luxel/lighting/core/animation_system.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/animation_system.hpp"
+#include "luxel/world/scene_instance.hpp"
 
 namespace {
 
@@ -30,15 +30,15 @@ std::shared_ptr<const scene::Scene> cube_scene() {
 
 struct Level {
     ecs::Registry registry;
-    lighting::SceneInstance instance;
+    world::SceneInstance instance;
     ecs::TransformSystem transforms{registry};
     std::unique_ptr<lighting::PhotonWorld> photons;
     JobSystem jobs{2};
 
     explicit Level(const std::string& name) {
-        lighting::InstantiateOptions options;
+        world::InstantiateOptions options;
         options.play_animations = false;
-        instance = lighting::instantiate(registry, load_level(name), options);
+        instance = world::instantiate(registry, load_level(name), options);
     }
     void start() {
         transforms.update();
@@ -67,8 +67,8 @@ struct Level {
 TEST(PhotonLocality, TwoRoomsClosedDoorKeepsChangesInTheirRoom) {
     Level level("two-rooms");
     const ecs::Entity cube = level.registry.create();
-    level.registry.emplace<lighting::MeshInstance>(cube, cube_scene(), 0);
-    level.registry.emplace<lighting::Dynamic>(cube);
+    level.registry.emplace<scene::MeshInstance>(cube, cube_scene(), 0);
+    level.registry.emplace<scene::Dynamic>(cube);
     level.registry.emplace<ecs::Transform>(cube, glm::vec3(-2.4f, 0.2f, -0.5f));
     level.start();
     ASSERT_TRUE(level.photons->pending_groups().empty());
@@ -86,15 +86,15 @@ TEST(PhotonLocality, TwoRoomsClosedDoorKeepsChangesInTheirRoom) {
     ASSERT_FALSE(noticed.empty());
     for (ecs::Entity light : noticed) {
         const float x = level.registry.get<ecs::WorldTransform>(light).position().x;
-        EXPECT_LT(x, 0.0f) << level.registry.get<lighting::Name>(light).value
+        EXPECT_LT(x, 0.0f) << level.registry.get<scene::Name>(light).value
                            << " in the east room noticed a change behind the closed door";
     }
     level.photons->retrace_pending(level.jobs);
 
     // Open the door (t = 4 s of its animation): east lights now see into the west room.
-    auto& player = level.registry.get<lighting::AnimationPlayer>(level.instance.animations.at(0));
+    auto& player = level.registry.get<world::AnimationPlayer>(level.instance.animations.at(0));
     player.playing = true;
-    lighting::update_animations(level.registry, 4.0);
+    world::update_animations(level.registry, 4.0);
     level.step();
     const auto after_opening = level.probe_full_cycle();
     bool east_noticed = false;

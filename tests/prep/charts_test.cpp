@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
 
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
 #include "mesh_builders.hpp"
 #include "prep_test_support.hpp"
 

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "luxel/runtime/image.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
 #include "prep_test_support.hpp"
 #include "run_command.hpp"
 #include "temp_dir.hpp"

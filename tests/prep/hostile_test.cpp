@@ -9,7 +9,7 @@
 
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
 #include "mesh_builders.hpp"
 #include "prep_test_support.hpp"
 

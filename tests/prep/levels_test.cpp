@@ -11,8 +11,8 @@
 
 #include "luxel/ecs/registry.hpp"
 #include "luxel/lighting/components.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/scene_instance.hpp"
 #include "prep_test_support.hpp"
 #include "validator.hpp"
 
@@ -62,7 +62,7 @@ TEST_P(PreparedLevel, MeetsTheQualityGoalsAndMatchesTheCommittedFile) {
     // Round trip: the runtime loads the table into LightmappedSurface components, one per
     // prepared node, each surface's rectangle, charts, area and texels as computed.
     ecs::Registry registry;
-    const lighting::SceneInstance instance = lighting::instantiate(registry, loaded);
+    const world::SceneInstance instance = world::instantiate(registry, loaded);
     std::size_t lightmapped = 0;
     for (const prep::PreparedNode& node : result.nodes) {
         const ecs::Entity entity = instance.nodes.at(static_cast<std::size_t>(node.node));

@@ -8,8 +8,8 @@
 
 #include "luxel/ecs/registry.hpp"
 #include "luxel/lighting/components.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/scene_instance.hpp"
 #include "mesh_builders.hpp"
 #include "prep_test_support.hpp"
 #include "temp_dir.hpp"
@@ -160,7 +160,7 @@ TEST(Output, RoundTripsThroughTheFileAndTheRuntime) {
 
     const auto loaded = std::make_shared<scene::Scene>(scene::load_gltf(file));
     ecs::Registry registry;
-    const auto instance = lighting::instantiate(registry, loaded);
+    const auto instance = world::instantiate(registry, loaded);
     for (const prep::PreparedNode& node : result.nodes) {
         const ecs::Entity entity = instance.nodes.at(static_cast<std::size_t>(node.node));
         ASSERT_TRUE(registry.has<lighting::LightmappedSurface>(entity));

@@ -8,7 +8,7 @@
 
 #include "luxel/prep/raster.hpp"
 #include "luxel/runtime/jobs.hpp"
-#include "luxel/runtime/scene/lightmap_layout.hpp"
+#include "luxel/scene/lightmap_layout.hpp"
 
 namespace luxel::testing {
 namespace {

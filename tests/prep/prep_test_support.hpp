@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "luxel/prep/prep.hpp"
-#include "luxel/runtime/scene/scene.hpp"
+#include "luxel/scene/scene.hpp"
 
 namespace luxel::testing {
 

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "luxel/lighting/core/reference/error_metrics.hpp"
+#include "luxel/lighting/reference/error_metrics.hpp"
 #include "luxel/runtime/error.hpp"
 
 namespace {

@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
 
-#include "luxel/lighting/core/reference/reference_integrator.hpp"
+#include "luxel/lighting/reference/reference_integrator.hpp"
 #include "reference_test_support.hpp"
 
 namespace {

@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
 
-#include "luxel/lighting/core/reference/reference_integrator.hpp"
+#include "luxel/lighting/reference/reference_integrator.hpp"
 #include "quadrature.hpp"
 #include "scene_builder.hpp"
 

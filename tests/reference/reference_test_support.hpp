@@ -9,9 +9,9 @@
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/core/illumination_maps.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
-#include "luxel/lighting/core/reference/reference_scene.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/lighting/reference/reference_scene.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/scene_instance.hpp"
 
 namespace luxel::testing {
 
@@ -24,16 +24,16 @@ inline std::filesystem::path prepared_level(const std::string& name) {
 /// reference's view of it.
 struct ReferenceLevel {
     ecs::Registry registry;
-    lighting::SceneInstance instance;
+    world::SceneInstance instance;
     std::unique_ptr<lighting::PhotonWorld> world;
     std::unique_ptr<lighting::IlluminationMaps> maps;
     std::unique_ptr<lighting::reference::ReferenceScene> scene;
 
     explicit ReferenceLevel(const std::string& name) {
         auto source = std::make_shared<scene::Scene>(scene::load_gltf(prepared_level(name)));
-        lighting::InstantiateOptions options;
+        world::InstantiateOptions options;
         options.play_animations = false;
-        instance = lighting::instantiate(registry, source, options);
+        instance = world::instantiate(registry, source, options);
         ecs::TransformSystem transforms(registry);
         transforms.update();
         lighting::PhotonWorldSettings settings;

@@ -9,7 +9,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/constants.hpp>
 
-#include "luxel/lighting/core/reference/reference_scene.hpp"
+#include "luxel/lighting/reference/reference_scene.hpp"
 
 namespace luxel::testing {
 

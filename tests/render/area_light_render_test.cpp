@@ -11,8 +11,8 @@
 
 #include <gtest/gtest.h>
 
-#include "luxel/lighting/gpu/frame_renderer.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/renderer/frame_renderer.hpp"
+#include "luxel/scene/gltf.hpp"
 #include "render_scenes.hpp"
 
 namespace {
@@ -27,7 +27,7 @@ TEST(AreaLightFrame, TheFurnaceShowsEmissionOverOneMinusAlbedoEverywhere) {
     scene::Scene scene = scene::load_gltf(test::prepared_level("furnace"));
     scene.materials.at(0).base_color = glm::vec4(glm::vec3(kAlbedo), 1.0f);
     test::RenderWorld world;
-    instantiate(world.registry, std::make_shared<scene::Scene>(std::move(scene)));
+    world::instantiate(world.registry, std::make_shared<scene::Scene>(std::move(scene)));
     LightingConfig config = test::small_lighting_config();
     config.photons.selective.groups = 77;  // the paper's 77 x 40 photons
     config.photons.selective.per_group = 40;
@@ -38,18 +38,18 @@ TEST(AreaLightFrame, TheFurnaceShowsEmissionOverOneMinusAlbedoEverywhere) {
     }
     ASSERT_TRUE(world.lighting->plan().census().converged);
 
-    FrameSettings settings;
+    renderer::FrameSettings settings;
     settings.width = 64;
     settings.height = 48;
-    FrameRenderer renderer(world.registry, *world.lighting, settings);
+    renderer::FrameRenderer renderer(world.registry, *world.lighting, settings);
     // From the centre, looking along -z and then +x: each pixel sees the wall 1 m away.
     const double expected = kEmitted / (1.0 - kAlbedo);
     for (const glm::vec3 forward : {glm::vec3(0.0f, 0.0f, -1.0f), glm::vec3(1.0f, 0.0f, 0.0f)}) {
-        const FrameCamera camera = FrameCamera::look_at(
+        const renderer::FrameCamera camera = renderer::FrameCamera::look_at(
             glm::vec3(0.0f), forward, glm::vec3(0.0f, 1.0f, 0.0f), 1.2f, 64.0f / 48.0f);
         // The IIM fades in over blend_seconds: render long after the last commit.
         renderer.render(camera, world.time + 1e3);
-        const Image frame = renderer.read(FrameImage::Frame);
+        const Image frame = renderer.read(renderer::FrameImage::Frame);
         double sum = 0.0;
         double lowest = 1e30;
         double highest = 0.0;

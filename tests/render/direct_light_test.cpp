@@ -11,7 +11,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "luxel/ecs/transform.hpp"
-#include "luxel/lighting/gpu/frame_renderer.hpp"
+#include "luxel/renderer/frame_renderer.hpp"
 #include "render_scenes.hpp"
 
 namespace {
@@ -24,13 +24,13 @@ const glm::vec3 kAlbedo(0.6f, 0.5f, 0.4f);
 const glm::vec3 kPower(30.0f, 20.0f, 10.0f);
 const glm::vec3 kLight(0.0f, 1.5f, 0.0f);
 
-FrameCamera test_camera() {
-    return FrameCamera::look_at({0.5f, 3.5f, 2.5f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 1.0f,
-                                1.0f);
+renderer::FrameCamera test_camera() {
+    return renderer::FrameCamera::look_at({0.5f, 3.5f, 2.5f}, {0.0f, 0.0f, 0.0f},
+                                          {0.0f, 1.0f, 0.0f}, 1.0f, 1.0f);
 }
 
-FrameSettings test_settings(bool filtered = true) {
-    FrameSettings settings;
+renderer::FrameSettings test_settings(bool filtered = true) {
+    renderer::FrameSettings settings;
     settings.width = kSize;
     settings.height = kSize;
     settings.filtered_shadows = filtered;
@@ -79,10 +79,10 @@ class DirectLight : public ::testing::Test {
 
 TEST_F(DirectLight, PointLightOverPlaneMatchesAnalyticRadiance) {
     PlaneScene scene(false);
-    FrameRenderer renderer(scene.world.registry, *scene.world.lighting, test_settings());
+    renderer::FrameRenderer renderer(scene.world.registry, *scene.world.lighting, test_settings());
     renderer.render(test_camera(), scene.world.time);
-    const Image direct = renderer.read(FrameImage::Direct);
-    const Image frame = renderer.read(FrameImage::Frame);
+    const Image direct = renderer.read(renderer::FrameImage::Direct);
+    const Image frame = renderer.read(renderer::FrameImage::Frame);
     const auto positions = test::read_texture(renderer.position_texture(), kSize, kSize);
     int checked = 0;
     float worst = 0.0f;
@@ -116,14 +116,14 @@ TEST_F(DirectLight, BlockerShadowsItsUmbraAndNothingElse) {
     for (const bool filtered : {true, false}) {
         PlaneScene open(false);
         PlaneScene blocked(true);
-        FrameRenderer open_renderer(open.world.registry, *open.world.lighting,
-                                    test_settings(filtered));
-        FrameRenderer blocked_renderer(blocked.world.registry, *blocked.world.lighting,
-                                       test_settings(filtered));
+        renderer::FrameRenderer open_renderer(open.world.registry, *open.world.lighting,
+                                              test_settings(filtered));
+        renderer::FrameRenderer blocked_renderer(blocked.world.registry, *blocked.world.lighting,
+                                                 test_settings(filtered));
         open_renderer.render(test_camera(), open.world.time);
         blocked_renderer.render(test_camera(), blocked.world.time);
-        const Image lit = open_renderer.read(FrameImage::Direct);
-        const Image shadowed = blocked_renderer.read(FrameImage::Direct);
+        const Image lit = open_renderer.read(renderer::FrameImage::Direct);
+        const Image shadowed = blocked_renderer.read(renderer::FrameImage::Direct);
         const auto positions =
             test::read_texture(blocked_renderer.position_texture(), kSize, kSize);
         int umbra = 0;
@@ -158,7 +158,7 @@ TEST_F(DirectLight, BlockerShadowsItsUmbraAndNothingElse) {
 
 TEST_F(DirectLight, ShadowMapsAreRedrawnOnlyWhenLightOrCasterMoves) {
     PlaneScene scene(true);
-    FrameRenderer renderer(scene.world.registry, *scene.world.lighting, test_settings());
+    renderer::FrameRenderer renderer(scene.world.registry, *scene.world.lighting, test_settings());
     const auto frame = [&] {
         scene.world.update();
         renderer.render(test_camera(), scene.world.time);

@@ -10,9 +10,9 @@
 #include <gtest/gtest.h>
 
 #include "luxel/ecs/transform.hpp"
-#include "luxel/lighting/core/animation_system.hpp"
-#include "luxel/lighting/gpu/frame_renderer.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/renderer/frame_renderer.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/animation_system.hpp"
 #include "render_scenes.hpp"
 
 namespace {
@@ -28,14 +28,16 @@ const char* output_dir() {
 const int kWidth = output_dir() != nullptr ? 480 : 96;
 const int kHeight = output_dir() != nullptr ? 360 : 72;
 
-FrameCamera level_camera(ecs::Registry& registry) {
-    for (auto [entity, camera] : registry.view<CameraComponent>()) {
+renderer::FrameCamera level_camera(ecs::Registry& registry) {
+    for (auto [entity, camera] : registry.view<scene::CameraComponent>()) {
         const auto* world = registry.try_get<ecs::WorldTransform>(entity);
-        return FrameCamera::from_scene(camera.camera, world ? world->matrix : glm::mat4(1.0f),
-                                       static_cast<float>(kWidth) / static_cast<float>(kHeight));
+        return renderer::FrameCamera::from_scene(
+            camera.camera, world ? world->matrix : glm::mat4(1.0f),
+            static_cast<float>(kWidth) / static_cast<float>(kHeight));
     }
-    return FrameCamera::look_at({0.0f, 1.0f, 4.0f}, {0.0f, 1.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 0.9f,
-                                static_cast<float>(kWidth) / static_cast<float>(kHeight));
+    return renderer::FrameCamera::look_at({0.0f, 1.0f, 4.0f}, {0.0f, 1.0f, 0.0f},
+                                          {0.0f, 1.0f, 0.0f}, 0.9f,
+                                          static_cast<float>(kWidth) / static_cast<float>(kHeight));
 }
 
 /// Checks every value; returns the sum of the rgb values.
@@ -66,51 +68,55 @@ class BuiltInLevels : public ::testing::TestWithParam<std::string> {
 
 TEST_P(BuiltInLevels, FramesHoldNoNanInfOrNegative) {
     test::RenderWorld world;
-    InstantiateOptions options;
+    world::InstantiateOptions options;
     options.play_animations = true;
-    instantiate(world.registry,
-                std::make_shared<scene::Scene>(scene::load_gltf(test::prepared_level(GetParam()))),
-                options);
+    world::instantiate(
+        world.registry,
+        std::make_shared<scene::Scene>(scene::load_gltf(test::prepared_level(GetParam()))),
+        options);
     world.start();
-    FrameSettings settings;
+    renderer::FrameSettings settings;
     settings.width = kWidth;
     settings.height = kHeight;
     settings.cube_shadow_size = 128;
     settings.map_shadow_size = 256;
     settings.specular_cube_size = 32;
     settings.specular_faces_per_frame = 2;
-    FrameRenderer renderer(world.registry, *world.lighting, settings);
+    renderer::FrameRenderer renderer(world.registry, *world.lighting, settings);
     for (int frame = 0; frame < 4; ++frame) {
         const double dt = 1.0 / 30.0;
-        update_animations(world.registry, dt);
+        world::update_animations(world.registry, dt);
         world.update(frame == 0 ? 1e9 : 50.0, dt);
         renderer.render(level_camera(world.registry), world.time);
         const std::string what = GetParam() + " frame " + std::to_string(frame);
-        const double total = check_image(renderer.read(FrameImage::Frame), what + " frame");
-        check_image(renderer.read(FrameImage::Direct), what + " direct");
-        check_image(renderer.read(FrameImage::Indirect), what + " indirect");
-        check_image(renderer.read(FrameImage::Specular), what + " specular");
+        const double total =
+            check_image(renderer.read(renderer::FrameImage::Frame), what + " frame");
+        check_image(renderer.read(renderer::FrameImage::Direct), what + " direct");
+        check_image(renderer.read(renderer::FrameImage::Indirect), what + " indirect");
+        check_image(renderer.read(renderer::FrameImage::Specular), what + " specular");
         EXPECT_GT(total, 0.0) << what << ": a lit level renders black";
     }
     if (output_dir() != nullptr) {
         const std::filesystem::path dir(output_dir());
         std::filesystem::create_directories(dir);
-        write_png(dir / (GetParam() + ".png"), renderer.read(FrameImage::Frame));
-        write_png(dir / (GetParam() + "-direct.png"), renderer.read(FrameImage::Direct));
-        write_png(dir / (GetParam() + "-indirect.png"), renderer.read(FrameImage::Indirect));
-        write_png(dir / (GetParam() + "-specular.png"), renderer.read(FrameImage::Specular));
+        write_png(dir / (GetParam() + ".png"), renderer.read(renderer::FrameImage::Frame));
+        write_png(dir / (GetParam() + "-direct.png"), renderer.read(renderer::FrameImage::Direct));
+        write_png(dir / (GetParam() + "-indirect.png"),
+                  renderer.read(renderer::FrameImage::Indirect));
+        write_png(dir / (GetParam() + "-specular.png"),
+                  renderer.read(renderer::FrameImage::Specular));
     }
     // The renderer makes its caustic pass exactly while the plan has caustic data, and none
     // when the settings ask for none.
     EXPECT_EQ(renderer.caustic_pass() != nullptr, world.lighting->plan().caustic_data())
         << GetParam();
-    FrameSettings no_caustics = settings;
+    renderer::FrameSettings no_caustics = settings;
     no_caustics.caustics.reset();
-    FrameRenderer bare(world.registry, *world.lighting, no_caustics);
+    renderer::FrameRenderer bare(world.registry, *world.lighting, no_caustics);
     bare.render(level_camera(world.registry), world.time);
     EXPECT_EQ(bare.caustic_pass(), nullptr);
 
-    const FrameCounters& counters = renderer.counters();
+    const renderer::FrameCounters& counters = renderer.counters();
     EXPECT_EQ(counters.shadow_maps, counters.lights) << "one shadow map per enabled light";
     if (world.lighting->plan().reflections()) {
         EXPECT_GT(counters.specular_probes, 0u) << "specular materials get probes";
@@ -126,17 +132,17 @@ TEST(RenderStability, ACameraInsideAWallRendersFiniteFrames) {
     // nothing may be NaN, infinite or negative.
     auto context = test::make_render_context();
     test::RenderWorld world;
-    instantiate(world.registry,
-                std::make_shared<scene::Scene>(scene::load_gltf(test::prepared_level("cornell"))));
+    world::instantiate(world.registry, std::make_shared<scene::Scene>(
+                                           scene::load_gltf(test::prepared_level("cornell"))));
     world.start();
     world.update(1e9);
-    FrameSettings settings;
+    renderer::FrameSettings settings;
     settings.width = kWidth;
     settings.height = kHeight;
     settings.cube_shadow_size = 128;
     settings.map_shadow_size = 256;
     settings.specular_cube_size = 32;
-    FrameRenderer renderer(world.registry, *world.lighting, settings);
+    renderer::FrameRenderer renderer(world.registry, *world.lighting, settings);
     const float aspect = static_cast<float>(kWidth) / static_cast<float>(kHeight);
     const struct {
         glm::vec3 eye;
@@ -146,10 +152,10 @@ TEST(RenderStability, ACameraInsideAWallRendersFiniteFrames) {
                  {{0.3f, 1.0f, -1.0f}, {1.0f, 1.0f, -1.0f}},     // along it
                  {{0.0f, 1.0f, -1.001f}, {0.0f, 1.0f, -3.0f}}};  // out of the box
     for (const auto& view : views) {
-        renderer.render(FrameCamera::look_at(view.eye, view.target, {0.0f, 1.0f, 0.0f}, 1.0f,
-                                             aspect, 0.001f, 100.0f),
+        renderer.render(renderer::FrameCamera::look_at(view.eye, view.target, {0.0f, 1.0f, 0.0f},
+                                                       1.0f, aspect, 0.001f, 100.0f),
                         world.time);
-        check_image(renderer.read(FrameImage::Frame), "camera in the wall");
+        check_image(renderer.read(renderer::FrameImage::Frame), "camera in the wall");
     }
 }
 

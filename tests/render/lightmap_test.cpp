@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
 
-#include "luxel/lighting/gpu/frame_renderer.hpp"
+#include "luxel/renderer/frame_renderer.hpp"
 #include "render_scenes.hpp"
 
 namespace {
@@ -73,13 +73,13 @@ class Lightmaps : public ::testing::Test {
         page.current.mark_dirty({0, 0, kPage, kPage});
     }
 
-    FrameRenderer& renderer() {
+    renderer::FrameRenderer& renderer() {
         if (!renderer_) {
-            FrameSettings settings;
+            renderer::FrameSettings settings;
             settings.width = kSize;
             settings.height = kSize;
-            renderer_ =
-                std::make_unique<FrameRenderer>(world_.registry, *world_.lighting, settings);
+            renderer_ = std::make_unique<renderer::FrameRenderer>(world_.registry, *world_.lighting,
+                                                                  settings);
         }
         return *renderer_;
     }
@@ -88,10 +88,10 @@ class Lightmaps : public ::testing::Test {
     /// pixel of the two planes; returns how many pixels were checked.
     int render_and_check(
         double now, const std::function<void(const glm::vec3&, const glm::vec2&, bool)>& check) {
-        const FrameCamera camera = FrameCamera::look_at({0.0f, 4.0f, 0.0f}, glm::vec3(0.0f),
-                                                        {0.0f, 0.0f, -1.0f}, 1.0f, 1.0f);
+        const renderer::FrameCamera camera = renderer::FrameCamera::look_at(
+            {0.0f, 4.0f, 0.0f}, glm::vec3(0.0f), {0.0f, 0.0f, -1.0f}, 1.0f, 1.0f);
         renderer().render(camera, now);
-        const Image indirect = renderer().read(FrameImage::Indirect);
+        const Image indirect = renderer().read(renderer::FrameImage::Indirect);
         const auto positions = test::read_texture(renderer().position_texture(), kSize, kSize);
         int checked = 0;
         for (int y = 0; y < kSize; ++y) {
@@ -116,7 +116,7 @@ class Lightmaps : public ::testing::Test {
     test::RenderWorld world_;
     ecs::Entity a_;
     ecs::Entity b_;
-    std::unique_ptr<FrameRenderer> renderer_;
+    std::unique_ptr<renderer::FrameRenderer> renderer_;
 };
 
 void expect_close(const glm::vec3& got, const glm::vec3& expected, float tolerance,
@@ -144,8 +144,8 @@ TEST_F(Lightmaps, ConstantIimRendersItsRadiance) {
     EXPECT_GT(on_b, 1000);
     EXPECT_EQ(checked, on_a + on_b);
     // The frame adds nothing else: no lights, no emission.
-    const Image frame = renderer().read(FrameImage::Frame);
-    const Image indirect = renderer().read(FrameImage::Indirect);
+    const Image frame = renderer().read(renderer::FrameImage::Frame);
+    const Image indirect = renderer().read(renderer::FrameImage::Indirect);
     for (std::size_t i = 0; i < frame.rgba.size(); i += 4) {
         EXPECT_FLOAT_EQ(frame.rgba[i], indirect.rgba[i]);
     }

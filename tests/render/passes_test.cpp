@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "luxel/ecs/transform.hpp"
-#include "luxel/lighting/gpu/frame_renderer.hpp"
+#include "luxel/renderer/frame_renderer.hpp"
 #include "luxel/runtime/gl_objects.hpp"
 #include "luxel/runtime/image.hpp"
 #include "render_scenes.hpp"
@@ -22,13 +22,13 @@ using namespace luxel::lighting;
 
 constexpr int kSize = 64;
 
-FrameCamera camera() {
-    return FrameCamera::look_at({0.5f, 3.5f, 2.5f}, glm::vec3(0.0f), {0.0f, 1.0f, 0.0f}, 1.0f,
-                                1.0f);
+renderer::FrameCamera camera() {
+    return renderer::FrameCamera::look_at({0.5f, 3.5f, 2.5f}, glm::vec3(0.0f), {0.0f, 1.0f, 0.0f},
+                                          1.0f, 1.0f);
 }
 
-FrameSettings settings() {
-    FrameSettings s;
+renderer::FrameSettings settings() {
+    renderer::FrameSettings s;
     s.width = kSize;
     s.height = kSize;
     s.wait_for_timings = true;
@@ -56,29 +56,30 @@ TEST_F(Passes, NoLightsNoShadowMaps) {
         test::single_mesh_scene(test::horizontal_square(glm::vec3(0.0f), 2.0f), glm::vec3(0.5f)));
     world.start();
     world.update();
-    FrameRenderer renderer(world.registry, *world.lighting, settings());
-    const FrameTimings& timings = renderer.render(camera(), world.time);
+    renderer::FrameRenderer renderer(world.registry, *world.lighting, settings());
+    const renderer::FrameTimings& timings = renderer.render(camera(), world.time);
     EXPECT_FALSE(world.lighting->plan().shadows());
     EXPECT_EQ(renderer.shadow_map_count(), 0u);
     EXPECT_EQ(renderer.counters().shadow_maps, 0u);
-    EXPECT_EQ(timings[RenderPass::Shadows], 0.0) << "the shadow pass must not run";
-    EXPECT_EQ(timings[RenderPass::Direct], 0.0) << "the direct pass must not run";
-    EXPECT_GT(timings[RenderPass::GBuffer], 0.0) << "timer queries measure the passes that run";
-    EXPECT_EQ(sum(renderer.read(FrameImage::Direct)), 0.0);
+    EXPECT_EQ(timings[renderer::RenderPass::Shadows], 0.0) << "the shadow pass must not run";
+    EXPECT_EQ(timings[renderer::RenderPass::Direct], 0.0) << "the direct pass must not run";
+    EXPECT_GT(timings[renderer::RenderPass::GBuffer], 0.0)
+        << "timer queries measure the passes that run";
+    EXPECT_EQ(sum(renderer.read(renderer::FrameImage::Direct)), 0.0);
 
     // A light: one map, and light on the plane.
     const ecs::Entity light = world.add_point_light({0.0f, 1.5f, 0.0f}, glm::vec3(20.0f));
     world.update();
     renderer.render(camera(), world.time);
     EXPECT_EQ(renderer.shadow_map_count(), 1u);
-    EXPECT_GT(sum(renderer.read(FrameImage::Direct)), 0.0);
+    EXPECT_GT(sum(renderer.read(renderer::FrameImage::Direct)), 0.0);
 
     // Switched off: its map is freed and the plane is dark again.
     world.registry.patch<PointLight>(light, [](PointLight& l) { l.enabled = false; });
     world.update();
     renderer.render(camera(), world.time);
     EXPECT_EQ(renderer.shadow_map_count(), 0u);
-    EXPECT_EQ(sum(renderer.read(FrameImage::Frame)), 0.0);
+    EXPECT_EQ(sum(renderer.read(renderer::FrameImage::Frame)), 0.0);
 }
 
 TEST_F(Passes, TogglesRemoveExactlyTheirTerm) {
@@ -98,14 +99,14 @@ TEST_F(Passes, TogglesRemoveExactlyTheirTerm) {
     for (int i = 0; i < 30; ++i) {
         world.update();
     }
-    FrameRenderer renderer(world.registry, *world.lighting, settings());
+    renderer::FrameRenderer renderer(world.registry, *world.lighting, settings());
     // From the side, between floor and ceiling.
-    const FrameCamera side = FrameCamera::look_at({3.5f, 1.0f, 0.5f}, {0.0f, 0.8f, 0.0f},
-                                                  {0.0f, 1.0f, 0.0f}, 1.2f, 1.0f);
+    const renderer::FrameCamera side = renderer::FrameCamera::look_at(
+        {3.5f, 1.0f, 0.5f}, {0.0f, 0.8f, 0.0f}, {0.0f, 1.0f, 0.0f}, 1.2f, 1.0f);
     renderer.render(side, world.time + 100.0);
-    const Image direct = renderer.read(FrameImage::Direct);
-    const Image indirect = renderer.read(FrameImage::Indirect);
-    const Image all = renderer.read(FrameImage::Frame);
+    const Image direct = renderer.read(renderer::FrameImage::Direct);
+    const Image indirect = renderer.read(renderer::FrameImage::Indirect);
+    const Image all = renderer.read(renderer::FrameImage::Frame);
     ASSERT_GT(sum(direct), 0.0);
     ASSERT_GT(sum(indirect), 0.0) << "the IIM should hold light after 30 updates";
     for (std::size_t i = 0; i < all.rgba.size(); i += 4) {
@@ -114,10 +115,10 @@ TEST_F(Passes, TogglesRemoveExactlyTheirTerm) {
 
     renderer.set_terms({.direct = false});
     renderer.render(side, world.time + 100.0);
-    const Image without_direct = renderer.read(FrameImage::Frame);
+    const Image without_direct = renderer.read(renderer::FrameImage::Frame);
     renderer.set_terms({.indirect = false});
     renderer.render(side, world.time + 100.0);
-    const Image without_indirect = renderer.read(FrameImage::Frame);
+    const Image without_indirect = renderer.read(renderer::FrameImage::Frame);
     for (std::size_t i = 0; i < all.rgba.size(); ++i) {
         if (i % 4 == 3) {
             continue;
@@ -143,15 +144,15 @@ TEST_F(Passes, CausticInputIsIrradianceTimesAlbedoOverPi) {
                                            glm::vec3(0.8f, 0.4f, 0.2f)));
     world.start();
     world.update();
-    FrameRenderer renderer(world.registry, *world.lighting, settings());
+    renderer::FrameRenderer renderer(world.registry, *world.lighting, settings());
     // A uniform caustic irradiance of 2 W/m^2 over the whole screen.
     gl::Texture caustics = gl::Texture::create_2d(GL_RGBA32F, kSize, kSize);
     std::vector<glm::vec4> values(static_cast<std::size_t>(kSize * kSize), glm::vec4(2.0f));
     glTextureSubImage2D(caustics.id(), 0, 0, 0, kSize, kSize, GL_RGBA, GL_FLOAT, values.data());
     renderer.set_caustics({caustics.id(), true});
     renderer.render(camera(), world.time);
-    const Image frame = renderer.read(FrameImage::Frame);
-    const Image albedo = renderer.read(FrameImage::Albedo);
+    const Image frame = renderer.read(renderer::FrameImage::Frame);
+    const Image albedo = renderer.read(renderer::FrameImage::Albedo);
     int covered = 0;
     for (int y = 0; y < kSize; ++y) {
         for (int x = 0; x < kSize; ++x) {
@@ -169,11 +170,11 @@ TEST_F(Passes, CausticInputIsIrradianceTimesAlbedoOverPi) {
     EXPECT_GT(covered, kSize * kSize / 2);
     renderer.set_terms({.caustics = false});
     renderer.render(camera(), world.time);
-    EXPECT_EQ(sum(renderer.read(FrameImage::Frame)), 0.0);
+    EXPECT_EQ(sum(renderer.read(renderer::FrameImage::Frame)), 0.0);
     renderer.set_terms({});
     renderer.set_caustics({});
     renderer.render(camera(), world.time);
-    EXPECT_EQ(sum(renderer.read(FrameImage::Frame)), 0.0);
+    EXPECT_EQ(sum(renderer.read(renderer::FrameImage::Frame)), 0.0);
 }
 
 TEST_F(Passes, ACausticStageIsCompositedIntoTheFrameItWasDrawnFor) {
@@ -182,13 +183,13 @@ TEST_F(Passes, ACausticStageIsCompositedIntoTheFrameItWasDrawnFor) {
                                            glm::vec3(0.8f, 0.4f, 0.2f)));
     world.start();
     world.update();
-    FrameRenderer renderer(world.registry, *world.lighting, settings());
+    renderer::FrameRenderer renderer(world.registry, *world.lighting, settings());
     // Frame n's stage fills the caustic irradiance with n W/m^2; it must see frame n's depth
     // (the square drawn in the middle of the screen) and show up in frame n itself.
     gl::Texture caustics = gl::Texture::create_2d(GL_RGBA32F, kSize, kSize);
     int calls = 0;
     float centre_depth = -1.0f;
-    renderer.set_caustic_stage([&](const FrameCamera&, GLuint depth) {
+    renderer.set_caustic_stage([&](const renderer::FrameCamera&, GLuint depth) {
         ++calls;
         EXPECT_EQ(depth, renderer.depth_texture());
         glGetTextureSubImage(depth, 0, kSize / 2, kSize / 2, 0, 1, 1, 1, GL_DEPTH_COMPONENT,
@@ -196,14 +197,14 @@ TEST_F(Passes, ACausticStageIsCompositedIntoTheFrameItWasDrawnFor) {
         const std::vector<glm::vec4> values(static_cast<std::size_t>(kSize * kSize),
                                             glm::vec4(static_cast<float>(calls)));
         glTextureSubImage2D(caustics.id(), 0, 0, 0, kSize, kSize, GL_RGBA, GL_FLOAT, values.data());
-        return CausticInput{caustics.id(), true};
+        return renderer::CausticInput{caustics.id(), true};
     });
     for (int frame = 1; frame <= 3; ++frame) {
         renderer.render(camera(), world.time);
         EXPECT_EQ(calls, frame) << "one call per frame";
         EXPECT_GT(centre_depth, 0.0f);
         EXPECT_LT(centre_depth, 1.0f) << "the stage sees this frame's geometry";
-        const Image image = renderer.read(FrameImage::Frame);
+        const Image image = renderer.read(renderer::FrameImage::Frame);
         const float expected = 0.8f * static_cast<float>(frame) / 3.14159265f;
         EXPECT_NEAR(image.pixel(kSize / 2, kSize / 2).r, expected, 2e-3f * expected)
             << "frame " << frame << " shows its own caustics";
@@ -217,7 +218,7 @@ TEST_F(Passes, ACausticStageIsCompositedIntoTheFrameItWasDrawnFor) {
     renderer.set_caustics({});
     renderer.render(camera(), world.time);
     EXPECT_EQ(calls, 3);
-    EXPECT_EQ(sum(renderer.read(FrameImage::Frame)), 0.0);
+    EXPECT_EQ(sum(renderer.read(renderer::FrameImage::Frame)), 0.0);
 }
 
 TEST_F(Passes, OfTwoFacesBackToBackTheOneFacingTheCameraIsDrawn) {
@@ -232,12 +233,13 @@ TEST_F(Passes, OfTwoFacesBackToBackTheOneFacingTheCameraIsDrawn) {
                                            glm::vec3(0.1f, 0.1f, 0.8f)));
     world.start();
     world.update();
-    FrameRenderer renderer(world.registry, *world.lighting, settings());
+    renderer::FrameRenderer renderer(world.registry, *world.lighting, settings());
     for (const bool above : {true, false}) {
         const glm::vec3 eye = above ? glm::vec3(0.5f, 3.5f, 2.5f) : glm::vec3(0.5f, -3.5f, 2.5f);
-        renderer.render(FrameCamera::look_at(eye, glm::vec3(0.0f), {0.0f, 1.0f, 0.0f}, 1.0f, 1.0f),
-                        world.time);
-        const Image albedo = renderer.read(FrameImage::Albedo);
+        renderer.render(
+            renderer::FrameCamera::look_at(eye, glm::vec3(0.0f), {0.0f, 1.0f, 0.0f}, 1.0f, 1.0f),
+            world.time);
+        const Image albedo = renderer.read(renderer::FrameImage::Albedo);
         int covered = 0;
         int wrong = 0;
         for (int y = 0; y < kSize; ++y) {

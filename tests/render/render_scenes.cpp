@@ -95,7 +95,7 @@ lighting::LightingConfig small_lighting_config() {
 ecs::Entity RenderWorld::add_mesh(std::shared_ptr<const scene::Scene> scene,
                                   const glm::vec3& position) {
     const ecs::Entity entity = registry.create();
-    registry.emplace<lighting::MeshInstance>(entity, std::move(scene), 0);
+    registry.emplace<scene::MeshInstance>(entity, std::move(scene), 0);
     registry.emplace<ecs::Transform>(entity, position);
     return entity;
 }

@@ -16,10 +16,10 @@
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/components.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
 #include "luxel/runtime/gl.hpp"
 #include "luxel/runtime/gl_context.hpp"
 #include "luxel/runtime/jobs.hpp"
+#include "luxel/world/scene_instance.hpp"
 
 namespace luxel::test {
 

@@ -18,9 +18,9 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "luxel/ecs/transform.hpp"
-#include "luxel/lighting/gpu/frame_renderer.hpp"
 #include "luxel/prep/prep.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/renderer/frame_renderer.hpp"
+#include "luxel/scene/gltf.hpp"
 #include "render_scenes.hpp"
 
 namespace {
@@ -172,20 +172,20 @@ TEST_F(Textures, PrepAndGlbRoundTripKeepTheImageAndTexcoords) {
 
 TEST_F(Textures, AlbedoAndDirectImagesShowTheChecker) {
     test::RenderWorld world;
-    instantiate(world.registry, prepared(floor_scene(true, false)));
+    world::instantiate(world.registry, prepared(floor_scene(true, false)));
     world.add_point_light(kLight, kPower);
     world.start();
     world.update();
 
-    FrameSettings settings;
+    renderer::FrameSettings settings;
     settings.width = kSize;
     settings.height = kSize;
-    FrameRenderer renderer(world.registry, *world.lighting, settings);
-    const FrameCamera camera =
-        FrameCamera::look_at({0.0f, 2.5f, 0.0f}, glm::vec3(0.0f), {0.0f, 0.0f, -1.0f}, 1.0f, 1.0f);
+    renderer::FrameRenderer renderer(world.registry, *world.lighting, settings);
+    const renderer::FrameCamera camera = renderer::FrameCamera::look_at(
+        {0.0f, 2.5f, 0.0f}, glm::vec3(0.0f), {0.0f, 0.0f, -1.0f}, 1.0f, 1.0f);
     renderer.render(camera, world.time);
-    const Image albedo = renderer.read(FrameImage::Albedo);
-    const Image direct = renderer.read(FrameImage::Direct);
+    const Image albedo = renderer.read(renderer::FrameImage::Albedo);
+    const Image direct = renderer.read(renderer::FrameImage::Direct);
     const auto positions = test::read_texture(renderer.position_texture(), kSize, kSize);
     EXPECT_EQ(renderer.counters().frames, 1u);
 
@@ -256,7 +256,7 @@ struct BounceResult {
 BounceResult bounce(bool textured) {
     test::RenderWorld world;
     const auto loaded = prepared(floor_scene(textured, true));
-    const SceneInstance instance = instantiate(world.registry, loaded);
+    const world::SceneInstance instance = world::instantiate(world.registry, loaded);
     ecs::Entity floor_entity;
     for (std::size_t n = 0; n < loaded->nodes.size(); ++n) {
         if (loaded->nodes[n].name == "floor") {

@@ -6,7 +6,7 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "luxel/runtime/scene/animation.hpp"
+#include "luxel/scene/animation.hpp"
 
 namespace {
 

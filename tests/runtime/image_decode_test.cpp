@@ -1,4 +1,4 @@
-// Decoding scene images (runtime/scene/image_decode): PNGs and JPEGs written here with
+// Decoding scene images (scene/image_decode): PNGs and JPEGs written here with
 // stb_image_write come back as their pixels; empty, foreign, truncated and oversized data give
 // a luxel::Error naming the image; the mean linear colour matches the sRGB curve.
 
@@ -12,7 +12,7 @@
 #include <stb_image_write.h>
 
 #include "luxel/runtime/error.hpp"
-#include "luxel/runtime/scene/image_decode.hpp"
+#include "luxel/scene/image_decode.hpp"
 
 namespace {
 

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "luxel/runtime/scene/texel_coverage.hpp"
+#include "luxel/scene/texel_coverage.hpp"
 
 namespace {
 

@@ -19,8 +19,8 @@
 
 #include <glm/gtc/constants.hpp>
 
-#include "luxel/lighting/core/reference/error_metrics.hpp"
-#include "luxel/lighting/core/reference/reference_integrator.hpp"
+#include "luxel/lighting/reference/error_metrics.hpp"
+#include "luxel/lighting/reference/reference_integrator.hpp"
 #include "stability_support.hpp"
 
 namespace {
@@ -117,7 +117,7 @@ TEST(ErrorDrift, CornellIndirectErrorDoesNotGrowOverALongRun) {
     luxel::testing::LitLevel level(luxel::testing::load_prepared("cornell"),
                                    luxel::testing::stability_config(77, 40), true, clock);
     int playing = 0;
-    for (auto [entity, player] : level.registry.view<lighting::AnimationPlayer>()) {
+    for (auto [entity, player] : level.registry.view<world::AnimationPlayer>()) {
         const auto& animation =
             player.source->animations.at(static_cast<std::size_t>(player.animation));
         player.playing = animation.name == "cube slide";

@@ -15,8 +15,8 @@
 #include <gtest/gtest.h>
 
 #include "luxel/ecs/transform.hpp"
-#include "luxel/lighting/gpu/frame_renderer.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/renderer/frame_renderer.hpp"
+#include "luxel/scene/gltf.hpp"
 #include "render_scenes.hpp"
 
 namespace {
@@ -47,36 +47,37 @@ Frames render_level(const std::string& level, float scale) {
     for (auto& material : source->materials) {
         material.emissive_strength *= scale;
     }
-    instantiate(world.registry, source);
+    world::instantiate(world.registry, source);
     world.start();
     // Unlimited budget until converged: every map is complete, whatever the power.
     for (int i = 0; i < 50 && !world.lighting->plan().census().converged; ++i) {
         world.update(1e9);
     }
     EXPECT_TRUE(world.lighting->plan().census().converged) << level << " x " << scale;
-    FrameSettings settings;
+    renderer::FrameSettings settings;
     settings.width = kWidth;
     settings.height = kHeight;
     settings.cube_shadow_size = 128;
     settings.map_shadow_size = 256;
     settings.specular_cube_size = 32;
     settings.specular_faces_per_frame = 6;
-    FrameRenderer renderer(world.registry, *world.lighting, settings);
+    renderer::FrameRenderer renderer(world.registry, *world.lighting, settings);
     const float aspect = static_cast<float>(kWidth) / static_cast<float>(kHeight);
-    FrameCamera camera = FrameCamera::look_at({0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -1.0f},
-                                              {0.0f, 1.0f, 0.0f}, 0.9f, aspect);
-    for (auto [entity, c] : world.registry.view<CameraComponent>()) {
+    renderer::FrameCamera camera = renderer::FrameCamera::look_at(
+        {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -1.0f}, {0.0f, 1.0f, 0.0f}, 0.9f, aspect);
+    for (auto [entity, c] : world.registry.view<scene::CameraComponent>()) {
         const auto* placed = world.registry.try_get<ecs::WorldTransform>(entity);
-        camera =
-            FrameCamera::from_scene(c.camera, placed ? placed->matrix : glm::mat4(1.0f), aspect);
+        camera = renderer::FrameCamera::from_scene(
+            c.camera, placed ? placed->matrix : glm::mat4(1.0f), aspect);
     }
     // Three frames, the last long after every IIM fade (0.5 s) and with every probe face drawn.
     for (int f = 1; f <= 3; ++f) {
         renderer.render(camera, world.time + 10.0 * f);
     }
-    return {renderer.read(FrameImage::Frame), renderer.read(FrameImage::Direct),
-            renderer.read(FrameImage::Indirect), renderer.read(FrameImage::Specular),
-            renderer.read(FrameImage::Albedo)};
+    return {renderer.read(renderer::FrameImage::Frame), renderer.read(renderer::FrameImage::Direct),
+            renderer.read(renderer::FrameImage::Indirect),
+            renderer.read(renderer::FrameImage::Specular),
+            renderer.read(renderer::FrameImage::Albedo)};
 }
 
 /// Counts values that are NaN, infinite or negative (rgb and alpha).
@@ -167,9 +168,9 @@ TEST_F(ExtremePowerFrames, CornellTermsAreFiniteAndScaleLinearlyOffSpecularPixel
 }
 
 // The same requirement where half-float targets used to sit in the path: the specular term
-// of the Cornell box's glass sphere (probe cube maps, lighting/gpu/src/specular_probes.cpp) and
+// of the Cornell box's glass sphere (probe cube maps, renderer/src/specular_probes.cpp) and
 // the furnace's emission seen directly (the G-buffer's emission target,
-// lighting/gpu/src/frame_targets.cpp). Both were RGBA16F, and this test found the sphere 0.91
+// renderer/src/frame_targets.cpp). Both were RGBA16F, and this test found the sphere 0.91
 // darker than linear at x 1e6 (radiance saturated at 65,504) and black at x 1e-6 (below
 // half-float's smallest subnormal); both are RGBA32F now.
 TEST_F(ExtremePowerFrames, SpecularAndEmissionScaleLinearly) {

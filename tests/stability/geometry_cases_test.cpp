@@ -33,7 +33,7 @@ TEST(Geometry, ALightInsideAClosedBoxLeaksNothing) {
     LitLevel level(luxel::testing::load_prepared("cornell"), stability_config(77, 40));
     switch_off_level_lights(level.registry);
     const ecs::Entity box = level.registry.create();
-    level.registry.emplace<lighting::MeshInstance>(box, closed_cube(), 0);
+    level.registry.emplace<scene::MeshInstance>(box, closed_cube(), 0);
     level.registry.emplace<ecs::Transform>(box, glm::vec3(0.0f, 1.0f, 0.0f));
     const ecs::Entity lamp = level.registry.create();
     level.registry.emplace<lighting::PointLight>(lamp, glm::vec3(100.0f), 0.0f, true);
@@ -118,7 +118,7 @@ TEST(Geometry, CoplanarOverlappingFacesStayFinite) {
     overlay->meshes.push_back({"overlay", {quad}});
     LitLevel level(luxel::testing::load_prepared("cornell"), stability_config(77, 40));
     const ecs::Entity entity = level.registry.create();
-    level.registry.emplace<lighting::MeshInstance>(entity, overlay, 0);
+    level.registry.emplace<scene::MeshInstance>(entity, overlay, 0);
     level.registry.emplace<ecs::Transform>(entity);
     ASSERT_LE(level.converge(100), 100) << level.pending();
     double lit = 0.0;

@@ -12,11 +12,11 @@
 #include <gtest/gtest.h>
 
 #include "luxel/ecs/transform_system.hpp"
-#include "luxel/lighting/core/animation_system.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
 #include "luxel/runtime/clock.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/animation_system.hpp"
+#include "luxel/world/scene_instance.hpp"
 
 namespace luxel::testing {
 
@@ -28,7 +28,7 @@ inline scene::Scene load_prepared(const std::string& name) {
 /// A level in a registry with its LightingSystem.
 struct LitLevel {
     ecs::Registry registry;
-    lighting::SceneInstance instance;
+    world::SceneInstance instance;
     ecs::TransformSystem transforms{registry};
     JobSystem jobs{2};
     std::unique_ptr<lighting::LightingSystem> lighting;
@@ -39,18 +39,18 @@ struct LitLevel {
     /// machine's load).
     LitLevel(scene::Scene scene, lighting::LightingConfig config, bool animate = false,
              const Clock& clock = SteadyClock::instance()) {
-        lighting::InstantiateOptions options;
+        world::InstantiateOptions options;
         options.play_animations = animate;
-        instance = lighting::instantiate(registry, std::make_shared<scene::Scene>(std::move(scene)),
-                                         options);
+        instance =
+            world::instantiate(registry, std::make_shared<scene::Scene>(std::move(scene)), options);
         transforms.update();
         lighting = std::make_unique<lighting::LightingSystem>(registry, jobs, config, clock);
     }
 
     const lighting::LightingStats& frame(double budget_ms, double dt = 1.0 / 30.0) {
         time += dt;
-        lighting::update_animations(registry, dt);
-        lighting::update_light_switches(registry, dt);
+        world::update_animations(registry, dt);
+        world::update_light_switches(registry, dt);
         transforms.update();
         return lighting->update(budget_ms, time);
     }

@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "luxel/runtime/scene/scene.hpp"
+#include "luxel/scene/scene.hpp"
 
 namespace luxel::testing {
 

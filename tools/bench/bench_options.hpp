@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
 
 namespace luxel::bench {
 

@@ -14,15 +14,15 @@
 #include "luxel/ecs/transform.hpp"
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/components.hpp"
-#include "luxel/lighting/core/animation_system.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
-#include "luxel/lighting/core/reference/error_metrics.hpp"
-#include "luxel/lighting/core/reference/reference_scene.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
 #include "luxel/lighting/gpu/hemi_plane_gatherer.hpp"
+#include "luxel/lighting/reference/error_metrics.hpp"
+#include "luxel/lighting/reference/reference_scene.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/animation_system.hpp"
+#include "luxel/world/scene_instance.hpp"
 #include "map_error.hpp"
 #include "reference_cache.hpp"
 
@@ -164,13 +164,13 @@ RunResult Bench::run(const BenchConfig& config) {
     RunResult result;
     result.config = config;
     ecs::Registry registry;
-    lighting::InstantiateOptions instantiate_options;
+    world::InstantiateOptions instantiate_options;
     instantiate_options.play_animations = true;
     // Posed at --time as luxel-ref poses it, then frozen: only the scripted change moves.
-    const lighting::SceneInstance instance =
-        lighting::instantiate(registry, source_, instantiate_options);
-    lighting::update_animations(registry, options.time);
-    lighting::update_light_switches(registry, options.time);
+    const world::SceneInstance instance =
+        world::instantiate(registry, source_, instantiate_options);
+    world::update_animations(registry, options.time);
+    world::update_light_switches(registry, options.time);
     ecs::TransformSystem transforms(registry);
     transforms.update();
     lighting::LightingSystem lighting(registry, *jobs_, config.lighting());
@@ -356,8 +356,8 @@ RunResult Bench::run(const BenchConfig& config) {
         // instant, cached under its time, judges the light maps.
         const std::string changed = change_ ? describe(*change_) : "none";
         for (std::uint32_t f = 1; f <= options.animate; ++f) {
-            lighting::update_animations(registry, options.dt);
-            lighting::update_light_switches(registry, options.dt);
+            world::update_animations(registry, options.dt);
+            world::update_light_switches(registry, options.dt);
             frame(config.budget_ms);
             if (f % options.checkpoint != 0 && f != options.animate) {
                 continue;

@@ -15,8 +15,8 @@
 #include "bench_options.hpp"
 #include "luxel/runtime/gl_context.hpp"
 #include "luxel/runtime/jobs.hpp"
-#include "luxel/runtime/scene/scene.hpp"
 #include "luxel/runtime/shader_library.hpp"
+#include "luxel/scene/scene.hpp"
 
 namespace luxel::bench {
 

@@ -7,9 +7,9 @@
 namespace luxel::bench {
 namespace {
 
-lighting::FrameSettings frame_settings(const lighting::reference::ReferenceCamera& camera,
+renderer::FrameSettings frame_settings(const lighting::reference::ReferenceCamera& camera,
                                        lighting::CausticKernel kernel) {
-    lighting::FrameSettings settings;
+    renderer::FrameSettings settings;
     settings.caustics = lighting::CausticPassSettings{};
     settings.caustics->kernel = kernel;
     settings.width = camera.width;
@@ -60,14 +60,14 @@ lighting::CausticKernel parse_kernel(const std::string& name) {
     throw Error("kernel '" + name + "': expected larsen, box, cone or world");
 }
 
-lighting::FrameCamera frame_camera(const lighting::reference::ReferenceCamera& camera) {
+renderer::FrameCamera frame_camera(const lighting::reference::ReferenceCamera& camera) {
     // A perspective projection has -1 in [2][3] and 0 in [3][3]; an orthographic one 0 and 1.
     if (camera.projection[3][3] != 0.0f || !(camera.projection[1][1] > 0.0f)) {
         throw Error(
             "the level's camera is not a perspective camera, which the caustic pass needs "
             "(--no-image leaves the image error out)");
     }
-    lighting::FrameCamera out;
+    renderer::FrameCamera out;
     out.view = camera.view;
     out.projection = camera.projection;
     out.position = glm::vec3(glm::inverse(camera.view)[3]);
@@ -90,7 +90,7 @@ FrameShot FrameView::render(double now_seconds) {
         const lighting::CausticPassStats& stats = caustics->stats();
         shot.caustic_gpu_ms = stats.splat_ms + stats.filter_ms;
     }
-    shot.image = renderer_.read(lighting::FrameImage::Frame);
+    shot.image = renderer_.read(renderer::FrameImage::Frame);
     return shot;
 }
 

@@ -9,10 +9,10 @@
 
 #include "luxel/ecs/registry.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
-#include "luxel/lighting/core/reference/reference_frame.hpp"
 #include "luxel/lighting/gpu/caustic_pass.hpp"
-#include "luxel/lighting/gpu/frame_camera.hpp"
-#include "luxel/lighting/gpu/frame_renderer.hpp"
+#include "luxel/lighting/reference/reference_frame.hpp"
+#include "luxel/renderer/frame_camera.hpp"
+#include "luxel/renderer/frame_renderer.hpp"
 #include "luxel/runtime/gl_context.hpp"
 #include "luxel/runtime/image.hpp"
 #include "luxel/runtime/shader_library.hpp"
@@ -29,7 +29,7 @@ namespace luxel::bench {
 /// The renderer's camera with exactly the reference camera's view and projection (so both
 /// frames see the same pixels). Throws luxel::Error for an orthographic projection: the caustic
 /// pass needs a perspective one.
-[[nodiscard]] lighting::FrameCamera frame_camera(
+[[nodiscard]] renderer::FrameCamera frame_camera(
     const lighting::reference::ReferenceCamera& camera);
 
 struct FrameShot {
@@ -52,8 +52,8 @@ class FrameView {
     [[nodiscard]] FrameShot render(double now_seconds);
 
   private:
-    lighting::FrameCamera camera_;
-    lighting::FrameRenderer renderer_;
+    renderer::FrameCamera camera_;
+    renderer::FrameRenderer renderer_;
 };
 
 }  // namespace luxel::bench

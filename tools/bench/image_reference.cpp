@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "luxel/lighting/core/reference/reference_integrator.hpp"
+#include "luxel/lighting/reference/reference_integrator.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
 #include "reference_cache.hpp"
@@ -116,7 +116,7 @@ ReferenceImage reference_image_for(const std::filesystem::path& cache_dir, const
     // samples, no indirect photons), and the frame's diffuse surfaces read their estimate.
     const ReferenceSettings settings = reference_settings(spec);
     ReferenceIntegrator integrator(scene, settings);
-    FrameSettings frame_settings;
+    ReferenceFrameSettings frame_settings;
     frame_settings.seed = spec.seed;
     frame_settings.paths = settings.paths;
     ReferenceFrame frame(scene, camera, frame_settings);

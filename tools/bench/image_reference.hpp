@@ -8,8 +8,8 @@
 #include <string>
 
 #include "bench_options.hpp"
-#include "luxel/lighting/core/reference/reference_frame.hpp"
-#include "luxel/lighting/core/reference/reference_scene.hpp"
+#include "luxel/lighting/reference/reference_frame.hpp"
+#include "luxel/lighting/reference/reference_scene.hpp"
 #include "luxel/runtime/image.hpp"
 #include "luxel/runtime/jobs.hpp"
 

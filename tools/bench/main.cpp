@@ -22,6 +22,7 @@
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/tool_main.hpp"
+#include "luxel/scene/load_limits_flag.hpp"
 #include "report.hpp"
 
 namespace {

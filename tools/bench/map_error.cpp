@@ -5,7 +5,7 @@
 #include <glm/gtc/constants.hpp>
 #include <nlohmann/json.hpp>
 
-#include "luxel/lighting/core/reference/error_metrics.hpp"
+#include "luxel/lighting/reference/error_metrics.hpp"
 #include "luxel/runtime/error.hpp"
 
 namespace luxel::bench {

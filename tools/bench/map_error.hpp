@@ -10,7 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "luxel/lighting/core/lighting_system.hpp"
-#include "luxel/lighting/core/reference/reference_scene.hpp"
+#include "luxel/lighting/reference/reference_scene.hpp"
 #include "reference_cache.hpp"
 
 namespace luxel::bench {

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "luxel/lighting/core/reference/reference_integrator.hpp"
+#include "luxel/lighting/reference/reference_integrator.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
 

@@ -11,8 +11,8 @@
 #include <glm/glm.hpp>
 
 #include "bench_options.hpp"
-#include "luxel/lighting/core/reference/reference_integrator.hpp"
-#include "luxel/lighting/core/reference/reference_scene.hpp"
+#include "luxel/lighting/reference/reference_integrator.hpp"
+#include "luxel/lighting/reference/reference_scene.hpp"
 #include "luxel/runtime/jobs.hpp"
 
 namespace luxel::bench {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "luxel/runtime/scene/scene.hpp"
+#include "luxel/scene/scene.hpp"
 
 namespace luxel::levels {
 

@@ -15,8 +15,8 @@
 #include "levels.hpp"
 #include "luxel/runtime/cli.hpp"
 #include "luxel/runtime/error.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
 #include "luxel/runtime/tool_main.hpp"
+#include "luxel/scene/gltf.hpp"
 
 namespace {
 

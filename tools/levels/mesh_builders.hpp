@@ -4,7 +4,7 @@
 
 #include <glm/glm.hpp>
 
-#include "luxel/runtime/scene/scene.hpp"
+#include "luxel/scene/scene.hpp"
 
 /// Procedural meshes for the built-in levels. Every builder produces one indexed primitive with
 /// positions, unit normals and TEXCOORD_0, in metres, with triangles wound counter-clockwise

@@ -22,8 +22,9 @@
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/jobs.hpp"
 #include "luxel/runtime/pending_file.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
 #include "luxel/runtime/tool_main.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/scene/load_limits_flag.hpp"
 
 namespace {
 

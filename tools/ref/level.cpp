@@ -8,9 +8,9 @@
 #include "luxel/ecs/transform.hpp"
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/components.hpp"
-#include "luxel/lighting/core/animation_system.hpp"
 #include "luxel/runtime/error.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/animation_system.hpp"
 
 namespace luxel::ref {
 
@@ -48,12 +48,12 @@ std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file, doubl
     // load_gltf's errors already start with the file's path.
     const std::shared_ptr<const scene::Scene> source =
         std::make_shared<scene::Scene>(scene::load_gltf(file, limits));
-    lighting::InstantiateOptions options;
+    world::InstantiateOptions options;
     options.play_animations = true;
-    level->instance = lighting::instantiate(level->registry, source, options);
+    level->instance = world::instantiate(level->registry, source, options);
     // Every animation and light switch at `time` (a zero step still poses time 0).
-    lighting::update_animations(level->registry, time);
-    lighting::update_light_switches(level->registry, time);
+    world::update_animations(level->registry, time);
+    world::update_light_switches(level->registry, time);
     ecs::TransformSystem transforms(level->registry);
     transforms.update();
     lighting::PhotonWorldSettings settings;
@@ -73,9 +73,9 @@ std::optional<lighting::reference::ReferenceCamera> level_camera(const LoadedLev
 }
 
 std::optional<lighting::reference::ReferenceCamera> level_camera(
-    const ecs::Registry& registry, const lighting::SceneInstance& instance, int width, int height) {
+    const ecs::Registry& registry, const world::SceneInstance& instance, int width, int height) {
     for (ecs::Entity entity : instance.nodes) {
-        const auto* camera = registry.try_get<lighting::CameraComponent>(entity);
+        const auto* camera = registry.try_get<scene::CameraComponent>(entity);
         const auto* world = registry.try_get<ecs::WorldTransform>(entity);
         if (camera == nullptr || world == nullptr) {
             continue;

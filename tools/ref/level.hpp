@@ -9,12 +9,12 @@
 #include <string>
 
 #include "luxel/ecs/registry.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
 #include "luxel/lighting/core/illumination_maps.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
-#include "luxel/lighting/core/reference/reference_frame.hpp"
-#include "luxel/lighting/core/reference/reference_scene.hpp"
-#include "luxel/lighting/core/scene_instance.hpp"
+#include "luxel/lighting/reference/reference_frame.hpp"
+#include "luxel/lighting/reference/reference_scene.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/scene_instance.hpp"
 
 namespace luxel::ref {
 
@@ -25,7 +25,7 @@ namespace luxel::ref {
 
 struct LoadedLevel {
     ecs::Registry registry;
-    lighting::SceneInstance instance;
+    world::SceneInstance instance;
     std::unique_ptr<lighting::PhotonWorld> world;
     std::unique_ptr<lighting::IlluminationMaps> maps;
     std::unique_ptr<lighting::reference::ReferenceScene> scene;
@@ -43,6 +43,6 @@ struct LoadedLevel {
 /// The same for any posed instance of a level (luxel-bench renders the real-time frame and
 /// the reference frame from this one camera).
 [[nodiscard]] std::optional<lighting::reference::ReferenceCamera> level_camera(
-    const ecs::Registry& registry, const lighting::SceneInstance& instance, int width, int height);
+    const ecs::Registry& registry, const world::SceneInstance& instance, int width, int height);
 
 }  // namespace luxel::ref

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "luxel/lighting/core/reference/reference_integrator.hpp"
+#include "luxel/lighting/reference/reference_integrator.hpp"
 
 namespace luxel::ref {
 

@@ -17,14 +17,15 @@
 
 #include "level.hpp"
 #include "lightmap_output.hpp"
-#include "luxel/lighting/core/reference/reference_frame.hpp"
-#include "luxel/lighting/core/reference/reference_integrator.hpp"
+#include "luxel/lighting/reference/reference_frame.hpp"
+#include "luxel/lighting/reference/reference_integrator.hpp"
 #include "luxel/runtime/cli.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/image.hpp"
 #include "luxel/runtime/jobs.hpp"
 #include "luxel/runtime/tool_main.hpp"
+#include "luxel/scene/load_limits_flag.hpp"
 #include "options.hpp"
 
 namespace {
@@ -129,7 +130,7 @@ int run(int argc, char** argv) {
     settings.indirect_photons.seed = options.seed;
     settings.indirect_photons.max_vertices = options.max_vertices;
     ReferenceIntegrator integrator(scene, settings);
-    FrameSettings frame_settings;
+    ReferenceFrameSettings frame_settings;
     frame_settings.seed = options.seed;
     frame_settings.paths = settings.paths;
     std::optional<ReferenceFrame> frame;

@@ -11,7 +11,7 @@
 #include "luxel/ecs/hierarchy.hpp"
 #include "luxel/lighting/core/light_source.hpp"
 #include "luxel/lighting/core/ray_scene.hpp"
-#include "luxel/runtime/scene/image_decode.hpp"
+#include "luxel/scene/image_decode.hpp"
 
 namespace luxel::lighting {
 namespace {
@@ -85,7 +85,7 @@ void IlluminationMaps::add_surface(std::uint32_t surface) {
     const SurfaceInfo& info = world_.surfaces()[surface];
     MapSurface mapped;
     mapped.entity = info.entity;
-    const auto* instance = registry_.try_get<MeshInstance>(info.entity);
+    const auto* instance = registry_.try_get<scene::MeshInstance>(info.entity);
     const auto* layout = registry_.try_get<LightmappedSurface>(info.entity);
     std::int32_t page = -1;
     if (instance != nullptr && layout != nullptr && info.layout_id >= 0 && info.primitive >= 0) {

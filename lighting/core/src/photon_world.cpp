@@ -6,7 +6,7 @@
 #include "luxel/ecs/hierarchy.hpp"
 #include "luxel/ecs/transform.hpp"
 #include "luxel/runtime/log.hpp"
-#include "luxel/runtime/scene/image_decode.hpp"
+#include "luxel/scene/image_decode.hpp"
 
 namespace luxel::lighting {
 
@@ -91,7 +91,7 @@ PhotonWorld::PhotonWorld(ecs::Registry& registry, PhotonWorldSettings settings)
     : registry_(registry),
       settings_(settings),
       map_(std::make_unique<PhotonMap>(0, 0)),
-      mesh_changes_(registry.observe<MeshInstance>(ecs::ObserverStart::WithExisting)),
+      mesh_changes_(registry.observe<scene::MeshInstance>(ecs::ObserverStart::WithExisting)),
       moves_(registry.observe<ecs::WorldTransform>()),
       point_changes_(registry.observe<PointLight>(ecs::ObserverStart::WithExisting)),
       spot_changes_(registry.observe<SpotLight>(ecs::ObserverStart::WithExisting)),
@@ -136,9 +136,9 @@ void PhotonWorld::forget_generator_materials(ecs::Entity entity) {
 }
 
 void PhotonWorld::add_mesh(ecs::Entity entity) {
-    const MeshInstance& instance = registry_.get<MeshInstance>(entity);
+    const scene::MeshInstance& instance = registry_.get<scene::MeshInstance>(entity);
     const scene::Mesh& mesh = instance.geometry();
-    const bool dynamic = registry_.has<Dynamic>(entity);
+    const bool dynamic = registry_.has<scene::Dynamic>(entity);
     const LightmappedSurface* layout = registry_.try_get<LightmappedSurface>(entity);
     const CausticGenerator* generator = registry_.try_get<CausticGenerator>(entity);
 
@@ -246,10 +246,10 @@ void PhotonWorld::refresh_light(ecs::Entity entity) {
         enabled = sun->enabled;
         directional = true;
     } else if (const auto* area = registry_.try_get<AreaLight>(entity);
-               area != nullptr && registry_.has<MeshInstance>(entity)) {
+               area != nullptr && registry_.has<scene::MeshInstance>(entity)) {
         source.kind = LightKind::Area;
         enabled = area->enabled;
-        const MeshInstance& instance = registry_.get<MeshInstance>(entity);
+        const scene::MeshInstance& instance = registry_.get<scene::MeshInstance>(entity);
         for (const auto& primitive : instance.geometry().primitives) {
             if (primitive.material < 0) {
                 continue;
@@ -355,7 +355,8 @@ void PhotonWorld::sync() {
             case ecs::ChangeKind::Destroyed:
                 generators_.erase(entity);
                 forget_generator_materials(entity);
-                if (has_object && registry_.valid(entity) && registry_.has<MeshInstance>(entity)) {
+                if (has_object && registry_.valid(entity) &&
+                    registry_.has<scene::MeshInstance>(entity)) {
                     remove_mesh(entity);
                     add_mesh(entity);
                 }
@@ -418,7 +419,7 @@ void PhotonWorld::sync() {
         const bool is_light =
             registry_.valid(entity) &&
             (registry_.has_any<PointLight, SpotLight, DirectionalLight>(entity) ||
-             (registry_.has<AreaLight>(entity) && registry_.has<MeshInstance>(entity)));
+             (registry_.has<AreaLight>(entity) && registry_.has<scene::MeshInstance>(entity)));
         if (is_light) {
             refresh_light(entity);
         } else {

@@ -6,7 +6,7 @@
 #include <limits>
 #include <numbers>
 
-#include "luxel/runtime/scene/texel_coverage.hpp"
+#include "luxel/scene/texel_coverage.hpp"
 
 namespace luxel::lighting {
 namespace {

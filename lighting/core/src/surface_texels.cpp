@@ -6,7 +6,7 @@
 #include <limits>
 #include <unordered_map>
 
-#include "luxel/runtime/scene/texel_coverage.hpp"
+#include "luxel/scene/texel_coverage.hpp"
 
 namespace luxel::lighting {
 namespace {
@@ -127,7 +127,8 @@ SurfaceTexels rasterize_surface(const scene::Primitive& primitive, int page, int
         texel.y = static_cast<std::int32_t>(key / page_size);
         texel.position = glm::vec3(position);
         texel.normal = glm::vec3(glm::normalize(normal));
-        texel.face_normal = glm::length(face) > 0.0 ? glm::vec3(glm::normalize(face)) : texel.normal;
+        texel.face_normal =
+            glm::length(face) > 0.0 ? glm::vec3(glm::normalize(face)) : texel.normal;
         glm::dvec2 point(0.0);
         for (std::size_t k = 0; k < 3; ++k) {
             point += w[static_cast<glm::length_t>(k)] * glm::dvec2(uvs[corner[k]]) * size;

@@ -11,8 +11,8 @@
 
 #include "caustic_photon_buffer.hpp"
 #include "caustics/caustic_interface.h"
-#include "gl_state_guard.hpp"
 #include "luxel/runtime/error.hpp"
+#include "luxel/runtime/gl_state_guard.hpp"
 #include "luxel/runtime/program.hpp"
 #include "luxel/runtime/shader_library.hpp"
 
@@ -80,7 +80,7 @@ int tiles_for(int pixels) {
     return (pixels + kCausticTileSize - 1) / kCausticTileSize;
 }
 
-/// Restores what GlStateGuard does not cover: the blend function and equation.
+/// Restores what gl::StateGuard does not cover: the blend function and equation.
 class BlendGuard {
   public:
     BlendGuard() {
@@ -266,7 +266,7 @@ struct CausticPass::Impl {
             return;
         }
 
-        const GlStateGuard guard;
+        const gl::StateGuard guard;
         const BlendGuard blend_guard;
         set_uniforms(camera);
 

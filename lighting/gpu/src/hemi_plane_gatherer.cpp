@@ -10,9 +10,9 @@
 
 #include "gather/gather_interface.h"
 #include "gather_geometry.hpp"
-#include "gl_state_guard.hpp"
 #include "luxel/lighting/gpu/hemi_plane_geometry.hpp"
 #include "luxel/runtime/error.hpp"
+#include "luxel/runtime/gl_state_guard.hpp"
 #include "luxel/runtime/program.hpp"
 #include "luxel/runtime/shader_library.hpp"
 #include "radiance_texture.hpp"
@@ -223,7 +223,7 @@ struct HemiPlaneGatherer::Impl {
             valid[i] = v.valid;
         }
 
-        const GlStateGuard guard;
+        const gl::StateGuard guard;
         geometry.sync(*scene);
         const std::uint64_t pages_before = radiance.page_uploads();
         radiance.sync(*atlas);

@@ -1,4 +1,4 @@
-#include "lightmap_textures.hpp"
+#include "luxel/lighting/gpu/lightmap_textures.hpp"
 
 #include <algorithm>
 

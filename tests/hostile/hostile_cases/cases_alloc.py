@@ -1,7 +1,7 @@
 """Classes 3 and 6: small files that ask for large allocations or quadratic work.
 
 The light-map cases forge the surface table luxel-prep writes into extras.luxel.lightmap
-(runtime/include/luxel/runtime/scene/lightmap_layout.hpp): the runtime allocates page_size^2
+(runtime/include/luxel/scene/lightmap_layout.hpp): the runtime allocates page_size^2
 texels per page (IlluminationMaps::page_index) and rasterises TEXCOORD_1 * page_size over the
 triangle's texel bounding box (surface_texels.cpp), so both sizes come straight from the file.
 """

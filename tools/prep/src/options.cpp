@@ -3,7 +3,7 @@
 #include <string>
 
 #include "luxel/runtime/error.hpp"
-#include "luxel/runtime/scene/lightmap_layout.hpp"
+#include "luxel/scene/lightmap_layout.hpp"
 
 namespace luxel::prep {
 

@@ -5,12 +5,14 @@
 
 #include <glm/glm.hpp>
 
-#include "luxel/runtime/scene/lightmap_layout.hpp"
-#include "luxel/runtime/scene/scene.hpp"
+#include "luxel/scene/components.hpp"
+#include "luxel/scene/lightmap_layout.hpp"
+#include "luxel/scene/scene.hpp"
 
-/// The public lighting components: plain data a game attaches to entities, changes and removes
-/// at run time. Lights shine down their entity's -z axis (the glTF convention) and are placed by
-/// its WorldTransform. Units: metres, watts, linear RGB.
+/// The public lighting components (the generic ones every drawn entity has, MeshInstance and
+/// Dynamic among them, are scene/components.hpp's): plain data a game attaches to entities, changes
+/// and removes at run time. Lights shine down their entity's -z axis (the glTF convention) and are
+/// placed by its WorldTransform. Units: metres, watts, linear RGB.
 ///
 /// Change a component through Registry::patch/replace (or mark_updated after writing through a
 /// reference) so the lighting system sees the change in the ECS change lists.
@@ -59,36 +61,6 @@ struct CausticGenerator {
 /// an AIM and an IIM (see scene/lightmap_layout.hpp for the fields).
 struct LightmappedSurface {
     scene::LightmapLayout layout;
-};
-
-/// The geometry an entity draws and traces: one mesh of a loaded scene, which also supplies the
-/// materials. Shared, immutable: many entities may instance the same mesh.
-struct MeshInstance {
-    std::shared_ptr<const scene::Scene> source;
-    int mesh = -1;
-
-    [[nodiscard]] const scene::Mesh& geometry() const {
-        return source->meshes.at(static_cast<std::size_t>(mesh));
-    }
-};
-
-/// Tag: the entity moves (animated, or flagged dynamic). Static geometry goes into one BVH
-/// built once; dynamic entities are instanced so motion only updates a transform.
-struct Dynamic {};
-
-/// A camera from the scene file (looks down its entity's -z).
-struct CameraComponent {
-    scene::Camera camera;
-};
-
-/// A readable name, from the glTF node.
-struct Name {
-    std::string value;
-};
-
-/// Where an entity came from: its node index in the source scene.
-struct SceneNode {
-    int index = -1;
 };
 
 }  // namespace luxel::lighting

@@ -13,7 +13,6 @@
 #include <CLI/CLI.hpp>
 
 #include "luxel/runtime/error.hpp"
-#include "luxel/runtime/scene/gltf.hpp"
 
 namespace luxel::cli {
 
@@ -31,10 +30,6 @@ CLI::Option* add_threads(CLI::App& app, int& threads);
 
 /// --log-level: trace, debug, info, warn, error or off; applied as soon as it is parsed.
 CLI::Option* add_log_level(CLI::App& app);
-
-/// --limit NAME=N (repeatable): raises or lowers one of the loader's limits on what a level
-/// may hold (scene::load_limits(), docs/LEVELS.md).
-CLI::Option* add_load_limits(CLI::App& app, scene::LoadOptions& limits);
 
 /// Runs the checks of flag values that CLI11 cannot make itself (formats, combinations); any
 /// luxel::Error they throw is a mistake on the command line, so it leaves as a UsageError.

@@ -164,7 +164,7 @@ class PhotonWorld {
     bool scene_changed_ = false;
     PhotonSyncStats last_sync_;
 
-    ecs::Observer<MeshInstance> mesh_changes_;
+    ecs::Observer<scene::MeshInstance> mesh_changes_;
     ecs::Observer<ecs::WorldTransform> moves_;
     ecs::Observer<PointLight> point_changes_;
     ecs::Observer<SpotLight> spot_changes_;

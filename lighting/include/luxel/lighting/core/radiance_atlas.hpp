@@ -6,7 +6,7 @@
 
 #include <glm/glm.hpp>
 
-#include "luxel/runtime/scene/lightmap_layout.hpp"
+#include "luxel/scene/lightmap_layout.hpp"
 
 /// Light-map pages of RGB float values: the AIM (radiance leaving each texel) that both gather
 /// backends read, and the IIM pages the renderer samples. Page texel (x, y) covers

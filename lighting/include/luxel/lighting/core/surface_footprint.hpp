@@ -7,7 +7,7 @@
 
 #include "luxel/lighting/core/photon_density.hpp"
 #include "luxel/lighting/core/surface_texels.hpp"
-#include "luxel/runtime/scene/scene.hpp"
+#include "luxel/scene/scene.hpp"
 
 namespace luxel::lighting {
 

@@ -5,12 +5,12 @@
 
 #include <glm/glm.hpp>
 
-#include "luxel/runtime/scene/lightmap_layout.hpp"
-#include "luxel/runtime/scene/scene.hpp"
+#include "luxel/scene/lightmap_layout.hpp"
+#include "luxel/scene/scene.hpp"
 
 /// The texels of one light-mapped surface: which page texels it owns and where their centres
 /// lie on the mesh. Found with the same conservative coverage luxel-prep counts with
-/// (luxel/runtime/scene/texel_coverage.hpp), so every texel the layout promises gets lit.
+/// (luxel/scene/texel_coverage.hpp), so every texel the layout promises gets lit.
 namespace luxel::lighting {
 
 /// One texel: its page coordinates and the point of the surface it stands for, in the mesh's

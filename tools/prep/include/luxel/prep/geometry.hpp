@@ -8,7 +8,7 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <glm/glm.hpp>
 
-#include "luxel/runtime/scene/scene.hpp"
+#include "luxel/scene/scene.hpp"
 
 namespace luxel::prep {
 

@@ -5,7 +5,7 @@
 /// luxel-prep: the offline asset-preparation step. It splits every mesh into surfaces (the unit
 /// that owns a photon map, an AIM and an IIM), gives each surface a light-map parameterization
 /// at a uniform texel size, packs the charts into light-map pages and writes the result back as
-/// glTF with TEXCOORD_1 and the surface table of runtime/scene/lightmap_layout.hpp.
+/// glTF with TEXCOORD_1 and the surface table of scene/lightmap_layout.hpp.
 namespace luxel::prep {
 
 struct PrepOptions {

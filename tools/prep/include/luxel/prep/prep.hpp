@@ -11,8 +11,8 @@
 #include "luxel/prep/raster.hpp"
 #include "luxel/prep/report.hpp"
 #include "luxel/runtime/jobs.hpp"
-#include "luxel/runtime/scene/lightmap_layout.hpp"
-#include "luxel/runtime/scene/scene.hpp"
+#include "luxel/scene/lightmap_layout.hpp"
+#include "luxel/scene/scene.hpp"
 
 namespace luxel::prep {
 

@@ -8,12 +8,12 @@
 
 #include <glm/glm.hpp>
 
-#include "luxel/runtime/scene/texel_coverage.hpp"
+#include "luxel/scene/texel_coverage.hpp"
 
 /// Rasterization in texel units (see texel_coverage.hpp for the convention).
 namespace luxel::prep {
 
-/// Conservative coverage is shared with the runtime (luxel/runtime/scene/texel_coverage.hpp),
+/// Conservative coverage is shared with the runtime (luxel/scene/texel_coverage.hpp),
 /// so the texels the light-map table counts are exactly the texels the lighting computes.
 using scene::for_each_covered_texel;
 using scene::kCoverageTolerance;

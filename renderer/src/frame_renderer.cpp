@@ -1,0 +1,535 @@
+#include "luxel/renderer/frame_renderer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "frame_lights.hpp"
+#include "frame_targets.hpp"
+#include "light_batches.hpp"
+#include "luxel/ecs/observer.hpp"
+#include "luxel/ecs/transform.hpp"
+#include "luxel/lighting/core/lighting_system.hpp"
+#include "luxel/lighting/gpu/lightmap_textures.hpp"
+#include "luxel/runtime/error.hpp"
+#include "luxel/runtime/gl_state_guard.hpp"
+#include "luxel/runtime/render_target.hpp"
+#include "luxel/runtime/shader_library.hpp"
+#include "mesh_cache.hpp"
+#include "pass_timer.hpp"
+#include "scene_draws.hpp"
+#include "shadow_maps.hpp"
+#include "specular_probes.hpp"
+
+namespace luxel::renderer {
+namespace {
+
+void validate(const FrameSettings& s) {
+    const auto positive = [](int value, const char* what) {
+        if (value < 1 || value > 16384) {
+            throw Error(std::string("FrameSettings.") + what + " must be in [1, 16384], got " +
+                        std::to_string(value));
+        }
+    };
+    positive(s.width, "width");
+    positive(s.height, "height");
+    positive(s.cube_shadow_size, "cube_shadow_size");
+    positive(s.map_shadow_size, "map_shadow_size");
+    positive(s.specular_cube_size, "specular_cube_size");
+    if (s.specular_faces_per_frame < 0) {
+        throw Error("FrameSettings.specular_faces_per_frame must not be negative");
+    }
+}
+
+void draw_fullscreen() {
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void clear_colour(GLuint framebuffer, GLint buffer = 0) {
+    const std::array<float, 4> zero = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearNamedFramebufferfv(framebuffer, GL_COLOR, buffer, zero.data());
+}
+
+}  // namespace
+
+std::string_view name(RenderPass pass) {
+    static constexpr std::array<std::string_view, kRenderPassCount> names = {
+        "shadows", "gbuffer", "direct", "indirect", "specular", "composite"};
+    return names[static_cast<std::size_t>(pass)];
+}
+
+double FrameTimings::total() const {
+    double sum = 0.0;
+    for (double ms : milliseconds) {
+        sum += ms;
+    }
+    return sum;
+}
+
+struct FrameRenderer::Impl {
+    ecs::Registry& registry;
+    lighting::LightingSystem& lighting;
+    FrameSettings settings;
+    gl::Program gbuffer_program;
+    gl::Program shadow_program;
+    gl::Program direct_program;
+    gl::Program indirect_program;
+    gl::Program composite_program;
+    gl::VertexArray fullscreen = gl::VertexArray::create();
+    FrameTargets targets;
+    MeshCache meshes;
+    DrawList draws;
+    ShadowMaps shadows;
+    lighting::LightmapTextures lightmaps;
+    SpecularProbes probes;
+    PassTimer timer;
+    FrameTimings timings;
+    FrameCounters counters;
+    FrameTerms terms;
+    CausticInput caustics;  ///< set_caustics(): a caustic term made elsewhere
+    CausticStage caustic_stage;
+    ShaderLibrary shader_library;  ///< for the passes made later (the caustic pass)
+    std::optional<lighting::CausticPass>
+        own_caustics;  ///< FrameSettings::caustics, while the plan has data
+    LightBatches batches;
+    gl::Texture black = gl::Texture::create_2d(GL_RGBA16F, 1, 1);
+    ecs::Observer<scene::MeshInstance> mesh_changes;
+    ecs::Observer<ecs::WorldTransform> moves;
+    /// World bounds of every mesh entity as last seen: where a moved or removed caster was.
+    std::map<ecs::Entity, Bounds> caster_bounds;
+    std::uint64_t frame = 0;
+    std::size_t previous_light_count = 0;
+    std::uint64_t previous_page_uploads = 0;
+
+    Impl(ecs::Registry& r, lighting::LightingSystem& l, const FrameSettings& s,
+         const ShaderLibrary& shaders)
+        : registry(r),
+          lighting(l),
+          settings(s),
+          gbuffer_program(shaders.build({{ShaderStage::Vertex, "render/mesh.vert"},
+                                         {ShaderStage::Fragment, "render/gbuffer.frag"}})),
+          shadow_program(shaders.build({{ShaderStage::Vertex, "render/shadow.vert"},
+                                        {ShaderStage::Fragment, "render/shadow.frag"}})),
+          direct_program(shaders.build(
+              {{ShaderStage::Vertex, "post/fullscreen.vert"},
+               {ShaderStage::Fragment, "render/direct.frag"}},
+              "#define LIGHTS_PER_BATCH " + std::to_string(LightBatches::kLightsPerBatch) + "\n")),
+          indirect_program(shaders.build({{ShaderStage::Vertex, "post/fullscreen.vert"},
+                                          {ShaderStage::Fragment, "render/indirect.frag"}})),
+          composite_program(shaders.build({{ShaderStage::Vertex, "post/fullscreen.vert"},
+                                           {ShaderStage::Fragment, "render/composite.frag"}})),
+          targets(s.width, s.height),
+          shadows(s.cube_shadow_size, s.map_shadow_size, s.filtered_shadows),
+          probes(shaders, s.specular_cube_size, s.specular_faces_per_frame),
+          shader_library(shaders),
+          mesh_changes(r.observe<scene::MeshInstance>(ecs::ObserverStart::WithExisting)),
+          moves(r.observe<ecs::WorldTransform>()) {
+        const std::array<std::uint16_t, 4> zero{};  // half floats: 0
+        glTextureSubImage2D(black.id(), 0, 0, 0, 1, 1, GL_RGBA, GL_HALF_FLOAT, zero.data());
+        gl::check_error("FrameRenderer");
+    }
+
+    /// Bounds of a mesh entity now, or empty when it has no drawable mesh.
+    Bounds bounds_now(ecs::Entity entity) {
+        if (!registry.valid(entity)) {
+            return {};
+        }
+        const auto* instance = registry.try_get<scene::MeshInstance>(entity);
+        if (instance == nullptr || !instance->source || instance->mesh < 0 ||
+            static_cast<std::size_t>(instance->mesh) >= instance->source->meshes.size()) {
+            return {};
+        }
+        return meshes.get(*instance, frame)
+            .bounds.transformed(entity_world_matrix(registry, entity));
+    }
+
+    /// A caster appeared, moved or went: shadow maps that reach where it was or is are stale.
+    void caster_changed(ecs::Entity entity, bool exists) {
+        const auto found = caster_bounds.find(entity);
+        if (found != caster_bounds.end()) {
+            shadows.invalidate(found->second);
+            probes.invalidate(found->second);
+            caster_bounds.erase(found);
+        }
+        if (exists) {
+            const Bounds now = bounds_now(entity);
+            if (!now.empty()) {
+                shadows.invalidate(now);
+                probes.invalidate(now);
+                caster_bounds[entity] = now;
+            }
+        }
+    }
+
+    void track_changes() {
+        mesh_changes.consume([&](ecs::Entity entity, ecs::ChangeKind kind) {
+            caster_changed(entity, kind != ecs::ChangeKind::Destroyed);
+        });
+        moves.consume([&](ecs::Entity entity, ecs::ChangeKind kind) {
+            if (kind == ecs::ChangeKind::Destroyed || caster_bounds.contains(entity)) {
+                caster_changed(entity, kind != ecs::ChangeKind::Destroyed &&
+                                           registry.valid(entity) &&
+                                           registry.has<scene::MeshInstance>(entity));
+            }
+        });
+    }
+
+    void gbuffer_pass(const FrameCamera& camera) {
+        const GLuint fbo = targets.gbuffer.id();
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+        glViewport(0, 0, targets.width, targets.height);
+        for (GLint buffer = 0; buffer < 6; ++buffer) {
+            clear_colour(fbo, buffer);
+        }
+        // Light-map lookups of empty pixels name no page (layer -1), so they read nothing.
+        const std::array<float, 4> no_page = {0.0f, 0.0f, -1.0f, 0.0f};
+        glClearNamedFramebufferfv(fbo, GL_COLOR, 3, no_page.data());
+        const float far_depth = 1.0f;
+        glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &far_depth);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        const gl::Program& program = gbuffer_program;
+        program.use();
+        program.set("u_view_projection", camera.projection * camera.view);
+        program.set("u_camera", camera.position);
+        std::size_t drawn = 0;
+        for (const DrawItem& item : draws.items) {
+            program.set("u_model", item.model);
+            program.set("u_normal_matrix", item.normal_matrix);
+            glBindVertexArray(item.mesh->vertex_array.id());
+            for (std::size_t i = item.first; i < item.first + item.count; ++i) {
+                const DrawPrimitive& primitive = draws.primitives[i];
+                const GpuPrimitive& range = *primitive.range;
+                if (range.index_count == 0) {
+                    continue;
+                }
+                const DrawMaterial& m = primitive.material;
+                cull_as_material(item, m);
+                program.set("u_albedo", m.albedo);
+                // Texture x factor per pixel (white for untextured primitives).
+                glBindTextureUnit(kBaseColorTextureUnit, m.base_color_texture);
+                program.set("u_emission", m.emission);
+                program.set("u_specular", m.specular);
+                program.set("u_lightmap", m.lightmap);
+                program.set("u_double_sided", m.double_sided ? 1 : 0);
+                glDrawElementsBaseVertex(GL_TRIANGLES, range.index_count, GL_UNSIGNED_INT,
+                                         reinterpret_cast<const void*>(static_cast<std::uintptr_t>(
+                                             range.first_index * sizeof(std::uint32_t))),
+                                         range.base_vertex);
+                ++drawn;
+            }
+        }
+        counters.draws = drawn;
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_CULL_FACE);
+        glFrontFace(GL_CCW);
+    }
+
+    void direct_pass(const std::vector<FrameLight>& lights) {
+        const GLuint fbo = targets.direct_target.id();
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+        glViewport(0, 0, targets.width, targets.height);
+        clear_colour(fbo);
+        // Batches add up: L = sum over lights.
+        glEnable(GL_BLEND);
+        glBlendEquation(GL_FUNC_ADD);
+        glBlendFunc(GL_ONE, GL_ONE);
+        direct_program.use();
+        direct_program.set("u_filtered", settings.filtered_shadows ? 1 : 0);
+        glBindTextureUnit(0, targets.albedo.id());
+        glBindTextureUnit(1, targets.normal.id());
+        glBindTextureUnit(2, targets.position.id());
+        for (std::size_t batch = 0; batch < LightBatches::batch_count(lights.size()); ++batch) {
+            batches.bind(lights, batch, shadows);
+            draw_fullscreen();
+        }
+        glDisable(GL_BLEND);
+    }
+
+    void indirect_pass(double now_seconds) {
+        const GLuint fbo = targets.indirect_target.id();
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+        glViewport(0, 0, targets.width, targets.height);
+        clear_colour(fbo);
+        indirect_program.use();
+        indirect_program.set("u_now", static_cast<float>(now_seconds));
+        indirect_program.set("u_blend",
+                             static_cast<float>(lighting.maps().settings().blend_seconds));
+        glBindTextureUnit(0, targets.albedo.id());
+        glBindTextureUnit(3, targets.lightmap.id());
+        lightmaps.bind();
+        draw_fullscreen();
+    }
+
+    void composite_pass(bool direct, bool indirect, bool specular) {
+        const GLuint fbo = targets.frame_target.id();
+        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+        glViewport(0, 0, targets.width, targets.height);
+        const bool caustic = terms.caustics && caustics.texture != 0;
+        composite_program.use();
+        composite_program.set("u_terms", glm::vec4(direct ? 1.0f : 0.0f, indirect ? 1.0f : 0.0f,
+                                                   caustic ? 1.0f : 0.0f, specular ? 1.0f : 0.0f));
+        composite_program.set("u_emission_on", terms.emission ? 1.0f : 0.0f);
+        composite_program.set("u_caustics_irradiance", caustics.irradiance ? 1 : 0);
+        glBindTextureUnit(0, targets.albedo.id());
+        glBindTextureUnit(2, targets.position.id());
+        glBindTextureUnit(4, targets.emission.id());
+        glBindTextureUnit(5, targets.direct.id());
+        glBindTextureUnit(6, targets.indirect.id());
+        glBindTextureUnit(7, caustic ? caustics.texture : black.id());
+        glBindTextureUnit(8, specular ? targets.specular_term.id() : black.id());
+        draw_fullscreen();
+    }
+
+    /// The caustic pass exists exactly while the FeaturePlan has caustic data (and the
+    /// settings ask for one): created on the first frame that needs it, freed when none does.
+    void sync_own_caustics() {
+        const bool wanted = settings.caustics.has_value() && lighting.plan().caustic_data();
+        if (wanted && !own_caustics) {
+            own_caustics.emplace(*settings.caustics, glm::ivec2(settings.width, settings.height),
+                                 shader_library);
+        } else if (!wanted && own_caustics) {
+            own_caustics.reset();
+        }
+    }
+
+    /// The caustic stage the renderer runs itself: this frame's photons, splatted against this
+    /// frame's depth from this frame's camera.
+    CausticInput own_caustic_stage(const FrameCamera& camera) {
+        own_caustics->upload(lighting.photons().caustics());
+        lighting::CausticCamera caustic_camera;
+        caustic_camera.view = camera.view;
+        caustic_camera.projection = camera.projection;
+        caustic_camera.viewport = {settings.width, settings.height};
+        own_caustics->render(caustic_camera, targets.depth.id());
+        return CausticInput{own_caustics->irradiance_texture(), true};
+    }
+
+    void render(const FrameCamera& camera, double now_seconds) {
+        const gl::StateGuard guard;
+        const GLboolean seamless = glIsEnabled(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+        ++frame;
+        counters.frames = frame;
+        timer.begin_frame(frame);
+        const lighting::FeaturePlan& plan = lighting.plan();
+        const bool specular_pass = plan.reflections() && settings.specular_faces_per_frame > 0;
+
+        build_draw_list(registry, lighting, meshes, frame, specular_pass, draws);
+        track_changes();
+        const std::vector<FrameLight> lights =
+            plan.direct() || plan.shadows() ? collect_lights(registry) : std::vector<FrameLight>{};
+        counters.lights = lights.size();
+
+        glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+        glDisable(GL_CULL_FACE);  // meshes may be single sheets seen from either side
+        glDisable(GL_BLEND);
+        glDisable(GL_SCISSOR_TEST);
+        glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+
+        counters.shadow_maps_drawn = 0;
+        if (plan.shadows() && !lights.empty()) {
+            timer.begin(RenderPass::Shadows);
+            glEnable(GL_DEPTH_TEST);
+            glDepthFunc(GL_LESS);
+            glDepthMask(GL_TRUE);
+            shadow_program.use();
+            counters.shadow_maps_drawn = shadows.update(lights, draws, shadow_program);
+            glDisable(GL_DEPTH_TEST);
+            timer.end(RenderPass::Shadows);
+        } else {
+            shadows.clear();
+        }
+        counters.shadow_maps = shadows.count();
+        counters.shadow_map_renders += counters.shadow_maps_drawn;
+        glBindVertexArray(fullscreen.id());
+
+        timer.begin(RenderPass::GBuffer);
+        gbuffer_pass(camera);
+        timer.end(RenderPass::GBuffer);
+        glBindVertexArray(fullscreen.id());
+
+        const bool direct = plan.direct() && !lights.empty() && terms.direct;
+        if (direct) {
+            timer.begin(RenderPass::Direct);
+            direct_pass(lights);
+            timer.end(RenderPass::Direct);
+        } else {
+            clear_colour(targets.direct_target.id());
+        }
+
+        lightmaps.sync_and_take(lighting.maps().iim_pages());
+        counters.page_uploads = lightmaps.uploads();
+        counters.texels_uploaded = lightmaps.texels_uploaded();
+        const bool indirect = !lightmaps.empty() && terms.indirect;
+        if (indirect) {
+            timer.begin(RenderPass::Indirect);
+            indirect_pass(now_seconds);
+            timer.end(RenderPass::Indirect);
+        } else {
+            clear_colour(targets.indirect_target.id());
+        }
+
+        bool specular = false;
+        if (specular_pass) {
+            timer.begin(RenderPass::Specular);
+            const bool changed = counters.shadow_maps_drawn > 0 ||
+                                 lights.size() != previous_light_count ||
+                                 lightmaps.uploads() != previous_page_uploads;
+            specular = probes.render(draws, lights, shadows, batches, lightmaps, targets, camera,
+                                     now_seconds,
+                                     static_cast<float>(lighting.maps().settings().blend_seconds),
+                                     changed, terms.specular);
+            timer.end(RenderPass::Specular);
+        } else {
+            probes.clear();
+        }
+        if (!specular) {
+            clear_colour(targets.specular_target.id());
+        }
+        previous_light_count = lights.size();
+        previous_page_uploads = lightmaps.uploads();
+        counters.specular_probes = probes.count();
+        counters.specular_faces = probes.faces_rendered();
+        sync_own_caustics();
+        const CausticInput external = caustics;
+        if (terms.caustics && (caustic_stage || (caustics.texture == 0 && own_caustics))) {
+            // The stage draws with its own state and timers: outside the composite's query.
+            caustics = caustic_stage ? caustic_stage(camera, targets.depth.id())
+                                     : own_caustic_stage(camera);
+            glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+            glDisable(GL_DEPTH_TEST);
+            glDisable(GL_BLEND);
+            glDisable(GL_CULL_FACE);
+            glDisable(GL_SCISSOR_TEST);
+        }
+        glBindVertexArray(fullscreen.id());
+
+        timer.begin(RenderPass::Composite);
+        composite_pass(direct, indirect, specular);
+        timer.end(RenderPass::Composite);
+        if (!caustic_stage) {
+            caustics = external;  // the own pass's texture is not an external term
+        }
+
+        timer.collect(timings, settings.wait_for_timings);
+        meshes.evict(frame);
+        counters.meshes_cached = meshes.size();
+        if (seamless == GL_FALSE) {
+            glDisable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+        }
+        gl::check_error("FrameRenderer::render");
+    }
+};
+
+FrameRenderer::FrameRenderer(ecs::Registry& registry, lighting::LightingSystem& lighting,
+                             FrameSettings settings)
+    : FrameRenderer(registry, lighting, settings, ShaderLibrary()) {}
+
+FrameRenderer::FrameRenderer(ecs::Registry& registry, lighting::LightingSystem& lighting,
+                             FrameSettings settings, const ShaderLibrary& shaders) {
+    validate(settings);
+    impl_ = std::make_unique<Impl>(registry, lighting, settings, shaders);
+}
+
+FrameRenderer::~FrameRenderer() = default;
+
+const FrameTimings& FrameRenderer::render(const FrameCamera& camera, double now_seconds) {
+    impl_->render(camera, now_seconds);
+    return impl_->timings;
+}
+
+void FrameRenderer::set_terms(const FrameTerms& terms) {
+    impl_->terms = terms;
+}
+const FrameTerms& FrameRenderer::terms() const {
+    return impl_->terms;
+}
+void FrameRenderer::set_caustics(const CausticInput& caustics) {
+    impl_->caustics = caustics;
+}
+void FrameRenderer::set_caustic_stage(CausticStage stage) {
+    impl_->caustic_stage = std::move(stage);
+}
+
+void FrameRenderer::resize(int width, int height) {
+    FrameSettings settings = impl_->settings;
+    settings.width = width;
+    settings.height = height;
+    validate(settings);
+    impl_->targets = FrameTargets(width, height);
+    impl_->settings = settings;
+    impl_->own_caustics.reset();  // made again at the new size by the next frame that needs it
+}
+
+lighting::CausticPass* FrameRenderer::caustic_pass() {
+    return impl_->own_caustics ? &*impl_->own_caustics : nullptr;
+}
+
+GLuint FrameRenderer::frame_texture() const {
+    return impl_->targets.frame.id();
+}
+GLuint FrameRenderer::frame_framebuffer() const {
+    return impl_->targets.frame_target.id();
+}
+GLuint FrameRenderer::depth_texture() const {
+    return impl_->targets.depth.id();
+}
+GLuint FrameRenderer::position_texture() const {
+    return impl_->targets.position.id();
+}
+GLuint FrameRenderer::normal_texture() const {
+    return impl_->targets.normal.id();
+}
+
+Image FrameRenderer::read(FrameImage image) const {
+    const FrameTargets& t = impl_->targets;
+    GLint previous = 0;
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previous);
+    // A read-back is a synchronisation point anyway; finishing first also works around
+    // llvmpipe (LLVM 15), seen in the tests to return a target's previous contents now and then
+    // when it is read right after the frame that drew it.
+    glFinish();
+    Image result;
+    switch (image) {
+        case FrameImage::Frame:
+            result = gl::read_pixels(t.frame_target.id(), GL_COLOR_ATTACHMENT0, t.width, t.height);
+            break;
+        case FrameImage::Direct:
+            result = gl::read_pixels(t.direct_target.id(), GL_COLOR_ATTACHMENT0, t.width, t.height);
+            break;
+        case FrameImage::Indirect:
+            result =
+                gl::read_pixels(t.indirect_target.id(), GL_COLOR_ATTACHMENT0, t.width, t.height);
+            break;
+        case FrameImage::Specular:
+            result =
+                gl::read_pixels(t.specular_target.id(), GL_COLOR_ATTACHMENT0, t.width, t.height);
+            break;
+        case FrameImage::Albedo:
+            result = gl::read_pixels(t.gbuffer.id(), GL_COLOR_ATTACHMENT0, t.width, t.height);
+            break;
+    }
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previous));
+    return result;
+}
+
+const FrameTimings& FrameRenderer::timings() const {
+    return impl_->timings;
+}
+const FrameCounters& FrameRenderer::counters() const {
+    return impl_->counters;
+}
+const FrameSettings& FrameRenderer::settings() const {
+    return impl_->settings;
+}
+std::size_t FrameRenderer::shadow_map_count() const {
+    return impl_->shadows.count();
+}
+
+}  // namespace luxel::renderer

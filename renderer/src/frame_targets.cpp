@@ -1,0 +1,66 @@
+#include "frame_targets.hpp"
+
+#include <array>
+
+namespace luxel::renderer {
+namespace {
+
+gl::Texture target_texture(GLenum format, int width, int height) {
+    gl::Texture texture = gl::Texture::create_2d(format, width, height);
+    // Every pass reads these with texelFetch, one texel per pixel.
+    glTextureParameteri(texture.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(texture.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return texture;
+}
+
+gl::Framebuffer single_target(const gl::Texture& texture, const char* what) {
+    gl::Framebuffer framebuffer = gl::Framebuffer::create();
+    framebuffer.attach(GL_COLOR_ATTACHMENT0, texture);
+    glNamedFramebufferDrawBuffer(framebuffer.id(), GL_COLOR_ATTACHMENT0);
+    framebuffer.check_complete(what);
+    return framebuffer;
+}
+
+}  // namespace
+
+FrameTargets::FrameTargets(int w, int h) : width(w), height(h) {
+    albedo = target_texture(GL_RGBA16F, w, h);
+    normal = target_texture(GL_RGBA16F, w, h);
+    position = target_texture(GL_RGBA32F, w, h);
+    lightmap = target_texture(GL_RGBA32F, w, h);
+    // Radiance scales with the light's power: 32-bit, because half floats stop at 65,504 and
+    // lose everything below 6e-8 (docs/STABILITY.md, extreme powers). Albedo, normal and F0
+    // are bounded material values and keep 16 bits.
+    emission = target_texture(GL_RGBA32F, w, h);
+    specular = target_texture(GL_RGBA16F, w, h);
+    depth = target_texture(GL_DEPTH_COMPONENT32F, w, h);
+    gbuffer = gl::Framebuffer::create();
+    const std::array<const gl::Texture*, 6> colours = {&albedo,   &normal,   &position,
+                                                       &lightmap, &emission, &specular};
+    std::array<GLenum, 6> buffers{};
+    for (std::size_t i = 0; i < colours.size(); ++i) {
+        buffers[i] = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
+        gbuffer.attach(buffers[i], *colours[i]);
+    }
+    gbuffer.attach(GL_DEPTH_ATTACHMENT, depth);
+    glNamedFramebufferDrawBuffers(gbuffer.id(), static_cast<GLsizei>(buffers.size()),
+                                  buffers.data());
+    gbuffer.check_complete("G-buffer");
+
+    direct = target_texture(GL_RGBA32F, w, h);
+    direct_target = single_target(direct, "direct target");
+    indirect = target_texture(GL_RGBA32F, w, h);
+    indirect_target = single_target(indirect, "indirect target");
+    specular_term = target_texture(GL_RGBA32F, w, h);
+    specular_target = single_target(specular_term, "specular target");
+    // The specular term redraws specular objects over the G-buffer's depth.
+    specular_target.attach(GL_DEPTH_ATTACHMENT, depth);
+    specular_target.check_complete("specular target");
+    frame = target_texture(GL_RGBA32F, w, h);
+    frame_target = single_target(frame, "frame target");
+    gl::check_error("FrameTargets");
+}
+
+}  // namespace luxel::renderer

@@ -1,0 +1,40 @@
+#pragma once
+
+#include "luxel/runtime/gl_objects.hpp"
+
+namespace luxel::renderer {
+
+/// The frame-sized textures of the renderer: the G-buffer and one target per composition
+/// term. Terms are RGBA32F so the linear frame keeps full float precision end to end (the
+/// error measurements read it back); G-buffer attributes that need less are RGBA16F.
+struct FrameTargets {
+    int width = 0;
+    int height = 0;
+
+    // G-buffer (shaders/render/gbuffer.frag), one framebuffer with six colour attachments.
+    gl::Texture albedo;    ///< RGBA16F: diffuse albedo, a = 1 where specular
+    gl::Texture normal;    ///< RGBA16F: world normal
+    gl::Texture position;  ///< RGBA32F: world position, w = 1 where covered
+    gl::Texture lightmap;  ///< RGBA32F: light-map uv, page layer, content
+    gl::Texture emission;  ///< RGBA16F: emitted radiance
+    gl::Texture specular;  ///< RGBA16F: F0, transmission
+    gl::Texture depth;     ///< DEPTH_COMPONENT32F
+    gl::Framebuffer gbuffer;
+
+    // One framebuffer per term, each with its texture as colour attachment 0.
+    gl::Texture direct;
+    gl::Framebuffer direct_target;
+    gl::Texture indirect;
+    gl::Framebuffer indirect_target;
+    gl::Texture specular_term;
+    gl::Framebuffer specular_target;
+    gl::Texture frame;
+    gl::Framebuffer frame_target;
+
+    /// Allocates everything at `width` x `height` (throws luxel::Error for a bad size or an
+    /// incomplete framebuffer).
+    FrameTargets(int width, int height);
+    FrameTargets() = default;
+};
+
+}  // namespace luxel::renderer

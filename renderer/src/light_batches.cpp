@@ -1,0 +1,66 @@
+#include "light_batches.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+
+namespace luxel::renderer {
+namespace {
+
+constexpr GLuint kBlockBinding = 0;
+constexpr GLuint kCubeUnit = 4;
+constexpr GLuint kMapUnit = 8;
+
+/// std140 mirror of the LightBatch block.
+struct GpuLightBatch {
+    std::array<GpuLight, LightBatches::kLightsPerBatch> lights{};
+    std::array<std::int32_t, 4> count{};
+};
+
+gl::Texture unused_shadow_map(GLenum target) {
+    gl::Texture texture = gl::Texture::create(target);
+    glTextureStorage2D(texture.id(), 1, GL_DEPTH_COMPONENT32F, 1, 1);
+    glTextureParameteri(texture.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTextureParameteri(texture.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(texture.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return texture;
+}
+
+}  // namespace
+
+LightBatches::LightBatches()
+    : block_(gl::Buffer::create(sizeof(GpuLightBatch))),
+      unused_cube_(unused_shadow_map(GL_TEXTURE_CUBE_MAP)),
+      unused_map_(unused_shadow_map(GL_TEXTURE_2D)) {}
+
+void LightBatches::bind(const std::vector<FrameLight>& lights, std::size_t batch,
+                        const ShadowMaps& shadows) {
+    GpuLightBatch data;
+    const std::size_t first = batch * kLightsPerBatch;
+    const std::size_t count =
+        first < lights.size() ? std::min(kLightsPerBatch, lights.size() - first) : 0;
+    data.count[0] = static_cast<std::int32_t>(count);
+    for (std::size_t slot = 0; slot < kLightsPerBatch; ++slot) {
+        GLuint cube = unused_cube_.id();
+        GLuint map_2d = unused_map_.id();
+        if (slot < count) {
+            const FrameLight& light = lights[first + slot];
+            GpuLight& gpu = data.lights[slot];
+            gpu.position_kind = glm::vec4(light.position, static_cast<float>(light.kind));
+            gpu.direction_far = glm::vec4(light.direction, 0.0f);
+            gpu.intensity_shadow = glm::vec4(light.intensity, -1.0f);
+            gpu.params = glm::vec4(light.cos_inner, light.cos_outer, 0.0f, 0.0f);
+            if (const ShadowMap* map = shadows.find(light.entity); map != nullptr && map->valid) {
+                ShadowMaps::describe(*map, gpu);
+                gpu.intensity_shadow.w = static_cast<float>(slot);
+                (map->kind == ShadowKind::Cube ? cube : map_2d) = map->depth.id();
+            }
+        }
+        glBindTextureUnit(kCubeUnit + static_cast<GLuint>(slot), cube);
+        glBindTextureUnit(kMapUnit + static_cast<GLuint>(slot), map_2d);
+    }
+    block_.update(0, sizeof(data), &data);
+    glBindBufferBase(GL_UNIFORM_BUFFER, kBlockBinding, block_.id());
+}
+
+}  // namespace luxel::renderer

@@ -1,0 +1,131 @@
+#include "mesh_cache.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+
+namespace luxel::renderer {
+namespace {
+
+struct Vertex {
+    glm::vec3 position;
+    glm::vec3 normal;
+    glm::vec2 texcoord0;
+    glm::vec2 lightmap_uv;
+};
+static_assert(sizeof(Vertex) == 40);
+
+/// The base-colour texture a primitive samples, or null: none without a textured material or
+/// without TEXCOORD_0 to sample it with.
+std::shared_ptr<const gl::Texture> base_color_of(const std::shared_ptr<const scene::Scene>& source,
+                                                 const scene::Primitive& primitive,
+                                                 MaterialTextures& textures) {
+    if (primitive.material < 0 ||
+        static_cast<std::size_t>(primitive.material) >= source->materials.size() ||
+        primitive.texcoords0.size() != primitive.positions.size() || primitive.positions.empty()) {
+        return nullptr;
+    }
+    const scene::Material& material =
+        source->materials[static_cast<std::size_t>(primitive.material)];
+    if (material.base_color_image < 0) {
+        return nullptr;
+    }
+    return textures.get(source, material.base_color_image);
+}
+
+GpuMesh upload(const std::shared_ptr<const scene::Scene>& source, const scene::Mesh& mesh,
+               MaterialTextures& textures) {
+    std::vector<Vertex> vertices;
+    std::vector<std::uint32_t> indices;
+    GpuMesh gpu;
+    gpu.source = source;
+    for (const scene::Primitive& primitive : mesh.primitives) {
+        GpuPrimitive range;
+        range.base_vertex = static_cast<GLint>(vertices.size());
+        range.first_index = indices.size();
+        range.index_count = static_cast<GLsizei>(primitive.indices.size());
+        range.material = primitive.material;
+        range.base_color = base_color_of(source, primitive, textures);
+        const std::size_t count = primitive.positions.size();
+        const bool normals = primitive.normals.size() == count;
+        const bool uv0 = primitive.texcoords0.size() == count;
+        const bool uv1 = primitive.texcoords1.size() == count;
+        for (std::size_t i = 0; i < count; ++i) {
+            vertices.push_back({primitive.positions[i],
+                                normals ? primitive.normals[i] : glm::vec3(0.0f),
+                                uv0 ? primitive.texcoords0[i] : glm::vec2(0.0f),
+                                uv1 ? primitive.texcoords1[i] : glm::vec2(0.0f)});
+            gpu.bounds.add(primitive.positions[i]);
+        }
+        indices.insert(indices.end(), primitive.indices.begin(), primitive.indices.end());
+        gpu.primitives.push_back(range);
+    }
+    // Buffers need at least one byte; an empty mesh draws nothing.
+    gpu.vertices = gl::Buffer::create(std::max<std::size_t>(vertices.size(), 1) * sizeof(Vertex),
+                                      vertices.empty() ? nullptr : vertices.data(), 0);
+    gpu.indices =
+        gl::Buffer::create(std::max<std::size_t>(indices.size(), 1) * sizeof(std::uint32_t),
+                           indices.empty() ? nullptr : indices.data(), 0);
+    gpu.vertex_array = gl::VertexArray::create();
+    const GLuint vao = gpu.vertex_array.id();
+    glVertexArrayVertexBuffer(vao, 0, gpu.vertices.id(), 0, sizeof(Vertex));
+    glVertexArrayElementBuffer(vao, gpu.indices.id());
+    const std::array<std::pair<GLint, std::size_t>, 4> attributes = {{
+        {3, offsetof(Vertex, position)},
+        {3, offsetof(Vertex, normal)},
+        {2, offsetof(Vertex, texcoord0)},
+        {2, offsetof(Vertex, lightmap_uv)},
+    }};
+    for (GLuint location = 0; location < attributes.size(); ++location) {
+        glEnableVertexArrayAttrib(vao, location);
+        glVertexArrayAttribFormat(vao, location, attributes[location].first, GL_FLOAT, GL_FALSE,
+                                  static_cast<GLuint>(attributes[location].second));
+        glVertexArrayAttribBinding(vao, location, 0);
+    }
+    gl::check_error("MeshCache upload");
+    return gpu;
+}
+
+}  // namespace
+
+Bounds Bounds::transformed(const glm::mat4& matrix) const {
+    Bounds out;
+    if (empty()) {
+        return out;
+    }
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p((corner & 1) != 0 ? hi.x : lo.x, (corner & 2) != 0 ? hi.y : lo.y,
+                          (corner & 4) != 0 ? hi.z : lo.z);
+        out.add(glm::vec3(matrix * glm::vec4(p, 1.0f)));
+    }
+    return out;
+}
+
+bool Bounds::touches_sphere(const glm::vec3& centre, float radius) const {
+    if (empty()) {
+        return false;
+    }
+    const glm::vec3 nearest = glm::clamp(centre, lo, hi);
+    const glm::vec3 d = nearest - centre;
+    return glm::dot(d, d) <= radius * radius;
+}
+
+const GpuMesh& MeshCache::get(const scene::MeshInstance& instance, std::uint64_t frame) {
+    const auto key = std::make_pair(instance.source.get(), instance.mesh);
+    auto found = meshes_.find(key);
+    if (found == meshes_.end()) {
+        found = meshes_.emplace(key, upload(instance.source, instance.geometry(), textures_)).first;
+        ++uploads_;
+    }
+    found->second.last_used = frame;
+    return found->second;
+}
+
+void MeshCache::evict(std::uint64_t frame) {
+    std::erase_if(meshes_, [&](const auto& entry) {
+        return entry.second.last_used + kEvictAfterFrames < frame;
+    });
+    textures_.evict();
+}
+
+}  // namespace luxel::renderer

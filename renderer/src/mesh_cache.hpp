@@ -1,0 +1,86 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "luxel/lighting/components.hpp"
+#include "luxel/runtime/gl_objects.hpp"
+#include "material_textures.hpp"
+
+namespace luxel::renderer {
+
+/// An axis-aligned box; empty when lo > hi.
+struct Bounds {
+    glm::vec3 lo{1e30f};
+    glm::vec3 hi{-1e30f};
+
+    [[nodiscard]] bool empty() const { return lo.x > hi.x; }
+    void add(const glm::vec3& p) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    void add(const Bounds& other) {
+        if (!other.empty()) {
+            add(other.lo);
+            add(other.hi);
+        }
+    }
+    /// The box around this one transformed by `matrix` (its eight corners).
+    [[nodiscard]] Bounds transformed(const glm::mat4& matrix) const;
+    /// Whether the box comes within `radius` of `centre`.
+    [[nodiscard]] bool touches_sphere(const glm::vec3& centre, float radius) const;
+};
+
+/// One mesh primitive inside the mesh's shared buffers.
+struct GpuPrimitive {
+    GLint base_vertex = 0;
+    std::size_t first_index = 0;
+    GLsizei index_count = 0;
+    int material = -1;
+    /// The material's base-colour texture, shared with every primitive using the image; null
+    /// when the material has none or the primitive has no TEXCOORD_0 (the factor alone).
+    std::shared_ptr<const gl::Texture> base_color;
+};
+
+/// A scene mesh on the GPU: one interleaved vertex buffer and one index buffer for all its
+/// primitives. Vertex layout: location 0 position, 1 normal, 2 texcoord0, 3 light-map UV
+/// (texcoord1); absent attributes are zero.
+struct GpuMesh {
+    std::shared_ptr<const scene::Scene> source;  ///< kept alive so the key's address stays unique
+    gl::Buffer vertices;
+    gl::Buffer indices;
+    gl::VertexArray vertex_array;
+    std::vector<GpuPrimitive> primitives;
+    Bounds bounds;  ///< object space
+    std::uint64_t last_used = 0;
+};
+
+/// GPU buffers per (scene, mesh): many entities instancing one mesh share one upload. Meshes
+/// are immutable (MeshInstance shares a const Scene), so an entry never needs re-uploading;
+/// entries unused for `kEvictAfterFrames` frames are freed, and with them the base-colour
+/// textures (MaterialTextures, one per (scene, image)) that no remaining mesh uses.
+class MeshCache {
+  public:
+    /// The mesh of `instance`, uploaded on first use, marked used in `frame`.
+    const GpuMesh& get(const scene::MeshInstance& instance, std::uint64_t frame);
+    /// Frees meshes no entity has drawn for a while, and textures no mesh uses any more.
+    void evict(std::uint64_t frame);
+    /// The 1x1 white texture untextured primitives sample.
+    GLuint white_texture() { return textures_.white(); }
+
+    [[nodiscard]] std::size_t size() const { return meshes_.size(); }
+    [[nodiscard]] std::uint64_t uploads() const { return uploads_; }
+
+  private:
+    static constexpr std::uint64_t kEvictAfterFrames = 120;
+    std::map<std::pair<const scene::Scene*, int>, GpuMesh> meshes_;
+    MaterialTextures textures_;
+    std::uint64_t uploads_ = 0;
+};
+
+}  // namespace luxel::renderer

@@ -1,0 +1,217 @@
+#include "shadow_maps.hpp"
+
+#include "cube_faces.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <set>
+
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace luxel::renderer {
+namespace {
+
+/// Rounds up to the next power of 1.25 so the far plane changes in steps, not with every
+/// motion of the scene's bounds.
+float round_up(float value) {
+    const float step = std::log(1.25f);
+    return std::exp(std::ceil(std::log(std::max(value, 1e-3f)) / step) * step);
+}
+
+glm::vec3 any_up(const glm::vec3& axis) {
+    return std::abs(axis.y) < 0.99f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+}
+
+float farthest_corner(const Bounds& bounds, const glm::vec3& from) {
+    const glm::vec3 d = glm::max(glm::abs(bounds.lo - from), glm::abs(bounds.hi - from));
+    return glm::length(d);
+}
+
+/// The state a light's map depends on, computed for this frame.
+struct Placement {
+    glm::mat4 matrix{1.0f};
+    glm::vec3 origin{0.0f};
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};
+    float far = 1.0f;
+    float texel = 0.0f;
+};
+
+Placement place(const FrameLight& light, const Bounds& scene, int size) {
+    Placement p;
+    p.direction = light.direction;
+    if (light.shadow == ShadowKind::Ortho) {
+        const glm::vec3 centre_raw = scene.empty() ? glm::vec3(0.0f) : 0.5f * (scene.lo + scene.hi);
+        const float radius =
+            round_up(scene.empty() ? 1.0f : 0.5f * glm::length(scene.hi - scene.lo) + 1e-3f);
+        // The centre snaps to a grid of radius / 8 for the same reason the radius is rounded.
+        const float grid = radius / 8.0f;
+        const glm::vec3 centre = glm::round(centre_raw / grid) * grid;
+        const float r = radius + grid;  // the snapped sphere still holds the scene
+        p.origin = centre - light.direction * r;
+        p.far = 2.0f * r;
+        p.texel = 2.0f * r / static_cast<float>(size);
+        const glm::mat4 view = glm::lookAt(p.origin, centre, any_up(light.direction));
+        p.matrix = glm::ortho(-r, r, -r, r, -0.01f * r, 1.01f * p.far) * view;
+        return p;
+    }
+    p.origin = light.position;
+    p.far = round_up(scene.empty() ? 1.0f : farthest_corner(scene, light.position) * 1.01f);
+    if (light.shadow == ShadowKind::Cube) {
+        // A 90 degree face spans 2 units at unit distance.
+        p.texel = 2.0f / static_cast<float>(size);
+        return p;
+    }
+    // A perspective map over the outer cone plus a two-texel rim for the PCF taps.
+    const float half = std::min(light.outer_cone * (1.0f + 4.0f / static_cast<float>(size)), 1.5f);
+    p.texel = 2.0f * std::tan(half) / static_cast<float>(size);
+    const float near = std::max(1e-3f * p.far, 1e-3f);
+    const glm::mat4 view =
+        glm::lookAt(light.position, light.position + light.direction, any_up(light.direction));
+    p.matrix = glm::perspective(2.0f * half, 1.0f, near, 1.01f * p.far) * view;
+    return p;
+}
+
+void draw_casters(const DrawList& draws, const gl::Program& program, const ShadowMap& map) {
+    for (const DrawItem& item : draws.items) {
+        if (map.kind != ShadowKind::Ortho && !item.bounds.touches_sphere(map.origin, map.far)) {
+            continue;  // out of the light's reach: casts nothing it can see
+        }
+        program.set("u_model", item.model);
+        glBindVertexArray(item.mesh->vertex_array.id());
+        for (std::size_t i = item.first; i < item.first + item.count; ++i) {
+            const GpuPrimitive& range = *draws.primitives[i].range;
+            if (range.index_count == 0) {
+                continue;
+            }
+            glDrawElementsBaseVertex(GL_TRIANGLES, range.index_count, GL_UNSIGNED_INT,
+                                     reinterpret_cast<const void*>(static_cast<std::uintptr_t>(
+                                         range.first_index * sizeof(std::uint32_t))),
+                                     range.base_vertex);
+        }
+    }
+}
+
+}  // namespace
+
+ShadowMaps::ShadowMaps(int cube_size, int map_size, bool filtered)
+    : cube_size_(std::max(cube_size, 1)), map_size_(std::max(map_size, 1)), filtered_(filtered) {}
+
+void ShadowMaps::invalidate(const Bounds& bounds) {
+    for (auto& [entity, map] : maps_) {
+        if (map.kind == ShadowKind::Ortho || bounds.touches_sphere(map.origin, map.far)) {
+            map.valid = false;
+        }
+    }
+}
+
+ShadowMap ShadowMaps::allocate(ShadowKind kind) const {
+    ShadowMap map;
+    map.kind = kind;
+    map.size = kind == ShadowKind::Cube ? cube_size_ : map_size_;
+    const GLenum target = kind == ShadowKind::Cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D;
+    map.depth = gl::Texture::create(target);
+    const GLuint id = map.depth.id();
+    glTextureStorage2D(id, 1, GL_DEPTH_COMPONENT32F, map.size, map.size);
+    // Hardware comparison; with LINEAR filtering each tap is already a 2 x 2 PCF.
+    glTextureParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTextureParameteri(id, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    const GLint filter = filtered_ ? GL_LINEAR : GL_NEAREST;
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, filter);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    map.framebuffer = gl::Framebuffer::create();
+    glNamedFramebufferDrawBuffer(map.framebuffer.id(), GL_NONE);
+    glNamedFramebufferReadBuffer(map.framebuffer.id(), GL_NONE);
+    gl::check_error("ShadowMaps allocate");
+    return map;
+}
+
+void ShadowMaps::render(ShadowMap& map, const DrawList& draws, const gl::Program& program) const {
+    const GLuint fbo = map.framebuffer.id();
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+    glViewport(0, 0, map.size, map.size);
+    program.set("u_light_position", map.origin);
+    program.set("u_light_direction", map.direction);
+    program.set("u_planar", map.kind == ShadowKind::Ortho ? 1 : 0);
+    program.set("u_far", map.far);
+    const float clear_depth = 1.0f;
+    if (map.kind != ShadowKind::Cube) {
+        glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, map.depth.id(), 0);
+        map.framebuffer.check_complete("shadow map");
+        glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &clear_depth);
+        program.set("u_view_projection", map.matrix);
+        draw_casters(draws, program, map);
+        map.valid = true;
+        return;
+    }
+    const float near = std::max(1e-3f * map.far, 1e-3f);
+    const glm::mat4 projection =
+        glm::perspective(glm::half_pi<float>(), 1.0f, near, 1.75f * map.far);
+    for (int face = 0; face < 6; ++face) {
+        glNamedFramebufferTextureLayer(fbo, GL_DEPTH_ATTACHMENT, map.depth.id(), 0, face);
+        map.framebuffer.check_complete("shadow cube face");
+        glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &clear_depth);
+        program.set("u_view_projection", projection * cube_face_view(map.origin, face));
+        draw_casters(draws, program, map);
+    }
+    map.valid = true;
+}
+
+std::size_t ShadowMaps::update(const std::vector<FrameLight>& lights, const DrawList& draws,
+                               const gl::Program& program) {
+    std::set<ecs::Entity> present;
+    for (const FrameLight& light : lights) {
+        present.insert(light.entity);
+    }
+    std::erase_if(maps_, [&](const auto& entry) { return !present.contains(entry.first); });
+
+    std::size_t rendered = 0;
+    for (const FrameLight& light : lights) {
+        auto found = maps_.find(light.entity);
+        if (found != maps_.end() && found->second.kind != light.shadow) {
+            maps_.erase(found);  // a spot widened past kWideSpot: a different kind of map
+            found = maps_.end();
+        }
+        if (found == maps_.end()) {
+            found = maps_.emplace(light.entity, allocate(light.shadow)).first;
+        }
+        ShadowMap& map = found->second;
+        const Placement placement = place(light, draws.bounds, map.size);
+        const bool moved = placement.origin != map.origin || placement.far != map.far ||
+                           (map.kind != ShadowKind::Cube && (placement.direction != map.direction ||
+                                                             light.outer_cone != map.outer_cone));
+        if (map.valid && !moved) {
+            continue;
+        }
+        map.origin = placement.origin;
+        map.direction = placement.direction;
+        map.outer_cone = light.outer_cone;
+        map.far = placement.far;
+        map.texel = placement.texel;
+        map.matrix = placement.matrix;
+        render(map, draws, program);
+        ++rendered;
+    }
+    return rendered;
+}
+
+const ShadowMap* ShadowMaps::find(ecs::Entity light) const {
+    const auto found = maps_.find(light);
+    return found == maps_.end() ? nullptr : &found->second;
+}
+
+void ShadowMaps::describe(const ShadowMap& map, GpuLight& light) {
+    if (map.kind == ShadowKind::Ortho) {
+        light.position_kind = glm::vec4(map.origin, light.position_kind.w);
+    }
+    light.direction_far.w = map.far;
+    light.params.z = map.texel;
+    light.params.w = static_cast<float>(map.kind);
+    light.shadow_matrix = map.matrix;
+}
+
+}  // namespace luxel::renderer

@@ -1,0 +1,68 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "frame_lights.hpp"
+#include "luxel/runtime/gl_objects.hpp"
+#include "luxel/runtime/program.hpp"
+#include "scene_draws.hpp"
+
+namespace luxel::renderer {
+
+/// One light's shadow map and the light state it was rendered for.
+struct ShadowMap {
+    ShadowKind kind = ShadowKind::Cube;
+    int size = 0;
+    gl::Texture depth;  ///< DEPTH_COMPONENT32F, compare mode on (sampler*Shadow)
+    gl::Framebuffer framebuffer;
+    glm::mat4 matrix{1.0f};  ///< world to clip (2D maps)
+    glm::vec3 origin{0.0f};  ///< the light (ortho: the map's plane origin)
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};
+    float outer_cone = 0.0f;
+    float far = 1.0f;    ///< metres that depth 1 stands for
+    float texel = 0.0f;  ///< texel size per metre of distance (ortho: metres)
+    bool valid = false;  ///< rendered for the current light state and casters
+};
+
+/// Shadow maps for the enabled punctual lights (linear depth, shaders/render/shadow.frag).
+///
+/// A map is rendered again only when it is invalid: new, its light's placement or shape
+/// changed (position, direction for 2D maps, cone, or the far distance / scene sphere that the
+/// scene's bounds set, rounded up in 25% steps so small motions at the scene's edge do not
+/// count), or invalidate() was told of a caster change inside its range (the sphere of radius
+/// `far` around a point or spot light; anywhere for a directional light). A light that is
+/// switched off keeps no map.
+class ShadowMaps {
+  public:
+    ShadowMaps(int cube_size, int map_size, bool filtered);
+
+    /// A mesh was added, removed or moved; `bounds` is where it was or is (world space).
+    void invalidate(const Bounds& bounds);
+    /// Allocates maps for new lights, frees those of lights gone or switched off, and renders
+    /// the invalid ones with `program` (shaders/render/shadow.*). Returns the maps rendered.
+    std::size_t update(const std::vector<FrameLight>& lights, const DrawList& draws,
+                       const gl::Program& program);
+    /// Frees every map.
+    void clear() { maps_.clear(); }
+
+    [[nodiscard]] const ShadowMap* find(ecs::Entity light) const;
+    /// Fills the shadow fields of a light record (direction_far.w, params.z, params.w, matrix,
+    /// position for ortho maps).
+    static void describe(const ShadowMap& map, GpuLight& light);
+    [[nodiscard]] std::size_t count() const { return maps_.size(); }
+
+  private:
+    ShadowMap allocate(ShadowKind kind) const;
+    void render(ShadowMap& map, const DrawList& draws, const gl::Program& program) const;
+
+    int cube_size_;
+    int map_size_;
+    bool filtered_;
+    std::map<ecs::Entity, ShadowMap> maps_;
+};
+
+}  // namespace luxel::renderer

@@ -1,0 +1,197 @@
+#include "specular_probes.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <set>
+
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "cube_faces.hpp"
+#include "luxel/runtime/shader_library.hpp"
+#include "material_textures.hpp"
+
+namespace luxel::renderer {
+namespace {
+
+void draw_range(const GpuPrimitive& range) {
+    glDrawElementsBaseVertex(GL_TRIANGLES, range.index_count, GL_UNSIGNED_INT,
+                             reinterpret_cast<const void*>(static_cast<std::uintptr_t>(
+                                 range.first_index * sizeof(std::uint32_t))),
+                             range.base_vertex);
+}
+
+}  // namespace
+
+SpecularProbes::SpecularProbes(const ShaderLibrary& shaders, int size, int faces_per_frame)
+    : probe_program_(shaders.build(
+          {{ShaderStage::Vertex, "render/mesh.vert"}, {ShaderStage::Fragment, "render/probe.frag"}},
+          "#define LIGHTS_PER_BATCH " + std::to_string(LightBatches::kLightsPerBatch) + "\n")),
+      specular_program_(shaders.build({{ShaderStage::Vertex, "render/mesh.vert"},
+                                       {ShaderStage::Fragment, "render/specular.frag"}})),
+      size_(std::max(size, 1)),
+      faces_per_frame_(std::max(faces_per_frame, 0)) {}
+
+void SpecularProbes::invalidate(const Bounds& /*bounds*/) {
+    // Any change may be seen in a mirror, wherever it is: every probe refreshes.
+    for (auto& [entity, probe] : probes_) {
+        probe.stale_faces = 6;
+    }
+}
+
+SpecularProbes::Probe SpecularProbes::allocate() const {
+    Probe probe;
+    probe.cube = gl::Texture::create(GL_TEXTURE_CUBE_MAP);
+    // Radiance: 32-bit like every radiance target (half floats overflow at 65,504).
+    glTextureStorage2D(probe.cube.id(), 1, GL_RGBA32F, size_, size_);
+    glTextureParameteri(probe.cube.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(probe.cube.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(probe.cube.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(probe.cube.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(probe.cube.id(), GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    probe.depth = gl::Renderbuffer::create(GL_DEPTH_COMPONENT32F, size_, size_);
+    probe.framebuffer = gl::Framebuffer::create();
+    probe.framebuffer.attach(GL_DEPTH_ATTACHMENT, probe.depth);
+    glNamedFramebufferDrawBuffer(probe.framebuffer.id(), GL_COLOR_ATTACHMENT0);
+    gl::check_error("SpecularProbes allocate");
+    return probe;
+}
+
+void SpecularProbes::render_face(Probe& probe, int face, const DrawList& draws) {
+    const GLuint fbo = probe.framebuffer.id();
+    glNamedFramebufferTextureLayer(fbo, GL_COLOR_ATTACHMENT0, probe.cube.id(), 0, face);
+    probe.framebuffer.check_complete("specular probe face");
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+    glViewport(0, 0, size_, size_);
+    const std::array<float, 4> zero = {0.0f, 0.0f, 0.0f, 0.0f};
+    const float far_depth = 1.0f;
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, zero.data());
+    glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &far_depth);
+    const float far = std::max(glm::length(draws.bounds.hi - draws.bounds.lo) * 2.0f, 1.0f);
+    const glm::mat4 projection = glm::perspective(glm::half_pi<float>(), 1.0f, 0.01f, far);
+    const gl::Program& program = probe_program_;
+    program.set("u_view_projection", projection * cube_face_view(probe.centre, face));
+    program.set("u_camera", probe.centre);
+    for (const DrawItem& item : draws.items) {
+        if (item.specular) {
+            continue;  // no mirror sees another (or itself): one bounce of specular
+        }
+        program.set("u_model", item.model);
+        program.set("u_normal_matrix", item.normal_matrix);
+        glBindVertexArray(item.mesh->vertex_array.id());
+        for (std::size_t i = item.first; i < item.first + item.count; ++i) {
+            const DrawPrimitive& primitive = draws.primitives[i];
+            if (primitive.range->index_count == 0) {
+                continue;
+            }
+            cull_as_material(item, primitive.material);
+            program.set("u_albedo", primitive.material.albedo);
+            glBindTextureUnit(kBaseColorTextureUnit, primitive.material.base_color_texture);
+            program.set("u_emission", primitive.material.emission);
+            program.set("u_lightmap", primitive.material.lightmap);
+            draw_range(*primitive.range);
+        }
+    }
+    glDisable(GL_CULL_FACE);
+    glFrontFace(GL_CCW);
+    ++faces_rendered_;
+}
+
+void SpecularProbes::draw_term(const DrawList& draws, const FrameTargets& targets,
+                               const FrameCamera& camera) {
+    const GLuint fbo = targets.specular_target.id();
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+    glViewport(0, 0, targets.width, targets.height);
+    const std::array<float, 4> zero = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, zero.data());
+    // Over the G-buffer's depth, without writing it: only the object's visible pixels.
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    const gl::Program& program = specular_program_;
+    program.use();
+    program.set("u_view_projection", camera.projection * camera.view);
+    program.set("u_camera", camera.position);
+    for (const DrawItem& item : draws.items) {
+        const auto found = probes_.find(item.entity);
+        if (!item.specular || found == probes_.end()) {
+            continue;
+        }
+        glBindTextureUnit(0, found->second.cube.id());
+        program.set("u_model", item.model);
+        program.set("u_normal_matrix", item.normal_matrix);
+        glBindVertexArray(item.mesh->vertex_array.id());
+        for (std::size_t i = item.first; i < item.first + item.count; ++i) {
+            const DrawPrimitive& primitive = draws.primitives[i];
+            if (primitive.range->index_count == 0 || primitive.material.specular.r <= 0.0f) {
+                continue;
+            }
+            program.set("u_specular", primitive.material.specular);
+            program.set("u_ior", primitive.material.ior);
+            draw_range(*primitive.range);
+        }
+    }
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glDisable(GL_DEPTH_TEST);
+}
+
+bool SpecularProbes::render(const DrawList& draws, const std::vector<FrameLight>& lights,
+                            const ShadowMaps& shadows, LightBatches& batches,
+                            const lighting::LightmapTextures& lightmaps,
+                            const FrameTargets& targets, const FrameCamera& camera,
+                            double now_seconds, float blend_seconds, bool scene_changed,
+                            bool draw_term_now) {
+    std::set<ecs::Entity> present;
+    for (const DrawItem& item : draws.items) {
+        if (!item.specular) {
+            continue;
+        }
+        present.insert(item.entity);
+        auto found = probes_.find(item.entity);
+        if (found == probes_.end()) {
+            found = probes_.emplace(item.entity, allocate()).first;
+        }
+        Probe& probe = found->second;
+        const glm::vec3 centre = 0.5f * (item.bounds.lo + item.bounds.hi);
+        if (centre != probe.centre || scene_changed) {
+            probe.centre = centre;
+            probe.stale_faces = 6;
+        }
+    }
+    std::erase_if(probes_, [&](const auto& entry) { return !present.contains(entry.first); });
+    if (probes_.empty()) {
+        return false;
+    }
+
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    probe_program_.use();
+    probe_program_.set("u_filtered", 1);
+    probe_program_.set("u_now", static_cast<float>(now_seconds));
+    probe_program_.set("u_blend", blend_seconds);
+    batches.bind(lights, 0, shadows);
+    lightmaps.bind();
+    for (auto& [entity, probe] : probes_) {
+        // A new probe fills every face at once so it never shows black; afterwards the budget
+        // holds.
+        int budget = probe.filled ? faces_per_frame_ : 6;
+        probe.filled = true;
+        while (probe.stale_faces > 0 && budget > 0) {
+            render_face(probe, probe.next_face, draws);
+            probe.next_face = (probe.next_face + 1) % 6;
+            --probe.stale_faces;
+            --budget;
+        }
+    }
+    glDisable(GL_DEPTH_TEST);
+    if (!draw_term_now) {
+        return false;
+    }
+    draw_term(draws, targets, camera);
+    return true;
+}
+
+}  // namespace luxel::renderer

@@ -1,0 +1,43 @@
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "luxel/scene/scene.hpp"
+
+/// The generic components of an entity made from a scene node: what it draws, whether it moves,
+/// its camera, name and origin. Not lighting: the renderer, the photon tracer and a game all read
+/// them. Change them through Registry::patch/replace so systems see the change.
+namespace luxel::scene {
+
+/// The geometry an entity draws and traces: one mesh of a loaded scene, which also supplies the
+/// materials. Shared, immutable: many entities may instance the same mesh.
+struct MeshInstance {
+    std::shared_ptr<const Scene> source;
+    int mesh = -1;
+
+    [[nodiscard]] const Mesh& geometry() const {
+        return source->meshes.at(static_cast<std::size_t>(mesh));
+    }
+};
+
+/// Tag: the entity moves (animated, or flagged dynamic). Static geometry goes into one BVH
+/// built once; dynamic entities are instanced so motion only updates a transform.
+struct Dynamic {};
+
+/// A camera from the scene file (looks down its entity's -z).
+struct CameraComponent {
+    Camera camera;
+};
+
+/// A readable name, from the glTF node.
+struct Name {
+    std::string value;
+};
+
+/// Where an entity came from: its node index in the source scene.
+struct SceneNode {
+    int index = -1;
+};
+
+}  // namespace luxel::scene

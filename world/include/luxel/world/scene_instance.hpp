@@ -1,0 +1,42 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "luxel/ecs/registry.hpp"
+#include "luxel/scene/scene.hpp"
+
+namespace luxel::world {
+
+/// What instantiate() created: one entity per scene node (same order as scene.nodes) and one
+/// entity per animation (holding its AnimationPlayer).
+struct SceneInstance {
+    std::shared_ptr<const scene::Scene> source;
+    std::vector<ecs::Entity> nodes;
+    std::vector<ecs::Entity> animations;
+
+    /// The entity of the first node with this name, or null_entity.
+    [[nodiscard]] ecs::Entity find(const std::string& node_name) const;
+};
+
+struct InstantiateOptions {
+    bool play_animations = true;  ///< start every animation playing, looped
+};
+
+/// Turns a loaded scene into entities and components:
+/// - every node: Transform (its local TRS), Name, SceneNode, and the hierarchy (set_parent);
+/// - a mesh: MeshInstance; with an emissive material: AreaLight; with a specular material
+///   (Material::is_specular): CausticGenerator from the first such material; with a light-map
+///   layout in the node's extras.luxel (luxel-prep's output): LightmappedSurface;
+/// - a glTF light: PointLight / SpotLight / DirectionalLight in watts (light.hpp converts),
+///   enabled unless extras.luxel.enabled is false; a `switch` object adds a LightSwitch;
+/// - a camera: CameraComponent;
+/// - Dynamic when scene.is_dynamic(node);
+/// - each animation: an entity with an AnimationPlayer whose channels target the node entities.
+/// The scene is shared, not copied: MeshInstance and AnimationPlayer keep it alive. Throws
+/// luxel::Error naming the node when its light-map layout is malformed or names a primitive
+/// without TEXCOORD_1.
+SceneInstance instantiate(ecs::Registry& registry, std::shared_ptr<const scene::Scene> scene,
+                          const InstantiateOptions& options = {});
+
+}  // namespace luxel::world
