@@ -24,7 +24,7 @@
 #include "pass_timer.hpp"
 #include "scene_draws.hpp"
 #include "shadow_maps.hpp"
-#include "specular_probes.hpp"
+#include "specular_cube_maps.hpp"
 
 namespace luxel::renderer {
 namespace {
@@ -73,7 +73,7 @@ double FrameTimings::total() const {
 
 struct FrameRenderer::Impl {
     ecs::Registry& registry;
-    lighting::LightingSystem& lighting;
+    const lighting::LightingSystem& lighting;
     FrameSettings settings;
     gl::Program gbuffer_program;
     gl::Program shadow_program;
@@ -86,7 +86,7 @@ struct FrameRenderer::Impl {
     DrawList draws;
     ShadowMaps shadows;
     lighting::LightmapTextures lightmaps;
-    SpecularProbes probes;
+    SpecularCubeMaps cube_maps;
     PassTimer timer;
     FrameTimings timings;
     FrameCounters counters;
@@ -106,7 +106,7 @@ struct FrameRenderer::Impl {
     std::size_t previous_light_count = 0;
     std::uint64_t previous_page_uploads = 0;
 
-    Impl(ecs::Registry& r, lighting::LightingSystem& l, const FrameSettings& s,
+    Impl(ecs::Registry& r, const lighting::LightingSystem& l, const FrameSettings& s,
          const ShaderLibrary& shaders)
         : registry(r),
           lighting(l),
@@ -125,7 +125,7 @@ struct FrameRenderer::Impl {
                                            {ShaderStage::Fragment, "render/composite.frag"}})),
           targets(s.width, s.height),
           shadows(s.cube_shadow_size, s.map_shadow_size, s.filtered_shadows),
-          probes(shaders, s.specular_cube_size, s.specular_faces_per_frame),
+          cube_maps(shaders, s.specular_cube_size, s.specular_faces_per_frame),
           shader_library(shaders),
           mesh_changes(r.observe<scene::MeshInstance>(ecs::ObserverStart::WithExisting)),
           moves(r.observe<ecs::WorldTransform>()) {
@@ -153,14 +153,14 @@ struct FrameRenderer::Impl {
         const auto found = caster_bounds.find(entity);
         if (found != caster_bounds.end()) {
             shadows.invalidate(found->second);
-            probes.invalidate(found->second);
+            cube_maps.invalidate(found->second);
             caster_bounds.erase(found);
         }
         if (exists) {
             const Bounds now = bounds_now(entity);
             if (!now.empty()) {
                 shadows.invalidate(now);
-                probes.invalidate(now);
+                cube_maps.invalidate(now);
                 caster_bounds[entity] = now;
             }
         }
@@ -318,7 +318,7 @@ struct FrameRenderer::Impl {
         counters.frames = frame;
         timer.begin_frame(frame);
         const lighting::FeaturePlan& plan = lighting.plan();
-        const bool specular_pass = plan.reflections() && settings.specular_faces_per_frame > 0;
+        const bool specular_pass = plan.specular() && settings.specular_faces_per_frame > 0;
 
         build_draw_list(registry, lighting, meshes, frame, specular_pass, draws);
         track_changes();
@@ -363,7 +363,7 @@ struct FrameRenderer::Impl {
             clear_colour(targets.direct_target.id());
         }
 
-        lightmaps.sync_and_take(lighting.maps().iim_pages());
+        lightmaps.sync(lighting.maps().iim_pages());
         counters.page_uploads = lightmaps.uploads();
         counters.texels_uploaded = lightmaps.texels_uploaded();
         const bool indirect = !lightmaps.empty() && terms.indirect;
@@ -381,21 +381,21 @@ struct FrameRenderer::Impl {
             const bool changed = counters.shadow_maps_drawn > 0 ||
                                  lights.size() != previous_light_count ||
                                  lightmaps.uploads() != previous_page_uploads;
-            specular = probes.render(draws, lights, shadows, batches, lightmaps, targets, camera,
-                                     now_seconds,
-                                     static_cast<float>(lighting.maps().settings().blend_seconds),
-                                     changed, terms.specular);
+            specular = cube_maps.render(
+                draws, lights, shadows, batches, lightmaps, targets, camera, now_seconds,
+                static_cast<float>(lighting.maps().settings().blend_seconds), changed,
+                terms.specular);
             timer.end(RenderPass::Specular);
         } else {
-            probes.clear();
+            cube_maps.clear();
         }
         if (!specular) {
             clear_colour(targets.specular_target.id());
         }
         previous_light_count = lights.size();
         previous_page_uploads = lightmaps.uploads();
-        counters.specular_probes = probes.count();
-        counters.specular_faces = probes.faces_rendered();
+        counters.specular_cube_maps = cube_maps.count();
+        counters.specular_faces = cube_maps.faces_rendered();
         sync_own_caustics();
         const CausticInput external = caustics;
         if (terms.caustics && (caustic_stage || (caustics.texture == 0 && own_caustics))) {
@@ -427,11 +427,11 @@ struct FrameRenderer::Impl {
     }
 };
 
-FrameRenderer::FrameRenderer(ecs::Registry& registry, lighting::LightingSystem& lighting,
+FrameRenderer::FrameRenderer(ecs::Registry& registry, const lighting::LightingSystem& lighting,
                              FrameSettings settings)
     : FrameRenderer(registry, lighting, settings, ShaderLibrary()) {}
 
-FrameRenderer::FrameRenderer(ecs::Registry& registry, lighting::LightingSystem& lighting,
+FrameRenderer::FrameRenderer(ecs::Registry& registry, const lighting::LightingSystem& lighting,
                              FrameSettings settings, const ShaderLibrary& shaders) {
     validate(settings);
     impl_ = std::make_unique<Impl>(registry, lighting, settings, shaders);

@@ -10,7 +10,7 @@
 
 namespace luxel::renderer {
 
-/// The texture unit the mesh passes (shaders/render/gbuffer.frag and probe.frag) read the
+/// The texture unit the mesh passes (shaders/render/gbuffer.frag and cube_map_face.frag) read the
 /// base-colour texture from: above every unit the G-buffer and probe passes already use
 /// (shadow maps 4..11, IIM pages 12..14) and within the 16 units GL 4.5 guarantees.
 inline constexpr GLuint kBaseColorTextureUnit = 15;

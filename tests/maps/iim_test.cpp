@@ -25,18 +25,42 @@ TEST(IimPage, UpdatesFadeInOverTheBlendTime) {
     EXPECT_EQ(page.shown(5, 5, 11.0, 0.0), glm::vec3(7.0f));
 }
 
-TEST(RadiancePage, DirtyRectanglesGrowAndAreTakenOnce) {
+TEST(RadiancePage, ChangedRectanglesGrowAndEachReaderSeesThemOnce) {
     RadiancePage page(32);
-    EXPECT_EQ(page.take_dirty().width, 0);
+    EXPECT_FALSE(page.changes_since(page.version).any());
     const auto v0 = page.version;
-    page.mark_dirty({2, 3, 4, 5});
-    page.mark_dirty({10, 1, 2, 2});
+    page.mark_changed({2, 3, 4, 5});
+    const auto v1 = page.version;
+    page.mark_changed({10, 1, 2, 2});
     EXPECT_GT(page.version, v0);
-    const auto dirty = page.take_dirty();
-    EXPECT_EQ(dirty, (luxel::scene::TexelRect{2, 1, 10, 7}));
-    EXPECT_EQ(page.take_dirty().width, 0);
-    page.mark_dirty({0, 0, 0, 5});  // empty: nothing
-    EXPECT_EQ(page.take_dirty().width, 0);
+    const PageChanges changes = page.changes_since(v0);
+    EXPECT_FALSE(changes.everything);
+    EXPECT_EQ(changes.rect, (luxel::scene::TexelRect{2, 1, 10, 7}));
+    // A reader that has read up to now sees nothing; one that read after the first change sees
+    // only the second: readers keep their own positions and nothing is cleared.
+    EXPECT_FALSE(page.changes_since(page.version).any());
+    EXPECT_EQ(page.changes_since(v1).rect, (luxel::scene::TexelRect{10, 1, 2, 2}));
+    EXPECT_EQ(page.changes_since(v0).rect, changes.rect);
+    const auto v2 = page.version;
+    page.mark_changed({0, 0, 0, 5});  // empty: nothing
+    EXPECT_EQ(page.version, v2);
+    EXPECT_FALSE(page.changes_since(v2).any());
+}
+
+TEST(RadiancePage, AReaderOlderThanTheLogReadsEverything) {
+    RadiancePage page(16);
+    const auto v0 = page.version;
+    for (std::size_t i = 0; i <= RadiancePage::kLogLength; ++i) {
+        page.mark_changed({1, 1, 1, 1});
+    }
+    EXPECT_LE(page.log.size(), RadiancePage::kLogLength);
+    EXPECT_TRUE(page.changes_since(v0).everything);
+    EXPECT_FALSE(page.changes_since(v0 + 1).everything);
+    EXPECT_EQ(page.changes_since(v0 + 1).rect, (luxel::scene::TexelRect{1, 1, 1, 1}));
+    // A version set by hand, with no log entry for it, also reads as everything.
+    RadiancePage set_by_hand(4);
+    set_by_hand.version = 1;
+    EXPECT_TRUE(set_by_hand.changes_since(0).everything);
 }
 
 TEST(RadiancePage, BilinearLookupBetweenTexelCentres) {

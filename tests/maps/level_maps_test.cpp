@@ -113,7 +113,7 @@ TEST(IlluminationMaps, GatherPassesRunInSlicesAndFadeIn) {
     EXPECT_EQ(world.maps->gather(0, 100, gatherer, 1.0), 70u);
     EXPECT_TRUE(world.maps->gather_requests().empty());
     EXPECT_EQ(world.maps->counters().gather_passes, 1u);
-    const auto dirty = world.maps->iim_pages()[0].current.dirty;
+    const auto dirty = world.maps->iim_pages()[0].current.changes_since(0).rect;
     EXPECT_GT(dirty.width, 0);
     EXPECT_LE(dirty.width, 12);  // the chart and its one-texel ring, not the page
 }

@@ -105,7 +105,7 @@ GatherLevel::GatherLevel(const std::string& name) {
                             page.at(x, y) = synthetic_radiance(x, y);
                         }
                     }
-                    page.mark_dirty({0, 0, size, size});
+                    page.mark_changed({0, 0, size, size});
                     found = pages.emplace(key, static_cast<std::int32_t>(atlas.pages.size())).first;
                     atlas.pages.push_back(std::move(page));
                 }

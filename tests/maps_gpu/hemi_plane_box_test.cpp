@@ -222,7 +222,7 @@ TEST_F(HemiPlaneBox, MovedMirroredAndAddedObjectsAreSeenByTheNextGather) {
     for (glm::vec3& t : atlas.pages[0].texels) {
         t *= 2.0f;
     }
-    atlas.pages[0].mark_dirty({0, 0, atlas.pages[0].size, atlas.pages[0].size});
+    atlas.pages[0].mark_changed({0, 0, atlas.pages[0].size, atlas.pages[0].size});
     const glm::vec3 doubled = gather(gpu, texel)[0];
     EXPECT_NEAR(doubled.g, 2.0f * near_quad.g, 1e-3f * near_quad.g);
     EXPECT_EQ(gpu.stats().page_uploads, uploads + 1);

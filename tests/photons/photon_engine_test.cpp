@@ -12,6 +12,7 @@
 #include "luxel/lighting/core/halton.hpp"
 #include "luxel/lighting/core/photon_map.hpp"
 #include "luxel/lighting/core/selective_emitter.hpp"
+#include "luxel/lighting/core/surface_deltas.hpp"
 #include "photon_test_scenes.hpp"
 
 namespace {
@@ -248,14 +249,21 @@ TEST(PhotonMapStorage, DeltasCountStoredAndRemovedEnergyAndReset) {
     traced.hops = {{glm::vec3(0.0f), glm::vec3(1.0f), 0, kNoObject, 0},
                    {glm::vec3(1.0f), glm::vec3(0.5f), 0, kNoObject, 1}};
     map.replace_group(0, traced);
-    EXPECT_DOUBLE_EQ(map.surface(0).delta_full.value(), 4.5);
-    EXPECT_DOUBLE_EQ(map.surface(0).delta_indirect.value(), 1.5);
-    map.reset_full_delta(0);
-    EXPECT_DOUBLE_EQ(map.surface(0).delta_full.value(), 0.0);
-    EXPECT_DOUBLE_EQ(map.surface(0).delta_indirect.value(), 1.5);
+    SurfaceDeltas deltas;
+    EXPECT_DOUBLE_EQ(deltas.full(map, 0), 4.5);
+    EXPECT_DOUBLE_EQ(deltas.indirect(map, 0), 1.5);
+    deltas.consume_full(map, 0);
+    EXPECT_DOUBLE_EQ(deltas.full(map, 0), 0.0);
+    EXPECT_DOUBLE_EQ(deltas.indirect(map, 0), 1.5);
     map.replace_group(0, traced);  // removes 4.5 and stores 4.5
-    EXPECT_DOUBLE_EQ(map.surface(0).delta_full.value(), 9.0);
-    EXPECT_DOUBLE_EQ(map.surface(0).delta_indirect.value(), 4.5);
+    EXPECT_DOUBLE_EQ(deltas.full(map, 0), 9.0);
+    EXPECT_DOUBLE_EQ(deltas.indirect(map, 0), 4.5);
+    // A second reader keeps its own position: what the first consumed is still new to it.
+    SurfaceDeltas other;
+    EXPECT_DOUBLE_EQ(other.full(map, 0), 13.5);
+    other.consume_indirect(map, 0);
+    EXPECT_DOUBLE_EQ(other.indirect(map, 0), 0.0);
+    EXPECT_DOUBLE_EQ(deltas.indirect(map, 0), 4.5);
     EXPECT_EQ(sizeof(StoredHit), 32u);
 }
 

@@ -43,7 +43,7 @@ TEST(Caustics, AFlatMirrorLightsTheCeilingLikeTheLightsMirrorImage) {
     MirrorRoom room;
     ReferenceScene scene(room.rays, room.materials, {room.light},
                          {luxel::testing::quad_texels(0, 2.0f, 2.0f, false, 8)});
-    ASSERT_EQ(scene.specular_spheres().size(), 1u);
+    ASSERT_EQ(scene.generator_spheres().size(), 1u);
     ReferenceSettings settings;
     settings.samples_per_pass = 1;
     settings.caustics.photons_per_pass = 1'000'000;

@@ -135,7 +135,7 @@ struct GlassBox {
 TEST(GlassSphere, RefractedCausticPowerIsTheLightsShareTimesOneMinusTheMeanFresnel) {
     GlassBox box;
     ReferenceScene scene(box.rays, box.materials, {box.light}, box.surfaces);
-    ASSERT_EQ(scene.specular_spheres().size(), 1u);
+    ASSERT_EQ(scene.generator_spheres().size(), 1u);
     ReferenceSettings settings;
     settings.samples_per_pass = 0;  // the caustic component only, as luxel-ref bins it
     settings.caustics.photons_per_pass = kPhotons;

@@ -118,12 +118,12 @@ TEST_P(BuiltInLevels, FramesHoldNoNanInfOrNegative) {
 
     const renderer::FrameCounters& counters = renderer.counters();
     EXPECT_EQ(counters.shadow_maps, counters.lights) << "one shadow map per enabled light";
-    if (world.lighting->plan().reflections()) {
-        EXPECT_GT(counters.specular_probes, 0u) << "specular materials get probes";
+    if (world.lighting->plan().specular()) {
+        EXPECT_GT(counters.specular_cube_maps, 0u) << "specular materials get cube maps";
     }
     std::printf("[ figures  ] %s: %zu lights, %zu shadow maps, %zu probes, %zu draws\n",
-                GetParam().c_str(), counters.lights, counters.shadow_maps, counters.specular_probes,
-                counters.draws);
+                GetParam().c_str(), counters.lights, counters.shadow_maps,
+                counters.specular_cube_maps, counters.draws);
 }
 
 TEST(RenderStability, ACameraInsideAWallRendersFiniteFrames) {

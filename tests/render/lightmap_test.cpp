@@ -70,7 +70,7 @@ class Lightmaps : public ::testing::Test {
         std::fill(page.current.texels.begin(), page.current.texels.end(), current);
         std::fill(page.previous.texels.begin(), page.previous.texels.end(), kPrevious);
         std::fill(page.committed_seconds.begin(), page.committed_seconds.end(), kCommitted);
-        page.current.mark_dirty({0, 0, kPage, kPage});
+        page.current.mark_changed({0, 0, kPage, kPage});
     }
 
     renderer::FrameRenderer& renderer() {
@@ -186,14 +186,13 @@ TEST_F(Lightmaps, OnlyTheDirtyRectangleIsUploaded) {
     EXPECT_EQ(renderer().counters().page_uploads, uploads);
 
     // Texels 2..4 x 2..4 of page A change, as a gather would mark them.
-    page.current.take_dirty();
     const glm::vec3 changed(5.0f, 6.0f, 7.0f);
     for (int y = 2; y <= 4; ++y) {
         for (int x = 2; x <= 4; ++x) {
             page.current.at(x, y) = changed;
         }
     }
-    page.current.mark_dirty({2, 2, 3, 3});
+    page.current.mark_changed({2, 2, 3, 3});
     int inside = 0;
     render_and_check(late, [&](const glm::vec3& l, const glm::vec2& uv, bool is_b) {
         const glm::vec2 t = uv * static_cast<float>(kPage);

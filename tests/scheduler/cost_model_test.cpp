@@ -18,8 +18,7 @@ TEST(CostModel, NamesAreStableAndDistinct) {
     EXPECT_EQ(name(WorkKind::CausticSlice), "caustic_slice");
     EXPECT_EQ(name(WorkKind::AimRebuild), "aim_rebuild");
     EXPECT_EQ(name(WorkKind::IimGather), "iim_gather");
-    EXPECT_EQ(name(WorkKind::IimBlend), "iim_blend");
-    EXPECT_EQ(index(WorkKind::IimBlend), kWorkKindCount - 1);
+    EXPECT_EQ(index(WorkKind::IimGather), kWorkKindCount - 1);
 }
 
 TEST(CostModel, PredictsThePriorTimesSizeBeforeAnyMeasurement) {
@@ -117,11 +116,11 @@ TEST(CostModel, ErrorBoundCoversSteadyNoise) {
 TEST(CostModel, AConstantCostStillGetsAFloorOfError) {
     CostModel model;
     for (int i = 0; i < 200; ++i) {
-        model.record(WorkKind::IimBlend, 1.0, 0.1);
+        model.record(WorkKind::IimGather, 1.0, 0.1);
     }
-    EXPECT_NEAR(model.predict(WorkKind::IimBlend, 1.0), 0.1, 1e-9);
+    EXPECT_NEAR(model.predict(WorkKind::IimGather, 1.0), 0.1, 1e-9);
     // 5 % of the mean plus 1 microsecond, not 0.
-    EXPECT_NEAR(model.prediction_error(WorkKind::IimBlend, 1.0), 0.005 + 0.001, 1e-6);
+    EXPECT_NEAR(model.prediction_error(WorkKind::IimGather, 1.0), 0.005 + 0.001, 1e-6);
 }
 
 TEST(CostModel, AdaptsWhenCostsTriple) {

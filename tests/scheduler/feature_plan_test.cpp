@@ -40,11 +40,10 @@ TEST(FeaturePlan, NoGeneratorMeansNoCausticPhotonsBuffersOrFilter) {
     EXPECT_TRUE(plan.selective_probes());
     EXPECT_TRUE(plan.aim());
     EXPECT_TRUE(plan.iim_gather());
-    EXPECT_TRUE(plan.iim_blend());
     EXPECT_TRUE(plan.shadows());
     EXPECT_TRUE(plan.direct());
-    EXPECT_FALSE(plan.reflections());
-    EXPECT_TRUE(contains(plan.reason(Pass::Reflections), "specular"));
+    EXPECT_FALSE(plan.specular());
+    EXPECT_TRUE(contains(plan.reason(Pass::Specular), "specular"));
 }
 
 TEST(FeaturePlan, AddingAGeneratorAtRunTimeTurnsCausticsOn) {
@@ -76,15 +75,15 @@ TEST(FeaturePlan, StaticConvergedSceneTracesAndGathersNothing) {
     c.converged = true;
     const FeaturePlan plan = FeaturePlan::from(c);
     EXPECT_FALSE(plan.any_tracing());
-    for (const Pass pass : {Pass::PhotonTracing, Pass::SelectiveProbes, Pass::Caustics, Pass::Aim,
-                            Pass::IimGather, Pass::IimBlend}) {
+    for (const Pass pass :
+         {Pass::PhotonTracing, Pass::SelectiveProbes, Pass::Caustics, Pass::Aim, Pass::IimGather}) {
         EXPECT_FALSE(plan.enabled(pass)) << name(pass);
     }
     EXPECT_TRUE(contains(plan.reason(Pass::PhotonTracing), "converged"));
-    // What is drawn every frame stays: shadows, direct, reflections, the traced caustics.
+    // What is drawn every frame stays: shadows, direct, the specular term, the traced caustics.
     EXPECT_TRUE(plan.shadows());
     EXPECT_TRUE(plan.direct());
-    EXPECT_TRUE(plan.reflections());
+    EXPECT_TRUE(plan.specular());
     EXPECT_TRUE(plan.caustic_filter());
     EXPECT_EQ(plan.active_count(), 4U);
 }
@@ -145,7 +144,6 @@ TEST(FeaturePlan, NoLightMappedSurfaceMeansNoGlobalPhotonsAimOrIim) {
     EXPECT_FALSE(plan.selective_probes());
     EXPECT_FALSE(plan.aim());
     EXPECT_FALSE(plan.iim_gather());
-    EXPECT_FALSE(plan.iim_blend());
     EXPECT_TRUE(contains(plan.reason(Pass::Aim), "light-mapped surface"));
     // Caustics are splatted on screen, not into light maps: they stay.
     EXPECT_TRUE(plan.caustics());

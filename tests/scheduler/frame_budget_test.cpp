@@ -35,7 +35,6 @@ constexpr double kClockSlackMs = 1e-5;
 /// - AIM rebuilds: one random surface of 40 every 10 frames, size (area) 0.3..3, 2.5 ms per
 ///   unit of size, so up to 7.5 ms: the big ones never fit a 4 ms budget and need forcing;
 /// - IIM gathers: 2 batches a frame of 16..64 texels among 500 batches (0.004 ms per texel);
-/// - IIM blend: one step a frame (0.05 ms);
 /// - every 500 frames a light is switched: all 300 groups invalidated at once (60 ms of work).
 /// Each unit's actual cost is its mean times U(0.7, 1.3). The mean load is about 2.4 ms a
 /// frame, 60 % of the 4 ms budget, plus the bursts.
@@ -74,7 +73,7 @@ class ScriptedScene {
     std::size_t outstanding() const { return enqueued_at_.size(); }
 
   private:
-    static constexpr PerKind<double> kMeanMs = {0.03, 0.2, 0.6, 2.5, 0.004, 0.05};
+    static constexpr PerKind<double> kMeanMs = {0.03, 0.2, 0.6, 2.5, 0.004};
 
     void script() {
         std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -101,7 +100,6 @@ class ScriptedScene {
             const double priority = unit(script_rng_);
             enqueue(WorkKind::IimGather, key, priority, 16.0 + 48.0 * unit(script_rng_));
         }
-        enqueue(WorkKind::IimBlend, 0, 0.1, 1.0);
         if (f % 500 == 250) {
             for (std::uint64_t g = 0; g < 300; ++g) {
                 enqueue(WorkKind::GroupRetrace, g, 1.0, 1.0);
@@ -231,7 +229,7 @@ TEST(FrameBudget, EveryUnitIsDoneWithinABoundedNumberOfFrames) {
 
 TEST(FrameBudget, NoStarvationEvenWhenTheLoadSaturatesTheBudget) {
     // A 2.5 ms budget for a 2.4 ms mean load: the queues are nearly always non-empty and the
-    // bursts take long to drain. Low-priority blends and gathers must still get through.
+    // bursts take long to drain. Low-priority gathers and AIM rebuilds must still get through.
     ScriptedScene scene(5);
     const std::uint32_t max_wait = scene.scheduler().settings().max_wait_frames;
     for (std::uint64_t f = 0; f < kFrames; ++f) {
@@ -344,17 +342,17 @@ TEST(FrameBudget, CostModelAdaptsWhenTheSceneGetsHeavier) {
     auto relative_error = [&](WorkKind kind) {
         return std::abs(model.predict(kind, 1.0) - scene.true_cost(kind)) / scene.true_cost(kind);
     };
-    // Kinds that run every frame (probes, retraces, gathers, blends) are predicted within
+    // Kinds that run every frame (probes, retraces, gathers) are predicted within
     // 20 % before the change.
-    const WorkKind frequent[] = {WorkKind::PhotonProbe, WorkKind::GroupRetrace, WorkKind::IimGather,
-                                 WorkKind::IimBlend};
+    const WorkKind frequent[] = {WorkKind::PhotonProbe, WorkKind::GroupRetrace,
+                                 WorkKind::IimGather};
     for (const WorkKind kind : frequent) {
         EXPECT_LE(relative_error(kind), 0.2) << name(kind);
     }
     // Every cost triples. Within 20 frames the frequent kinds are predicted within 20 % of
-    // the new cost again, and stay there. The bound is set by the blend, measured once a frame:
-    // with smoothing 0.1 the gap (2x the old cost, 67 % of the new) shrinks by 0.9 a sample,
-    // under 20 % after 12 samples, plus margin for the +-30 % noise.
+    // the new cost again, and stay there. The bound is set by the gathers, measured twice a
+    // frame when both fit: with smoothing 0.1 the gap (2x the old cost, 67 % of the new) shrinks
+    // by 0.9 a sample, under 20 % after 12 samples, plus margin for the +-30 % noise.
     scene.set_cost_scale(3.0);
     for (int f = 0; f < 500; ++f) {
         scene.frame(kBudget);

@@ -59,7 +59,10 @@ TEST(Scheduler, EnqueueMergesTheSameKindAndKey) {
 TEST(Scheduler, EmptyCallbackIsRejected) {
     ManualClock clock;
     Scheduler s(clock);
-    EXPECT_THROW(s.enqueue({WorkKind::IimBlend, 0, 1.0, {}}), std::invalid_argument);
+    EXPECT_THROW(s.enqueue({WorkKind::IimGather, 0, 1.0, {}}), std::invalid_argument);
+    // A kind past the enum's end (a cast from a number) would index past every per-kind array.
+    EXPECT_THROW(s.enqueue({static_cast<WorkKind>(kWorkKindCount), 0, 1.0, [] {}}),
+                 std::invalid_argument);
     EXPECT_EQ(s.pending_total(), 0U);
 }
 
@@ -67,8 +70,8 @@ TEST(Scheduler, HigherEffectivePriorityGoesFirst) {
     ManualClock clock;
     Scheduler s(clock, priors_of(1.0));
     std::vector<std::string> log;
-    // Effective priority = priority * weight (6 5 4 3 2 1 by kind).
-    s.enqueue({WorkKind::IimBlend, 0, 1.0, costs(clock, 1.0, &log, "blend")});        // 1
+    // Effective priority = priority * weight (6 5 4 3 2 by kind).
+    s.enqueue({WorkKind::IimGather, 0, 0.5, costs(clock, 1.0, &log, "gather-mid")});  // 1
     s.enqueue({WorkKind::IimGather, 1, 0.2, costs(clock, 1.0, &log, "gather-lo")});   // 0.4
     s.enqueue({WorkKind::IimGather, 2, 0.9, costs(clock, 1.0, &log, "gather-hi")});   // 1.8
     s.enqueue({WorkKind::AimRebuild, 3, 0.5, costs(clock, 1.0, &log, "aim")});        // 1.5
@@ -77,8 +80,8 @@ TEST(Scheduler, HigherEffectivePriorityGoesFirst) {
     s.enqueue({WorkKind::PhotonProbe, 6, 0.5, costs(clock, 1.0, &log, "probe")});     // 3
     s.enqueue({WorkKind::PhotonProbe, 7, 0.5, costs(clock, 1.0, &log, "probe-2")});   // 3, later
     const FrameReport r = s.run(std::numeric_limits<double>::infinity());
-    const std::vector<std::string> expected = {"probe",     "probe-2", "retrace", "caustic",
-                                               "gather-hi", "aim",     "blend",   "gather-lo"};
+    const std::vector<std::string> expected = {"probe",     "probe-2", "retrace",    "caustic",
+                                               "gather-hi", "aim",     "gather-mid", "gather-lo"};
     EXPECT_EQ(log, expected);
     EXPECT_EQ(r.units_done, 8U);
     EXPECT_DOUBLE_EQ(r.used_ms, 8.0);
@@ -108,7 +111,7 @@ TEST(Scheduler, SkipsAUnitThatDoesNotFitForSmallerOnes) {
     Scheduler s(clock, settings);
     std::vector<std::string> log;
     s.enqueue({WorkKind::AimRebuild, 1, 1.0, costs(clock, 5.0, &log, "big"), 5.0});
-    s.enqueue({WorkKind::IimBlend, 2, 0.1, costs(clock, 1.0, &log, "small")});
+    s.enqueue({WorkKind::IimGather, 2, 0.1, costs(clock, 1.0, &log, "small")});
     const FrameReport r = s.run(2.0);
     EXPECT_EQ(log, (std::vector<std::string>{"small"}));
     EXPECT_TRUE(s.queued(WorkKind::AimRebuild, 1));
@@ -153,9 +156,9 @@ TEST(Scheduler, AForcedUnitThatTurnsOutCheapLeavesRoomForOthers) {
     std::vector<std::string> log;
     // Predicted 10 ms (size 10) but costs 1 ms.
     s.enqueue({WorkKind::AimRebuild, 1, 1.0, costs(clock, 1.0, &log, "cheap"), 10.0});
-    s.enqueue({WorkKind::IimBlend, 2, 1.0, costs(clock, 1.0, &log, "blend")});
+    s.enqueue({WorkKind::IimGather, 2, 1.0, costs(clock, 1.0, &log, "gather")});
     const FrameReport r = s.run(4.0);
-    EXPECT_EQ(log, (std::vector<std::string>{"cheap", "blend"}));
+    EXPECT_EQ(log, (std::vector<std::string>{"cheap", "gather"}));
     EXPECT_EQ(r.forced_units, 1U);
     EXPECT_DOUBLE_EQ(r.used_ms, 2.0);
 }
@@ -168,8 +171,8 @@ TEST(Scheduler, BudgetZeroPausesEverythingAndResumingDrainsTheBacklog) {
     int ran = 0;
     std::vector<int> runs(40, 0);
     for (int i = 0; i < 40; ++i) {
-        s.enqueue({static_cast<WorkKind>(i % 6), static_cast<std::uint64_t>(i), 0.5,
-                   [&clock, &ran, &runs, i] {
+        s.enqueue({static_cast<WorkKind>(i % static_cast<int>(kWorkKindCount)),
+                   static_cast<std::uint64_t>(i), 0.5, [&clock, &ran, &runs, i] {
                        clock.advance(from_milliseconds(1.0));
                        ++ran;
                        ++runs[static_cast<std::size_t>(i)];
@@ -230,10 +233,10 @@ TEST(Scheduler, ACallbackThatThrowsDropsItsUnitOnly) {
     ManualClock clock;
     Scheduler s(clock, priors_of(1.0));
     s.enqueue({WorkKind::PhotonProbe, 1, 1.0, [] { throw std::runtime_error("boom"); }});
-    s.enqueue({WorkKind::IimBlend, 2, 1.0, costs(clock, 1.0)});
+    s.enqueue({WorkKind::IimGather, 2, 1.0, costs(clock, 1.0)});
     EXPECT_THROW(s.run(10.0), std::runtime_error);
     EXPECT_FALSE(s.queued(WorkKind::PhotonProbe, 1));
-    EXPECT_TRUE(s.queued(WorkKind::IimBlend, 2));
+    EXPECT_TRUE(s.queued(WorkKind::IimGather, 2));
     const FrameReport r = s.run(10.0);  // still usable: not stuck "running"
     EXPECT_EQ(r.units_done, 1U);
 }
@@ -245,12 +248,12 @@ TEST(Scheduler, AShareCapsAKind) {
     Scheduler s(clock, settings);
     for (std::uint64_t i = 0; i < 10; ++i) {
         s.enqueue({WorkKind::GroupRetrace, i, 1.0, costs(clock, 1.0)});
-        s.enqueue({WorkKind::IimBlend, i, 0.1, costs(clock, 1.0)});
+        s.enqueue({WorkKind::IimGather, i, 0.1, costs(clock, 1.0)});
     }
     const FrameReport r = s.run(8.0);
-    // Retraces outrank blends, but may take only half of the 8 ms.
+    // Retraces outrank gathers, but may take only half of the 8 ms.
     EXPECT_EQ(r.kinds[index(WorkKind::GroupRetrace)].units_done, 4U);
-    EXPECT_EQ(r.kinds[index(WorkKind::IimBlend)].units_done, 4U);
+    EXPECT_EQ(r.kinds[index(WorkKind::IimGather)].units_done, 4U);
 }
 
 TEST(Scheduler, AgingLiftsOldLowPriorityUnits) {
@@ -259,9 +262,9 @@ TEST(Scheduler, AgingLiftsOldLowPriorityUnits) {
     settings.aging_per_frame = 0.45;
     Scheduler s(clock, settings);
     std::vector<std::string> log;
-    s.enqueue({WorkKind::IimBlend, 0, 0.0, costs(clock, 1.0, &log, "old-blend")});
+    s.enqueue({WorkKind::IimGather, 0, 0.0, costs(clock, 1.0, &log, "old-gather")});
     // Each frame one fresh retrace of priority 0.4 (effective 2) competes for a 1 ms budget.
-    // The blend (effective 0.45 per frame waited) wins once it has waited 5 frames (2.25 > 2).
+    // The gather (effective 0.45 per frame waited) wins once it has waited 5 frames (2.25 > 2).
     for (int f = 0; f < 10 && log.size() < 6; ++f) {
         s.enqueue({WorkKind::GroupRetrace, static_cast<std::uint64_t>(f), 0.4,
                    costs(clock, 1.0, &log, "retrace")});
@@ -269,7 +272,7 @@ TEST(Scheduler, AgingLiftsOldLowPriorityUnits) {
     }
     ASSERT_EQ(log.size(), 6U);
     EXPECT_EQ(log[4], "retrace");
-    EXPECT_EQ(log[5], "old-blend");
+    EXPECT_EQ(log[5], "old-gather");
 }
 
 TEST(Scheduler, ReportsPredictionsAgainstActualCosts) {

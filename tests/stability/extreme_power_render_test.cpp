@@ -168,7 +168,7 @@ TEST_F(ExtremePowerFrames, CornellTermsAreFiniteAndScaleLinearlyOffSpecularPixel
 }
 
 // The same requirement where half-float targets used to sit in the path: the specular term
-// of the Cornell box's glass sphere (probe cube maps, renderer/src/specular_probes.cpp) and
+// of the Cornell box's glass sphere (specular cube maps, renderer/src/specular_cube_maps.cpp) and
 // the furnace's emission seen directly (the G-buffer's emission target,
 // renderer/src/frame_targets.cpp). Both were RGBA16F, and this test found the sphere 0.91
 // darker than linear at x 1e6 (radiance saturated at 65,504) and black at x 1e-6 (below

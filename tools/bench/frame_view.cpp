@@ -75,7 +75,7 @@ renderer::FrameCamera frame_camera(const lighting::reference::ReferenceCamera& c
     return out;
 }
 
-FrameView::FrameView(ecs::Registry& registry, lighting::LightingSystem& lighting,
+FrameView::FrameView(ecs::Registry& registry, const lighting::LightingSystem& lighting,
                      const lighting::reference::ReferenceCamera& camera,
                      lighting::CausticKernel kernel, const ShaderLibrary& shaders)
     : camera_(frame_camera(camera)),

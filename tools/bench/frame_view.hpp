@@ -41,7 +41,7 @@ struct FrameShot {
 /// One run's renderer. Needs the context current for its whole life.
 class FrameView {
   public:
-    FrameView(ecs::Registry& registry, lighting::LightingSystem& lighting,
+    FrameView(ecs::Registry& registry, const lighting::LightingSystem& lighting,
               const lighting::reference::ReferenceCamera& camera, lighting::CausticKernel kernel,
               const ShaderLibrary& shaders);
     FrameView(const FrameView&) = delete;

@@ -101,7 +101,7 @@ int run(int argc, char** argv) {
                  "luxel-ref: %s at t = %.3f s: %zu light-mapped surfaces, %zu texels, %zu "
                  "lights, %zu specular objects (%.1f s to load)\n",
                  file.string().c_str(), options.time, scene.surfaces().size(), scene.texel_count(),
-                 scene.lights().size(), scene.specular_spheres().size(),
+                 scene.lights().size(), scene.generator_spheres().size(),
                  clock.elapsed_ms() / 1000.0);
 
     std::optional<ReferenceCamera> camera;

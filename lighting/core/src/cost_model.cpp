@@ -17,8 +17,6 @@ std::string_view name(WorkKind kind) {
             return "aim_rebuild";
         case WorkKind::IimGather:
             return "iim_gather";
-        case WorkKind::IimBlend:
-            return "iim_blend";
     }
     return "unknown";
 }

@@ -18,14 +18,12 @@ std::string_view name(Pass pass) {
             return "aim";
         case Pass::IimGather:
             return "iim_gather";
-        case Pass::IimBlend:
-            return "iim_blend";
         case Pass::Shadows:
             return "shadows";
         case Pass::Direct:
             return "direct";
-        case Pass::Reflections:
-            return "reflections";
+        case Pass::Specular:
+            return "specular";
         case Pass::CausticFilter:
             return "caustic_filter";
     }
@@ -93,7 +91,6 @@ FeaturePlan::FeaturePlan(const SceneCensus& census) : census_(census) {
     surface_pass(Pass::PhotonTracing, "global photons would have nowhere to be stored");
     surface_pass(Pass::Aim, "no irradiance map to rebuild");
     surface_pass(Pass::IimGather, "no texel to gather");
-    surface_pass(Pass::IimBlend, "no map to blend");
 
     // Probes find the groups that geometry changes invalidated; a light change invalidates its
     // own groups, so a scene whose geometry never changes needs no probes.
@@ -128,14 +125,14 @@ FeaturePlan::FeaturePlan(const SceneCensus& census) : census_(census) {
     if (!lit) {
         set(Pass::Shadows, false, no_light);
         set(Pass::Direct, false, no_light);
-        set(Pass::Reflections, false, no_light);
+        set(Pass::Specular, false, no_light);
     } else {
         set(Pass::Shadows, true, lights + " cast shadows");
         set(Pass::Direct, true, lights + " light the scene directly");
         if (c.specular_materials == 0) {
-            set(Pass::Reflections, false, "no specular material: nothing reflects");
+            set(Pass::Specular, false, "no specular material: nothing reflects");
         } else {
-            set(Pass::Reflections, true,
+            set(Pass::Specular, true,
                 count(c.specular_materials, "specular material", "specular materials"));
         }
     }

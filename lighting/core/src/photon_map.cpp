@@ -41,9 +41,9 @@ void PhotonMap::remove_hit(std::uint32_t surface, std::uint32_t slot) {
     const StoredHit removed = target.hits[slot];
     const double energy = energy_of(removed.power);
     target.stored_energy.subtract(energy);
-    target.delta_full.add(energy);
+    target.changed_full.add(energy);
     if (removed.bounces() > 0) {
-        target.delta_indirect.add(energy);
+        target.changed_indirect.add(energy);
     }
     // Swap-and-pop: the last hit fills the hole, and the hop that owns it learns its new slot.
     const auto last = static_cast<std::uint32_t>(target.hits.size() - 1);
@@ -88,9 +88,9 @@ void PhotonMap::replace_group(std::uint32_t group, const TracedGroup& traced) {
             {hop.position, hop.power, group | (bounces << 24), static_cast<std::uint32_t>(h)});
         const double energy = energy_of(hop.power);
         target.stored_energy.add(energy);
-        target.delta_full.add(energy);
+        target.changed_full.add(energy);
         if (bounces > 0) {
-            target.delta_indirect.add(energy);
+            target.changed_indirect.add(energy);
         }
         ++stored_hits_;
     }
@@ -132,14 +132,6 @@ bool PhotonMap::diverges(std::uint32_t group, std::uint32_t photon, std::span<co
         }
     }
     return false;
-}
-
-void PhotonMap::reset_full_delta(std::uint32_t surface) {
-    surfaces_.at(surface).delta_full.reset();
-}
-
-void PhotonMap::reset_indirect_delta(std::uint32_t surface) {
-    surfaces_.at(surface).delta_indirect.reset();
 }
 
 std::size_t PhotonMap::hop_count() const {

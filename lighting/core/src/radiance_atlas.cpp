@@ -9,26 +9,47 @@ RadiancePage::RadiancePage(int page_size)
     : size(std::max(page_size, 0)),
       texels(static_cast<std::size_t>(size) * static_cast<std::size_t>(size), glm::vec3(0.0f)) {}
 
-void RadiancePage::mark_dirty(const scene::TexelRect& rect) {
+void RadiancePage::mark_changed(const scene::TexelRect& rect) {
     if (rect.width <= 0 || rect.height <= 0) {
         return;
     }
     ++version;
-    if (dirty.width <= 0 || dirty.height <= 0) {
-        dirty = rect;
-        return;
+    log.push_back({version, rect});
+    if (log.size() > kLogLength) {
+        log.pop_front();
     }
-    const int x0 = std::min(dirty.x, rect.x);
-    const int y0 = std::min(dirty.y, rect.y);
-    const int x1 = std::max(dirty.x + dirty.width, rect.x + rect.width);
-    const int y1 = std::max(dirty.y + dirty.height, rect.y + rect.height);
-    dirty = {x0, y0, x1 - x0, y1 - y0};
 }
 
-scene::TexelRect RadiancePage::take_dirty() {
-    const scene::TexelRect taken = dirty;
-    dirty = {};
-    return taken;
+PageChanges RadiancePage::changes_since(std::uint64_t reader_version) const {
+    PageChanges changes;
+    if (reader_version >= version) {
+        return changes;
+    }
+    // The log must hold every change after the reader's version, the first being
+    // reader_version + 1; a page whose version was set without a log entry, or a reader that
+    // fell behind the log, reads everything.
+    if (log.empty() || log.front().version > reader_version + 1) {
+        changes.everything = true;
+        return changes;
+    }
+    int x0 = 0;
+    int y0 = 0;
+    int x1 = 0;
+    int y1 = 0;
+    bool first = true;
+    for (const PageChange& change : log) {
+        if (change.version <= reader_version) {
+            continue;
+        }
+        const scene::TexelRect& r = change.rect;
+        x0 = first ? r.x : std::min(x0, r.x);
+        y0 = first ? r.y : std::min(y0, r.y);
+        x1 = first ? r.x + r.width : std::max(x1, r.x + r.width);
+        y1 = first ? r.y + r.height : std::max(y1, r.y + r.height);
+        first = false;
+    }
+    changes.rect = {x0, y0, x1 - x0, y1 - y0};
+    return changes;
 }
 
 glm::vec3 RadiancePage::sample(const glm::vec2& uv) const {

@@ -91,6 +91,9 @@ void Scheduler::enqueue(WorkUnit unit) {
     if (!unit.run) {
         throw std::invalid_argument("Scheduler::enqueue: work unit without a callback");
     }
+    if (index(unit.kind) >= kWorkKindCount) {
+        throw std::invalid_argument("Scheduler::enqueue: work unit of no known kind");
+    }
     const double priority = clamp_finite(unit.priority, -kMaxPriority, kMaxPriority, 0.0);
     // A size that is not a finite non-negative number predicts nothing and teaches nothing.
     const double size = std::isfinite(unit.size) && unit.size > 0.0 ? unit.size : 0.0;
@@ -109,7 +112,7 @@ void Scheduler::enqueue(WorkUnit unit) {
 }
 
 bool Scheduler::cancel(WorkKind kind, std::uint64_t key) {
-    return queues_[index(kind)].erase(key) > 0;
+    return index(kind) < kWorkKindCount && queues_[index(kind)].erase(key) > 0;
 }
 
 void Scheduler::clear() {
@@ -119,11 +122,11 @@ void Scheduler::clear() {
 }
 
 bool Scheduler::queued(WorkKind kind, std::uint64_t key) const {
-    return queues_[index(kind)].contains(key);
+    return index(kind) < kWorkKindCount && queues_[index(kind)].contains(key);
 }
 
 std::size_t Scheduler::pending(WorkKind kind) const {
-    return queues_[index(kind)].size();
+    return index(kind) < kWorkKindCount ? queues_[index(kind)].size() : 0;
 }
 
 std::size_t Scheduler::pending_total() const {

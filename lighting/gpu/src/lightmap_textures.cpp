@@ -88,9 +88,10 @@ bool LightmapTextures::upload_changed(const IimPage& page, int layer) {
     if (!first_time && state.version == page.current.version) {
         return false;
     }
-    const scene::TexelRect dirty = page.current.dirty;
-    if (first_time || dirty.width <= 0 || dirty.height <= 0) {
-        // New storage, or changed with its rectangle already taken by someone: all of it.
+    const PageChanges changes = page.current.changes_since(state.version);
+    const scene::TexelRect dirty = changes.rect;
+    if (first_time || changes.everything) {
+        // New storage, or more changes than the page's log remembers: all of it.
         upload_rect(page, layer, 0, 0, size, size);
     } else {
         const int x0 = std::clamp(dirty.x, 0, size);
@@ -119,13 +120,6 @@ void LightmapTextures::sync(std::span<const IimPage> pages) {
     }
     for (std::size_t i = 0; i < pages.size(); ++i) {
         upload_changed(pages[i], static_cast<int>(i));
-    }
-}
-
-void LightmapTextures::sync_and_take(std::span<IimPage> pages) {
-    sync(std::span<const IimPage>(pages.data(), pages.size()));
-    for (IimPage& page : pages) {
-        page.current.take_dirty();
     }
 }
 

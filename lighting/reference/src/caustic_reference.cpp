@@ -32,7 +32,7 @@ CausticReference::CausticReference(const ReferenceScene& scene, CausticReference
       sum_(scene.texel_count(), glm::dvec3(0.0)),
       sum_squares_(scene.texel_count(), glm::dvec3(0.0)) {
     const auto lights = scene.lights();
-    const auto spheres = scene.specular_spheres();
+    const auto spheres = scene.generator_spheres();
     for (std::uint32_t l = 0; l < lights.size(); ++l) {
         if (!lights[l].is_delta()) {
             continue;  // area-light caustics are path traced (PathEstimator)
@@ -63,7 +63,7 @@ void CausticReference::trace(const Pair& pair, std::uint64_t index, Deposit& dep
     // Overlapping cones: every pair of this light whose sphere the first ray crosses samples
     // this direction too.
     std::uint32_t sharing = 0;
-    const auto spheres = scene_->specular_spheres();
+    const auto spheres = scene_->generator_spheres();
     for (const Pair& other : pairs_) {
         if (other.light == pair.light &&
             ray_crosses(photon.origin, photon.direction, spheres[other.sphere])) {

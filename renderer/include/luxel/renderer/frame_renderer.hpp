@@ -80,7 +80,7 @@ struct FrameCounters {
     std::size_t meshes_cached = 0;         ///< (scene, mesh) pairs with GPU buffers
     std::uint64_t page_uploads = 0;        ///< IIM page rectangles uploaded, since construction
     std::uint64_t texels_uploaded = 0;     ///< IIM texels uploaded, since construction
-    std::size_t specular_probes = 0;       ///< specular cube maps allocated now
+    std::size_t specular_cube_maps = 0;    ///< specular cube maps allocated now
     std::uint64_t specular_faces = 0;      ///< specular cube faces rendered, since construction
 };
 
@@ -127,17 +127,17 @@ enum class FrameImage : std::uint8_t {
 /// reach the light's range was added, removed or moved. Motion comes from ecs Observers of
 /// WorldTransform and MeshInstance (O(changes) per frame).
 ///
-/// IIM pages are uploaded where their version changed, the rectangle that IlluminationMaps
-/// marked dirty (RadiancePage::dirty), taken as it is uploaded: the next upload holds only
-/// what changed since.
+/// IIM pages are uploaded where their version changed: the rectangle that changed since this
+/// renderer's last upload (RadiancePage::changes_since). The renderer only reads the lighting
+/// system, so several renderers (the sandbox's, luxel-bench's frame view) can follow one.
 ///
 /// Needs a current GL 4.5 context for its whole life. Restores the GL state it changes.
 class FrameRenderer {
   public:
     /// Loads the shaders from the default ShaderLibrary search paths.
-    FrameRenderer(ecs::Registry& registry, lighting::LightingSystem& lighting,
+    FrameRenderer(ecs::Registry& registry, const lighting::LightingSystem& lighting,
                   FrameSettings settings = {});
-    FrameRenderer(ecs::Registry& registry, lighting::LightingSystem& lighting,
+    FrameRenderer(ecs::Registry& registry, const lighting::LightingSystem& lighting,
                   FrameSettings settings, const ShaderLibrary& shaders);
     ~FrameRenderer();
     FrameRenderer(const FrameRenderer&) = delete;

@@ -37,13 +37,12 @@ enum class Pass : std::uint8_t {
     Caustics,         ///< caustic photon slices (tracing)
     Aim,              ///< AIM rebuilds
     IimGather,        ///< IIM texel gathers
-    IimBlend,         ///< IIM front/back blend steps
     Shadows,          ///< shadow maps (render)
     Direct,           ///< direct lighting (render)
-    Reflections,      ///< specular reflections (render)
+    Specular,         ///< the specular term: reflection and refraction (render)
     CausticFilter,    ///< caustic buffers and their filter/composite pass (render)
 };
-inline constexpr std::size_t kPassCount = 10;
+inline constexpr std::size_t kPassCount = 9;
 
 /// "photon_tracing", "selective_probes", ...
 [[nodiscard]] std::string_view name(Pass pass);
@@ -56,7 +55,7 @@ inline constexpr std::size_t kPassCount = 10;
 /// - No specular material: no reflection pass.
 /// - Converged and nothing moving this frame (a static scene, or one whose dynamic objects are
 ///   at rest): no tracing, no probing, no gathering, no blending; only the render passes stay
-///   (shadows, direct, reflections, the caustic filter over the caustics already traced).
+///   (shadows, direct, the specular term, the caustic filter over the caustics already traced).
 /// - Probes only where something can invalidate groups behind our back: dynamic objects or
 ///   static geometry edits. Light changes invalidate their own groups without probes.
 ///
@@ -85,17 +84,15 @@ class FeaturePlan {
     [[nodiscard]] bool caustics() const { return enabled(Pass::Caustics); }
     [[nodiscard]] bool aim() const { return enabled(Pass::Aim); }
     [[nodiscard]] bool iim_gather() const { return enabled(Pass::IimGather); }
-    [[nodiscard]] bool iim_blend() const { return enabled(Pass::IimBlend); }
     [[nodiscard]] bool shadows() const { return enabled(Pass::Shadows); }
     [[nodiscard]] bool direct() const { return enabled(Pass::Direct); }
-    [[nodiscard]] bool reflections() const { return enabled(Pass::Reflections); }
+    [[nodiscard]] bool specular() const { return enabled(Pass::Specular); }
     [[nodiscard]] bool caustic_filter() const { return enabled(Pass::CausticFilter); }
     /// Caustic photon lists and buffers exist (whether or not they are retraced this frame).
     [[nodiscard]] bool caustic_data() const { return caustic_filter(); }
     /// Anything traced or gathered this frame: false means the scheduler gets no lighting work.
     [[nodiscard]] bool any_tracing() const {
-        return photon_tracing() || selective_probes() || caustics() || aim() || iim_gather() ||
-               iim_blend();
+        return photon_tracing() || selective_probes() || caustics() || aim() || iim_gather();
     }
 
     bool operator==(const FeaturePlan&) const = default;

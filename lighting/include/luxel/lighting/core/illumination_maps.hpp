@@ -19,6 +19,7 @@
 #include "luxel/lighting/core/photon_density.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
 #include "luxel/lighting/core/radiance_atlas.hpp"
+#include "luxel/lighting/core/surface_deltas.hpp"
 #include "luxel/lighting/core/surface_footprint.hpp"
 #include "luxel/lighting/core/surface_texels.hpp"
 
@@ -57,11 +58,11 @@ struct IlluminationSettings {
     /// idle, and they stop once done. Only gatherers that sample refine (IrradianceGatherer::
     /// refines()); docs/RESULTS.md measures the trade.
     std::uint32_t refine_passes = 16;
-    /// AIM texels whose hemisphere is closed within this many texels (every probe ray blocked:
+    /// AIM texels whose hemisphere is closed within this many texels (every enclosure ray blocked:
     /// the floor under a box resting on it, the box's bottom) get no light: no photon can
     /// reach them, and a density estimate there would borrow the photons around the object
-    /// (its radius grows until it finds some) and leak light under it. 0: no probes.
-    double enclosure_probe_texels = 1.5;
+    /// (its radius grows until it finds some) and leak light under it. 0: no enclosure rays.
+    double enclosure_ray_texels = 1.5;
     /// Once three or more passes are averaged, the filter weighs each neighbour by how well
     /// the texels' noise explains their difference: exp(-d^2 / (2 k^2 (var_i + var_j))) with
     /// k this many standard deviations of the texels' means (0: the plain tent). Noise is
@@ -133,7 +134,7 @@ class IimPassFilter;
 class IlluminationMaps {
   public:
     /// Follows `world`'s surfaces (call sync() after PhotonWorld::sync()).
-    IlluminationMaps(ecs::Registry& registry, PhotonWorld& world,
+    IlluminationMaps(ecs::Registry& registry, const PhotonWorld& world,
                      IlluminationSettings settings = {});
     ~IlluminationMaps();
     IlluminationMaps(const IlluminationMaps&) = delete;
@@ -160,6 +161,11 @@ class IlluminationMaps {
     /// progress, the call continues that pass instead. Returns the texels done.
     std::size_t rebuild_aim(std::uint32_t surface,
                             std::size_t max_texels = std::numeric_limits<std::size_t>::max());
+    /// Whether surface `s` is in aim_requests(): its AIM was never built, is being rebuilt, or
+    /// delta_f is over the threshold.
+    [[nodiscard]] bool needs_aim(std::uint32_t s) const;
+    /// Texels of `surface`'s AIM left to do: the rest of the rebuild in progress, or all.
+    [[nodiscard]] std::size_t aim_texels_left(std::uint32_t surface) const;
 
     /// Surfaces whose IIM needs gathering (a pass in progress, or delta_i over the threshold),
     /// highest delta_i / area first. No new pass starts while a surface holding photons has
@@ -171,6 +177,10 @@ class IlluminationMaps {
     /// `now_seconds`, to fade in over the blend time.
     std::size_t gather(std::uint32_t surface, std::size_t max_texels, IrradianceGatherer& gatherer,
                        double now_seconds);
+    /// Whether surface `s` is in gather_requests().
+    [[nodiscard]] bool needs_gather(std::uint32_t s) const;
+    /// Texels of `surface` left to gather: the rest of the pass in progress, or all.
+    [[nodiscard]] std::size_t gather_texels_left(std::uint32_t surface) const;
 
     /// Whether every surface holding photons has had its first AIM (gather passes wait).
     [[nodiscard]] bool aims_ready() const;
@@ -183,6 +193,7 @@ class IlluminationMaps {
     /// The AIM pages both gather backends read.
     [[nodiscard]] const RadianceAtlas& aim() const { return aim_; }
     [[nodiscard]] std::span<const IimPage> iim_pages() const { return iim_pages_; }
+    /// For tests that play the gatherer; readers (the renderer) get the const pages.
     [[nodiscard]] std::span<IimPage> iim_pages() { return iim_pages_; }
     /// Per surface; entries without texels belong to surfaces that have no light map.
     [[nodiscard]] std::span<const MapSurface> surfaces() const { return surfaces_; }
@@ -196,21 +207,23 @@ class IlluminationMaps {
     [[nodiscard]] std::vector<GatherTexel> world_texels(std::uint32_t surface) const;
 
   private:
-    struct AimPass;
+    struct AimRebuildState;
+    /// Filtering a texel costs about a fortieth of gathering it with 64 rays: a gather call's
+    /// unused texels of budget filter this many texels each.
+    static constexpr std::size_t kFilteredPerGathered = 32;
 
     void add_surface(std::uint32_t surface);
     void refresh_transform(std::uint32_t surface);
     /// Sets aim_.surface_emission[surface] from its material and its entity's AreaLight;
     /// returns whether it changed.
     bool refresh_emission(std::uint32_t surface);
-    /// Whether surface `s` needs an AIM rebuild: never built, in progress, or delta_f over the
-    /// threshold.
-    [[nodiscard]] bool needs_aim(std::uint32_t s) const;
     /// Whether what surface `s` gathers has changed since its last pass (delta_i over the
     /// threshold, an emission changed, or the pass read a stale AIM that is current now).
     [[nodiscard]] bool lighting_changed(std::uint32_t s, bool aims_are_current) const;
-    /// Whether every probe ray from the texel is blocked within `probe_length` metres.
-    [[nodiscard]] bool enclosed(const GatherTexel& texel, float probe_length) const;
+    /// Whether every enclosure ray from the texel is blocked within `ray_length` metres.
+    [[nodiscard]] bool enclosed(const GatherTexel& texel, float ray_length) const;
+    /// Whether surface `s` belongs in gather_requests(), given aims_ready() and aims_current().
+    [[nodiscard]] bool wants_gather(std::uint32_t s, bool ready, bool current) const;
     /// Whether surface `s` wants a refinement pass.
     [[nodiscard]] bool wants_refinement(std::uint32_t s) const;
     /// A pass's last texel is gathered: updates the mean and starts its filter.
@@ -223,7 +236,9 @@ class IlluminationMaps {
     std::int32_t page_index(const scene::Scene* source, int page, int page_size);
 
     ecs::Registry& registry_;
-    PhotonWorld& world_;
+    const PhotonWorld& world_;
+    /// delta_f and delta_i: this reader's positions in the photon map's change counts.
+    SurfaceDeltas deltas_;
     IlluminationSettings settings_;
     RadianceAtlas aim_;
     std::vector<IimPage> iim_pages_;
@@ -237,7 +252,7 @@ class IlluminationMaps {
     std::uint64_t emission_version_ = 0;
     bool refine_ = false;
     MapCounters counters_;
-    std::unique_ptr<AimPass> aim_pass_;
+    std::unique_ptr<AimRebuildState> aim_rebuild_;
     /// Completed passes being filtered, by surface.
     std::map<std::uint32_t, std::unique_ptr<IimPassFilter>> filters_;
 };

@@ -40,14 +40,15 @@ struct TracedGroup {
     std::vector<std::uint32_t> starts;  ///< photon_count + 1 entries
 };
 
-/// What a surface holds and how much it changed since its AIM / IIM last consumed it.
+/// What a surface holds and how much has changed on it.
 struct SurfacePhotons {
     std::vector<StoredHit> hits;
     CompensatedSum stored_energy;  ///< sum over hits of (r + g + b) power
-    /// delta_f: energy of every hit stored on or removed from the surface since reset;
-    /// delta_i: the same for hits with at least one bounce (the indirect part).
-    CompensatedSum delta_full;
-    CompensatedSum delta_indirect;
+    /// The energy of every hit ever stored on or removed from the surface, and the same for
+    /// hits with at least one bounce (the indirect part). Never reset: delta_f and delta_i are
+    /// these counts minus a reader's position in them (SurfaceDeltas).
+    CompensatedSum changed_full;
+    CompensatedSum changed_indirect;
 };
 
 /// Comparison tolerance for probe paths, in metres.
@@ -82,10 +83,6 @@ class PhotonMap {
     }
     [[nodiscard]] std::size_t surface_count() const { return surfaces_.size(); }
     [[nodiscard]] std::size_t group_count() const { return groups_.size(); }
-    /// Sets delta_f of a surface back to zero: its AIM was rebuilt.
-    void reset_full_delta(std::uint32_t surface);
-    /// Sets delta_i of a surface back to zero: a gather pass over its IIM texels began.
-    void reset_indirect_delta(std::uint32_t surface);
 
     [[nodiscard]] std::size_t stored_hit_count() const { return stored_hits_; }
     /// Hops kept for path comparison (stored or not).

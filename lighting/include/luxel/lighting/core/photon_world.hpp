@@ -114,6 +114,8 @@ class PhotonWorld {
     EmissionStats retrace_pending(JobSystem& jobs, std::size_t max_groups = 0);
 
     [[nodiscard]] const RayScene& ray_scene() const { return scene_; }
+    /// The photon world is the map's writer; readers keep their own positions in its change
+    /// counts (SurfaceDeltas). The mutable overload is for tests that play the tracer.
     [[nodiscard]] const PhotonMap& photon_map() const { return *map_; }
     [[nodiscard]] PhotonMap& photon_map() { return *map_; }
     [[nodiscard]] const std::vector<SurfaceInfo>& surfaces() const { return surfaces_; }
@@ -141,6 +143,13 @@ class PhotonWorld {
     std::uint32_t generator_material(ecs::Entity entity, std::uint32_t shared,
                                      const CausticGenerator& optics);
     void forget_generator_materials(ecs::Entity entity);
+    // sync()'s steps, in order; each adds the entities whose lights it may have touched.
+    void sync_meshes(std::vector<ecs::Entity>& light_touched,
+                     std::vector<ecs::Entity>& meshes_added);
+    void sync_generators(const std::vector<ecs::Entity>& meshes_added,
+                         std::vector<ecs::Entity>& generators_touched);
+    void sync_moves(std::vector<ecs::Entity>& light_touched);
+    void sync_lights(std::vector<ecs::Entity>& light_touched);
     void sync_caustics(std::span<const ecs::Entity> lights_touched,
                        std::span<const ecs::Entity> generators_touched, bool objects_changed);
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <span>
 #include <vector>
 
@@ -13,14 +14,37 @@
 /// [x, x+1] x [y, y+1] in page-texel units; light-map UV u maps to u * size.
 namespace luxel::lighting {
 
+/// One change of a page: the texels a write touched, and the version it made.
+struct PageChange {
+    std::uint64_t version = 0;
+    scene::TexelRect rect;
+};
+
+/// What changed in a page since a reader's version: nothing, a rectangle (the union of the
+/// changes), or everything, when the reader is older than the page's log reaches back.
+struct PageChanges {
+    bool everything = false;
+    scene::TexelRect rect;
+
+    [[nodiscard]] bool any() const { return everything || (rect.width > 0 && rect.height > 0); }
+};
+
 /// One page: size x size texels, row by row (y = 0 first), linear RGB.
+///
+/// A page does not know who reads it. Each change bumps `version` and is logged with its
+/// rectangle; a reader (a GPU copy, a tool's frame view) keeps the version it last read and
+/// asks changes_since() for what to read again, so any number of readers can follow a page
+/// without the writer clearing anything on their behalf.
 struct RadiancePage {
+    /// Changes kept: a reader more than this many changes behind reads the whole page again.
+    static constexpr std::size_t kLogLength = 64;
+
     int size = 0;
     std::vector<glm::vec3> texels;
-    /// Bumped whenever texels change, so a GPU copy knows when to upload.
+    /// Bumped by every mark_changed, so a reader knows it has something to read.
     std::uint64_t version = 0;
-    /// Texels written since the last take_dirty(): the rectangle to upload (empty: width 0).
-    scene::TexelRect dirty;
+    /// The last kLogLength changes, oldest first.
+    std::deque<PageChange> log;
 
     explicit RadiancePage(int page_size = 0);
 
@@ -32,10 +56,12 @@ struct RadiancePage {
         return texels[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) +
                       static_cast<std::size_t>(x)];
     }
-    /// Grows the dirty rectangle over `rect` and bumps the version.
-    void mark_dirty(const scene::TexelRect& rect);
-    /// Returns and clears the dirty rectangle.
-    scene::TexelRect take_dirty();
+    /// Records that the texels of `rect` were written: bumps the version and logs the change
+    /// (an empty rectangle changes nothing).
+    void mark_changed(const scene::TexelRect& rect);
+    /// What changed after `reader_version` (a version this page had, 0 for a reader that has
+    /// read nothing yet).
+    [[nodiscard]] PageChanges changes_since(std::uint64_t reader_version) const;
     /// Bilinear lookup at light-map UV `uv` (texel centres at (x + 0.5) / size), clamped to
     /// the page. Light-map charts carry padding texels filled by dilation, so a lookup near a
     /// chart border does not blend in unrelated charts.

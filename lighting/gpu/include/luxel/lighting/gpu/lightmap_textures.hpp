@@ -16,16 +16,16 @@ namespace luxel::lighting {
 /// filtered. A buffer of page sizes lets it clamp lookups to each page.
 ///
 /// Uploads: every page once, then, for a page whose `current.version` changed, the rectangle
-/// of texels marked dirty (RadiancePage::dirty) in all three arrays with glTextureSubImage3D,
+/// that changed since the version this copy last uploaded (RadiancePage::changes_since) in
+/// all three arrays with glTextureSubImage3D,
 /// reading straight from the page's rows (GL_UNPACK_ROW_LENGTH) without a copy. The
 /// arrays are reallocated when the page count or the largest size changes.
 class LightmapTextures {
   public:
-    /// Uploads what changed in `pages` (read only: dirty rectangles are read, not cleared).
+    /// Uploads what changed in `pages` since this copy last read them. The pages are only
+    /// read: every copy (the sandbox's renderer, luxel-bench's frame view) keeps its own
+    /// versions, so each uploads exactly what it has not seen.
     void sync(std::span<const IimPage> pages);
-    /// The same, taking (clearing) each page's dirty rectangle, for an owner of the pages: each
-    /// frame then uploads only what changed since the last frame.
-    void sync_and_take(std::span<IimPage> pages);
 
     [[nodiscard]] bool empty() const { return layers_ == 0; }
     /// Binds the arrays to texture units 12-14 and the page sizes to storage block 1
@@ -49,7 +49,7 @@ class LightmapTextures {
     /// Whether the arrays must be reallocated for `pages`.
     [[nodiscard]] bool needs_allocation(std::span<const IimPage> pages) const;
     void allocate(std::span<const IimPage> pages);
-    /// Uploads the dirty part of page `layer` if it changed; returns whether it did.
+    /// Uploads what changed in page `layer` since `uploaded_`'s version; returns whether it did.
     bool upload_changed(const IimPage& page, int layer);
     void upload_rect(const IimPage& page, int layer, int x, int y, int width, int height);
 

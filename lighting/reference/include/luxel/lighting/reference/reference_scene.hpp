@@ -91,7 +91,7 @@ class ReferenceScene {
     /// Bounding spheres of every object with specular (mirror or dielectric) triangles, around
     /// those triangles: what caustic photons are aimed at. Derived from the geometry, not from
     /// CausticGenerator components, so untagged specular objects are not missed.
-    [[nodiscard]] std::span<const BoundingSphere> specular_spheres() const { return specular_; }
+    [[nodiscard]] std::span<const BoundingSphere> generator_spheres() const { return specular_; }
     [[nodiscard]] BoundingSphere bounds() const { return bounds_; }
 
   private:

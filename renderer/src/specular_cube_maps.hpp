@@ -20,37 +20,38 @@ class ShaderLibrary;
 
 namespace luxel::renderer {
 
-/// The specular pass (reflections, docs/METHOD.md §8.3): one dynamic cube map ("probe") per entity
-/// with a mirror or glass material, centred on its bounds, at reduced resolution. Faces are
-/// rendered with forward shading of the diffuse scene (emitted + first light batch with
-/// shadows + IIM; specular objects are left out of each other's probes) and refreshed on a
-/// budget: a new probe renders all six faces, afterwards `faces_per_frame` faces a frame while
-/// the probe is stale. A probe goes stale when its object moves, when a caster changes
+/// The specular term's cube maps (docs/METHOD.md §8.3; what engines call reflection cube maps, a
+/// word these docs keep for photon cube maps): one dynamic cube map per entity with a mirror or
+/// glass material, centred on its bounds, at reduced resolution. Faces are rendered with forward
+/// shading of the diffuse scene (emitted + first light batch with shadows + IIM; specular
+/// objects are left out of each other's cube maps) and refreshed on a budget: a new cube map
+/// renders all six faces, afterwards `faces_per_frame` faces a frame while it is stale. A cube
+/// map goes stale when its object moves, when a caster changes
 /// (invalidate()) or when the caller says the lighting changed (a shadow map re-rendered, a
-/// light switched, IIM pages uploaded). A converged static scene renders no probe faces.
+/// light switched, IIM pages uploaded). A converged static scene renders no cube-map faces.
 ///
-/// The specular term redraws each specular object over its G-buffer depth with its probe:
+/// The specular term redraws each specular object over its G-buffer depth with its cube_map:
 /// Schlick-Fresnel-weighted reflection, plus refraction for glass (shaders/render/specular.frag).
-class SpecularProbes {
+class SpecularCubeMaps {
   public:
-    SpecularProbes(const ShaderLibrary& shaders, int size, int faces_per_frame);
+    SpecularCubeMaps(const ShaderLibrary& shaders, int size, int faces_per_frame);
 
-    /// Something in the scene changed near `bounds`: every probe refreshes its faces.
+    /// Something in the scene changed near `bounds`: every cube_map refreshes its faces.
     void invalidate(const Bounds& bounds);
-    /// Refreshes probes and draws the specular term into targets.specular_target. Returns
+    /// Refreshes cube maps and draws the specular term into targets.specular_target. Returns
     /// whether a term was drawn (false when there is no specular object or `draw_term` is off).
     bool render(const DrawList& draws, const std::vector<FrameLight>& lights,
                 const ShadowMaps& shadows, LightBatches& batches,
                 const lighting::LightmapTextures& lightmaps, const FrameTargets& targets,
                 const FrameCamera& camera, double now_seconds, float blend_seconds,
                 bool scene_changed, bool draw_term);
-    void clear() { probes_.clear(); }
+    void clear() { cube_maps_.clear(); }
 
-    [[nodiscard]] std::size_t count() const { return probes_.size(); }
+    [[nodiscard]] std::size_t count() const { return cube_maps_.size(); }
     [[nodiscard]] std::uint64_t faces_rendered() const { return faces_rendered_; }
 
   private:
-    struct Probe {
+    struct CubeMap {
         gl::Texture cube;  ///< RGBA16F radiance
         gl::Renderbuffer depth;
         gl::Framebuffer framebuffer;
@@ -60,15 +61,15 @@ class SpecularProbes {
         bool filled = false;
     };
 
-    Probe allocate() const;
-    void render_face(Probe& probe, int face, const DrawList& draws);
+    CubeMap allocate() const;
+    void render_face(CubeMap& cube_map, int face, const DrawList& draws);
     void draw_term(const DrawList& draws, const FrameTargets& targets, const FrameCamera& camera);
 
-    gl::Program probe_program_;
+    gl::Program face_program_;
     gl::Program specular_program_;
     int size_;
     int faces_per_frame_;
-    std::map<ecs::Entity, Probe> probes_;
+    std::map<ecs::Entity, CubeMap> cube_maps_;
     std::uint64_t faces_rendered_ = 0;
 };
 

@@ -1,4 +1,4 @@
-#include "specular_probes.hpp"
+#include "specular_cube_maps.hpp"
 
 #include <algorithm>
 #include <array>
@@ -24,44 +24,45 @@ void draw_range(const GpuPrimitive& range) {
 
 }  // namespace
 
-SpecularProbes::SpecularProbes(const ShaderLibrary& shaders, int size, int faces_per_frame)
-    : probe_program_(shaders.build(
-          {{ShaderStage::Vertex, "render/mesh.vert"}, {ShaderStage::Fragment, "render/probe.frag"}},
+SpecularCubeMaps::SpecularCubeMaps(const ShaderLibrary& shaders, int size, int faces_per_frame)
+    : face_program_(shaders.build(
+          {{ShaderStage::Vertex, "render/mesh.vert"},
+           {ShaderStage::Fragment, "render/cube_map_face.frag"}},
           "#define LIGHTS_PER_BATCH " + std::to_string(LightBatches::kLightsPerBatch) + "\n")),
       specular_program_(shaders.build({{ShaderStage::Vertex, "render/mesh.vert"},
                                        {ShaderStage::Fragment, "render/specular.frag"}})),
       size_(std::max(size, 1)),
       faces_per_frame_(std::max(faces_per_frame, 0)) {}
 
-void SpecularProbes::invalidate(const Bounds& /*bounds*/) {
-    // Any change may be seen in a mirror, wherever it is: every probe refreshes.
-    for (auto& [entity, probe] : probes_) {
-        probe.stale_faces = 6;
+void SpecularCubeMaps::invalidate(const Bounds& /*bounds*/) {
+    // Any change may be seen in a mirror, wherever it is: every cube_map refreshes.
+    for (auto& [entity, cube_map] : cube_maps_) {
+        cube_map.stale_faces = 6;
     }
 }
 
-SpecularProbes::Probe SpecularProbes::allocate() const {
-    Probe probe;
-    probe.cube = gl::Texture::create(GL_TEXTURE_CUBE_MAP);
+SpecularCubeMaps::CubeMap SpecularCubeMaps::allocate() const {
+    CubeMap cube_map;
+    cube_map.cube = gl::Texture::create(GL_TEXTURE_CUBE_MAP);
     // Radiance: 32-bit like every radiance target (half floats overflow at 65,504).
-    glTextureStorage2D(probe.cube.id(), 1, GL_RGBA32F, size_, size_);
-    glTextureParameteri(probe.cube.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(probe.cube.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(probe.cube.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(probe.cube.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(probe.cube.id(), GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
-    probe.depth = gl::Renderbuffer::create(GL_DEPTH_COMPONENT32F, size_, size_);
-    probe.framebuffer = gl::Framebuffer::create();
-    probe.framebuffer.attach(GL_DEPTH_ATTACHMENT, probe.depth);
-    glNamedFramebufferDrawBuffer(probe.framebuffer.id(), GL_COLOR_ATTACHMENT0);
-    gl::check_error("SpecularProbes allocate");
-    return probe;
+    glTextureStorage2D(cube_map.cube.id(), 1, GL_RGBA32F, size_, size_);
+    glTextureParameteri(cube_map.cube.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(cube_map.cube.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(cube_map.cube.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(cube_map.cube.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(cube_map.cube.id(), GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    cube_map.depth = gl::Renderbuffer::create(GL_DEPTH_COMPONENT32F, size_, size_);
+    cube_map.framebuffer = gl::Framebuffer::create();
+    cube_map.framebuffer.attach(GL_DEPTH_ATTACHMENT, cube_map.depth);
+    glNamedFramebufferDrawBuffer(cube_map.framebuffer.id(), GL_COLOR_ATTACHMENT0);
+    gl::check_error("SpecularCubeMaps allocate");
+    return cube_map;
 }
 
-void SpecularProbes::render_face(Probe& probe, int face, const DrawList& draws) {
-    const GLuint fbo = probe.framebuffer.id();
-    glNamedFramebufferTextureLayer(fbo, GL_COLOR_ATTACHMENT0, probe.cube.id(), 0, face);
-    probe.framebuffer.check_complete("specular probe face");
+void SpecularCubeMaps::render_face(CubeMap& cube_map, int face, const DrawList& draws) {
+    const GLuint fbo = cube_map.framebuffer.id();
+    glNamedFramebufferTextureLayer(fbo, GL_COLOR_ATTACHMENT0, cube_map.cube.id(), 0, face);
+    cube_map.framebuffer.check_complete("specular cube_map face");
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
     glViewport(0, 0, size_, size_);
     const std::array<float, 4> zero = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -70,9 +71,9 @@ void SpecularProbes::render_face(Probe& probe, int face, const DrawList& draws) 
     glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &far_depth);
     const float far = std::max(glm::length(draws.bounds.hi - draws.bounds.lo) * 2.0f, 1.0f);
     const glm::mat4 projection = glm::perspective(glm::half_pi<float>(), 1.0f, 0.01f, far);
-    const gl::Program& program = probe_program_;
-    program.set("u_view_projection", projection * cube_face_view(probe.centre, face));
-    program.set("u_camera", probe.centre);
+    const gl::Program& program = face_program_;
+    program.set("u_view_projection", projection * cube_face_view(cube_map.centre, face));
+    program.set("u_camera", cube_map.centre);
     for (const DrawItem& item : draws.items) {
         if (item.specular) {
             continue;  // no mirror sees another (or itself): one bounce of specular
@@ -98,8 +99,8 @@ void SpecularProbes::render_face(Probe& probe, int face, const DrawList& draws) 
     ++faces_rendered_;
 }
 
-void SpecularProbes::draw_term(const DrawList& draws, const FrameTargets& targets,
-                               const FrameCamera& camera) {
+void SpecularCubeMaps::draw_term(const DrawList& draws, const FrameTargets& targets,
+                                 const FrameCamera& camera) {
     const GLuint fbo = targets.specular_target.id();
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
     glViewport(0, 0, targets.width, targets.height);
@@ -114,8 +115,8 @@ void SpecularProbes::draw_term(const DrawList& draws, const FrameTargets& target
     program.set("u_view_projection", camera.projection * camera.view);
     program.set("u_camera", camera.position);
     for (const DrawItem& item : draws.items) {
-        const auto found = probes_.find(item.entity);
-        if (!item.specular || found == probes_.end()) {
+        const auto found = cube_maps_.find(item.entity);
+        if (!item.specular || found == cube_maps_.end()) {
             continue;
         }
         glBindTextureUnit(0, found->second.cube.id());
@@ -137,52 +138,52 @@ void SpecularProbes::draw_term(const DrawList& draws, const FrameTargets& target
     glDisable(GL_DEPTH_TEST);
 }
 
-bool SpecularProbes::render(const DrawList& draws, const std::vector<FrameLight>& lights,
-                            const ShadowMaps& shadows, LightBatches& batches,
-                            const lighting::LightmapTextures& lightmaps,
-                            const FrameTargets& targets, const FrameCamera& camera,
-                            double now_seconds, float blend_seconds, bool scene_changed,
-                            bool draw_term_now) {
+bool SpecularCubeMaps::render(const DrawList& draws, const std::vector<FrameLight>& lights,
+                              const ShadowMaps& shadows, LightBatches& batches,
+                              const lighting::LightmapTextures& lightmaps,
+                              const FrameTargets& targets, const FrameCamera& camera,
+                              double now_seconds, float blend_seconds, bool scene_changed,
+                              bool draw_term_now) {
     std::set<ecs::Entity> present;
     for (const DrawItem& item : draws.items) {
         if (!item.specular) {
             continue;
         }
         present.insert(item.entity);
-        auto found = probes_.find(item.entity);
-        if (found == probes_.end()) {
-            found = probes_.emplace(item.entity, allocate()).first;
+        auto found = cube_maps_.find(item.entity);
+        if (found == cube_maps_.end()) {
+            found = cube_maps_.emplace(item.entity, allocate()).first;
         }
-        Probe& probe = found->second;
+        CubeMap& cube_map = found->second;
         const glm::vec3 centre = 0.5f * (item.bounds.lo + item.bounds.hi);
-        if (centre != probe.centre || scene_changed) {
-            probe.centre = centre;
-            probe.stale_faces = 6;
+        if (centre != cube_map.centre || scene_changed) {
+            cube_map.centre = centre;
+            cube_map.stale_faces = 6;
         }
     }
-    std::erase_if(probes_, [&](const auto& entry) { return !present.contains(entry.first); });
-    if (probes_.empty()) {
+    std::erase_if(cube_maps_, [&](const auto& entry) { return !present.contains(entry.first); });
+    if (cube_maps_.empty()) {
         return false;
     }
 
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    probe_program_.use();
-    probe_program_.set("u_filtered", 1);
-    probe_program_.set("u_now", static_cast<float>(now_seconds));
-    probe_program_.set("u_blend", blend_seconds);
+    face_program_.use();
+    face_program_.set("u_filtered", 1);
+    face_program_.set("u_now", static_cast<float>(now_seconds));
+    face_program_.set("u_blend", blend_seconds);
     batches.bind(lights, 0, shadows);
     lightmaps.bind();
-    for (auto& [entity, probe] : probes_) {
-        // A new probe fills every face at once so it never shows black; afterwards the budget
+    for (auto& [entity, cube_map] : cube_maps_) {
+        // A new cube_map fills every face at once so it never shows black; afterwards the budget
         // holds.
-        int budget = probe.filled ? faces_per_frame_ : 6;
-        probe.filled = true;
-        while (probe.stale_faces > 0 && budget > 0) {
-            render_face(probe, probe.next_face, draws);
-            probe.next_face = (probe.next_face + 1) % 6;
-            --probe.stale_faces;
+        int budget = cube_map.filled ? faces_per_frame_ : 6;
+        cube_map.filled = true;
+        while (cube_map.stale_faces > 0 && budget > 0) {
+            render_face(cube_map, cube_map.next_face, draws);
+            cube_map.next_face = (cube_map.next_face + 1) % 6;
+            --cube_map.stale_faces;
             --budget;
         }
     }

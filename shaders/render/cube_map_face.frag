@@ -1,7 +1,7 @@
 #version 450 core
-// Forward shading of one face of a specular probe (a cube map around a mirror or glass
+// Forward shading of one face of a specular cube map (around a mirror or glass
 // object): the diffuse scene as the main view shows it, emitted + direct (first light batch,
-// with shadows) + indirect from the IIM, at the probe's reduced resolution.
+// with shadows) + indirect from the IIM, at the cube map's reduced resolution.
 
 #include "render/direct_lights.glsl"
 #include "render/iim.glsl"
@@ -17,7 +17,7 @@ uniform vec3 u_albedo;  // diffuse albedo factor
 layout(binding = 15) uniform sampler2D u_base_color;
 uniform vec3 u_emission;
 uniform vec2 u_lightmap;  // page layer, content
-uniform vec3 u_camera;    // the probe's centre
+uniform vec3 u_camera;    // the cube map's centre
 
 layout(location = 0) out vec4 out_radiance;
 
@@ -28,7 +28,7 @@ void main() {
     }
     n = normalize(n);
     if (dot(n, u_camera - v_position) < 0.0) {
-        n = -n;  // the probe sees sheets from either side
+        n = -n;  // the cube map sees sheets from either side
     }
     vec3 albedo = u_albedo * texture(u_base_color, v_texcoord0).rgb;
     vec3 l = u_emission + lambert_radiance(albedo, batch_irradiance(v_position, n)) +

@@ -1,0 +1,232 @@
+#include "luxel/lighting/core/photon_world.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "luxel/runtime/log.hpp"
+#include "luxel/scene/image_decode.hpp"
+#include "photon_world_support.hpp"
+
+// PhotonWorld, part 2 of 4: meshes and materials mirrored into the ray scene, caustic
+// generators' own optics.
+namespace luxel::lighting {
+namespace {
+
+/// Where a scene material becomes the material photons (and the CPU gather and the reference,
+/// which share this table) see. A textured material bounces with factor x the texture's mean
+/// linear colour: scene::mean_diffuse_albedo says why the mean is enough.
+TraceMaterial trace_material_of(const scene::Scene& scene, const scene::Material& material) {
+    TraceMaterial traced;
+    traced.albedo = scene::mean_diffuse_albedo(scene, material);
+    traced.ior = material.ior;
+    if (material.transmission > 0.0f) {
+        traced.scattering = Scattering::Dielectric;
+        traced.tint = glm::vec3(material.base_color);
+    } else if (material.is_specular()) {
+        traced.scattering = Scattering::Mirror;
+        traced.tint = glm::vec3(material.base_color);
+    }
+    return traced;
+}
+
+/// A generator's own optics for one of its specular materials: the CausticGenerator component
+/// is what a game edits to change a caustic.
+TraceMaterial generator_optics(const TraceMaterial& shared, const CausticGenerator& generator) {
+    TraceMaterial optics = shared;
+    if (generator.transmission > 0.0f) {
+        optics.scattering = Scattering::Dielectric;
+        optics.ior = generator.ior;
+        optics.tint = generator.tint * std::clamp(generator.transmission, 0.0f, 1.0f);
+    } else {
+        optics.scattering = Scattering::Mirror;
+        optics.tint = generator.tint;
+    }
+    return optics;
+}
+
+}  // namespace
+
+using photon_world_support::world_matrix;
+
+std::uint32_t PhotonWorld::material_index(const scene::Scene* source, int material) {
+    const auto key = std::make_pair(source, material);
+    if (const auto found = material_ids_.find(key); found != material_ids_.end()) {
+        return found->second;
+    }
+    const auto index = static_cast<std::uint32_t>(materials_.size());
+    materials_.push_back(
+        material >= 0 && source != nullptr
+            ? trace_material_of(*source, source->materials.at(static_cast<std::size_t>(material)))
+            : TraceMaterial{});
+    material_ids_.emplace(key, index);
+    return index;
+}
+
+std::uint32_t PhotonWorld::generator_material(ecs::Entity entity, std::uint32_t shared,
+                                              const CausticGenerator& optics) {
+    const auto key = std::make_pair(entity, shared);
+    auto found = generator_materials_.find(key);
+    if (found == generator_materials_.end()) {
+        found =
+            generator_materials_.emplace(key, static_cast<std::uint32_t>(materials_.size())).first;
+        materials_.emplace_back();
+    }
+    materials_[found->second] = generator_optics(materials_[shared], optics);
+    return found->second;
+}
+
+void PhotonWorld::forget_generator_materials(ecs::Entity entity) {
+    // The material slots themselves stay (ids are baked into triangles until re-added); they
+    // are a few dozen bytes each and generators are rarely removed.
+    std::erase_if(generator_materials_,
+                  [&](const auto& entry) { return entry.first.first == entity; });
+}
+
+void PhotonWorld::add_mesh(ecs::Entity entity) {
+    const scene::MeshInstance& instance = registry_.get<scene::MeshInstance>(entity);
+    const scene::Mesh& mesh = instance.geometry();
+    const bool dynamic = registry_.has<scene::Dynamic>(entity);
+    const LightmappedSurface* layout = registry_.try_get<LightmappedSurface>(entity);
+    const CausticGenerator* generator = registry_.try_get<CausticGenerator>(entity);
+
+    TriangleMesh triangles;
+    for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
+        const scene::Primitive& primitive = mesh.primitives[p];
+        std::int32_t surface = -1;
+        int layout_id = -1;
+        if (layout != nullptr) {
+            for (const auto& entry : layout->layout.surfaces) {
+                if (entry.primitive == static_cast<int>(p)) {
+                    layout_id = entry.id;
+                }
+            }
+        }
+        if (layout_id >= 0 || (layout == nullptr && settings_.implicit_surfaces && !dynamic)) {
+            surface = static_cast<std::int32_t>(surfaces_.size());
+            surfaces_.push_back({entity, static_cast<int>(p), layout_id});
+            map_->add_surfaces(1);
+        }
+        const auto base = static_cast<std::uint32_t>(triangles.positions.size());
+        triangles.positions.insert(triangles.positions.end(), primitive.positions.begin(),
+                                   primitive.positions.end());
+        if (!primitive.normals.empty()) {
+            triangles.normals.insert(triangles.normals.end(), primitive.normals.begin(),
+                                     primitive.normals.end());
+        } else {
+            // Keep the arrays aligned: a zero normal falls back to the geometric one.
+            triangles.normals.resize(triangles.positions.size(), glm::vec3(0.0f));
+        }
+        if (!primitive.texcoords1.empty()) {
+            triangles.lightmap_uvs.resize(base, glm::vec2(0.0f));
+            triangles.lightmap_uvs.insert(triangles.lightmap_uvs.end(),
+                                          primitive.texcoords1.begin(), primitive.texcoords1.end());
+        }
+        for (std::uint32_t index : primitive.indices) {
+            triangles.indices.push_back(base + index);
+        }
+        std::uint32_t material = material_index(instance.source.get(), primitive.material);
+        if (generator != nullptr && materials_[material].scattering != Scattering::Diffuse) {
+            material = generator_material(entity, material, *generator);
+        }
+        triangles.surface_ids.insert(triangles.surface_ids.end(), primitive.triangle_count(),
+                                     surface);
+        triangles.material_ids.insert(triangles.material_ids.end(), primitive.triangle_count(),
+                                      material);
+    }
+    if (!triangles.lightmap_uvs.empty()) {
+        triangles.lightmap_uvs.resize(triangles.positions.size(), glm::vec2(0.0f));
+    }
+    if (triangles.indices.empty()) {
+        return;
+    }
+    objects_[entity] =
+        scene_.add_object(std::move(triangles), world_matrix(registry_, entity), dynamic);
+    scene_changed_ = true;
+}
+
+void PhotonWorld::remove_mesh(ecs::Entity entity) {
+    const auto found = objects_.find(entity);
+    if (found == objects_.end()) {
+        return;
+    }
+    // Photons stored on its surfaces stay until their groups' probes notice (they no longer hit
+    // it) and retrace: the surfaces are not reused.
+    scene_.remove_object(found->second);
+    objects_.erase(found);
+    scene_changed_ = true;
+}
+
+BoundingSphere PhotonWorld::scene_sphere() const {
+    const glm::vec3 lo = scene_.bounds_min();
+    const glm::vec3 hi = scene_.bounds_max();
+    if (lo.x > hi.x) {
+        return {};
+    }
+    return {(lo + hi) * 0.5f, std::max(0.5f * glm::length(hi - lo), 1e-6f)};
+}
+
+/// Meshes added, removed or replaced, mirrored into the ray scene; every such entity may be an
+/// area light whose geometry changed.
+void PhotonWorld::sync_meshes(std::vector<ecs::Entity>& light_touched,
+                              std::vector<ecs::Entity>& meshes_added) {
+    mesh_changes_.consume([&](ecs::Entity entity, ecs::ChangeKind kind) {
+        ++last_sync_.meshes_changed;
+        switch (kind) {
+            case ecs::ChangeKind::Destroyed:
+                remove_mesh(entity);
+                break;
+            case ecs::ChangeKind::Constructed:
+                add_mesh(entity);
+                meshes_added.push_back(entity);
+                break;
+            case ecs::ChangeKind::Updated:
+                remove_mesh(entity);
+                add_mesh(entity);
+                meshes_added.push_back(entity);
+                break;
+        }
+        light_touched.push_back(entity);  // an area light's geometry may have changed
+    });
+}
+
+void PhotonWorld::sync_generators(const std::vector<ecs::Entity>& meshes_added,
+                                  std::vector<ecs::Entity>& generators_touched) {
+    // Caustic generators: a mesh added above already took its optics from the component; one
+    // added earlier is re-added so that its triangles use (or stop using) the generator's own
+    // materials. An edited component rewrites those materials in place.
+    generator_changes_.consume([&](ecs::Entity entity, ecs::ChangeKind kind) {
+        generators_touched.push_back(entity);
+        const bool mesh_is_current =
+            std::binary_search(meshes_added.begin(), meshes_added.end(), entity);
+        const bool has_object = objects_.contains(entity);
+        switch (kind) {
+            case ecs::ChangeKind::Destroyed:
+                generators_.erase(entity);
+                forget_generator_materials(entity);
+                if (has_object && registry_.valid(entity) &&
+                    registry_.has<scene::MeshInstance>(entity)) {
+                    remove_mesh(entity);
+                    add_mesh(entity);
+                }
+                break;
+            case ecs::ChangeKind::Constructed:
+                generators_[entity] = GeneratorRecord{};
+                if (has_object && !mesh_is_current) {
+                    remove_mesh(entity);
+                    add_mesh(entity);
+                }
+                break;
+            case ecs::ChangeKind::Updated: {
+                const CausticGenerator& optics = registry_.get<CausticGenerator>(entity);
+                for (const auto& [key, own] : generator_materials_) {
+                    if (key.first == entity) {
+                        materials_[own] = generator_optics(materials_[key.second], optics);
+                    }
+                }
+                break;
+            }
+        }
+    });
+}
+
+}  // namespace luxel::lighting
