@@ -239,12 +239,15 @@ TEST(GlassSphere, RefractedCausticPowerIsTheLightsShareTimesOneMinusTheMeanFresn
 
     // Conservation: in a closed box every photon that meets the sphere comes out and lands on a
     // light-mapped wall; none may escape, be absorbed (clear glass; the walls are hit from
-    // inside) or be dropped at texel borders.
+    // inside) or be dropped at texel borders. The one exception is the mesh's: a photon grazing
+    // the silhouette can enter a facet almost tangentially and be trapped by total internal
+    // reflection between flat facets (a true sphere cannot trap it) until the bounce limit
+    // truncates it; 1 in 10^6 did with the reference's disc sampling. At most 1 in 10^5.
     EXPECT_EQ(counters.escaped, 0u);
     EXPECT_EQ(counters.absorbed, 0u);
     EXPECT_EQ(counters.unmapped, 0u);
-    EXPECT_EQ(counters.truncated, 0u);
-    EXPECT_EQ(counters.stored + counters.direct, counters.emitted);
+    EXPECT_LE(counters.truncated, counters.emitted / 100000u);
+    EXPECT_EQ(counters.stored + counters.direct + counters.truncated, counters.emitted);
     EXPECT_NEAR(stored.x, toward, total_tolerance * toward);
     // Blue = green + tint^2 (red - green) photon by photon when every photon that entered was
     // refracted exactly twice: the split into red and green is the one described above.

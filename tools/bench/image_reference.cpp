@@ -98,7 +98,7 @@ ReferenceImage reference_image_for(const std::filesystem::path& cache_dir, const
     reference.key = pose + ";" + describe_camera(camera) +
                     ";image_spp=" + std::to_string(image.spp) +
                     ";caustic_photons=" + std::to_string(spec.caustic_photons) +
-                    ";seed=" + std::to_string(spec.seed) + ";frame=v1";
+                    ";seed=" + std::to_string(spec.seed) + ";frame=v2";
     reference.hash = cache_hash(reference.key);
     const std::filesystem::path stem = cache_dir / (reference.hash + ".frame");
     if (load(stem, reference, camera.width, camera.height)) {

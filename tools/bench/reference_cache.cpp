@@ -106,10 +106,12 @@ ReferenceMaps reference_for(const std::filesystem::path& cache_dir, const std::s
                             const ReferenceScene& scene, const ReferenceSpec& spec,
                             JobSystem& jobs) {
     ReferenceMaps maps;
+    // The version names the reference's algorithms: v2, caustic photons from its own
+    // CausticDiscEmitter instead of the real-time CausticEmitter.
     maps.key = pose + ";indirect_photons=" + std::to_string(spec.indirect_photons) +
                ";caustic_photons=" + std::to_string(spec.caustic_photons) +
                ";spp=" + std::to_string(spec.spp) + ";seed=" + std::to_string(spec.seed) +
-               ";texels=" + std::to_string(scene.texel_count()) + ";reference=v1";
+               ";texels=" + std::to_string(scene.texel_count()) + ";reference=v2";
     maps.hash = cache_hash(maps.key);
     const std::filesystem::path file = cache_dir / (maps.hash + ".json");
     if (load(file, maps, scene.texel_count())) {

@@ -30,15 +30,6 @@ bool IlluminationMaps::needs_aim(std::uint32_t s) const {
     return !mapped.aim_built || in_progress || change > settings_.aim_threshold;
 }
 
-std::size_t IlluminationMaps::aim_texels_left(std::uint32_t surface) const {
-    const std::size_t total = surfaces_.at(surface).texels.texels.size();
-    if (aim_rebuild_ && aim_rebuild_->surface == surface) {
-        return aim_rebuild_->texels.size() -
-               std::min(aim_rebuild_->cursor, aim_rebuild_->texels.size());
-    }
-    return total;
-}
-
 bool IlluminationMaps::aims_current() const {
     for (std::uint32_t s = 0; s < surfaces_.size(); ++s) {
         if (needs_aim(s)) {
@@ -48,31 +39,46 @@ bool IlluminationMaps::aims_current() const {
     return true;
 }
 
+double IlluminationMaps::aim_priority(std::uint32_t s) const {
+    const MapSurface& mapped = surfaces_[s];
+    // The rebuild in progress, then unbuilt maps, then the surfaces whose light changed most per
+    // square metre.
+    if (aim_rebuild_ && aim_rebuild_->surface == s) {
+        return std::numeric_limits<double>::max();
+    }
+    if (!mapped.aim_built) {
+        return std::numeric_limits<double>::max() / 2.0;
+    }
+    return deltas_.full(world_.photon_map(), s) / safe_area(mapped.texels.area);
+}
+
 std::vector<MapRequest> IlluminationMaps::aim_requests() const {
     std::vector<MapRequest> requests;
-    const PhotonMap& map = world_.photon_map();
     for (std::uint32_t s = 0; s < surfaces_.size(); ++s) {
         if (needs_aim(s)) {
-            const MapSurface& mapped = surfaces_[s];
-            const double delta = deltas_.full(map, s);
-            const bool first = !mapped.aim_built;
-            const bool in_progress = aim_rebuild_ && aim_rebuild_->surface == s;
-            // The rebuild in progress, then unbuilt maps, then the surfaces whose light changed
-            // most per square metre.
-            double priority = delta / safe_area(mapped.texels.area);
-            if (first) {
-                priority = std::numeric_limits<double>::max() / 2.0;
-            }
-            if (in_progress) {
-                priority = std::numeric_limits<double>::max();
-            }
-            requests.push_back({s, priority});
+            requests.push_back({s, aim_priority(s)});
         }
     }
     std::stable_sort(
         requests.begin(), requests.end(),
         [](const MapRequest& l, const MapRequest& r) { return l.priority > r.priority; });
     return requests;
+}
+
+std::optional<std::uint32_t> IlluminationMaps::next_aim_surface() const {
+    std::optional<std::uint32_t> best;
+    double best_priority = 0.0;
+    for (std::uint32_t s = 0; s < surfaces_.size(); ++s) {
+        if (needs_aim(s)) {
+            // Strictly greater: the first of equals, as aim_requests()'s stable sort puts it.
+            const double priority = aim_priority(s);
+            if (!best || priority > best_priority) {
+                best = s;
+                best_priority = priority;
+            }
+        }
+    }
+    return best;
 }
 
 std::size_t IlluminationMaps::rebuild_aim(std::uint32_t surface, std::size_t max_texels) {

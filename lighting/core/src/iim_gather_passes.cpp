@@ -47,60 +47,63 @@ bool IlluminationMaps::wants_gather(std::uint32_t s, bool ready, bool current) c
     return mapped.gather_in_progress || (ready && (!mapped.gathered_once || changed || refine));
 }
 
-bool IlluminationMaps::needs_gather(std::uint32_t s) const {
-    return s < surfaces_.size() && wants_gather(s, aims_ready(), aims_current());
-}
-
-std::size_t IlluminationMaps::gather_texels_left(std::uint32_t surface) const {
-    const MapSurface& mapped = surfaces_.at(surface);
-    const std::size_t total = mapped.texels.texels.size();
-    if (!mapped.gather_in_progress) {
-        return total;
+double IlluminationMaps::gather_priority(std::uint32_t s, bool current) const {
+    const PhotonMap& map = world_.photon_map();
+    const MapSurface& mapped = surfaces_[s];
+    const double delta = deltas_.indirect(map, s);
+    const bool changed = lighting_changed(s, current);
+    // Passes in progress first, the furthest along first, so passes finish one after
+    // another instead of all crawling together (a pass shows only when complete); then
+    // surfaces never gathered; then the largest delta_i / area; refinement last: a
+    // refinement pass in progress, then the surfaces with the fewest passes averaged.
+    // A change never waits for refinement (a refinement pass of a surface whose light
+    // changed is dropped and started afresh by gather()).
+    const double done = static_cast<double>(mapped.gather_cursor) /
+                        static_cast<double>(mapped.texels.texels.size());
+    double priority = delta / safe_area(mapped.texels.area);
+    if (mapped.gather_in_progress && !mapped.pass_refines) {
+        priority = std::numeric_limits<double>::max() / 2.0 * (1.0 + done);
+    } else if (!mapped.gathered_once) {
+        priority = std::numeric_limits<double>::max() / 4.0;
+    } else if (!changed && mapped.gather_in_progress) {
+        priority = -0.5 + 0.25 * done;
+    } else if (!changed) {
+        priority = -static_cast<double>(mapped.passes_averaged);
     }
-    // A pass whose texels are all gathered is still in progress until its filter is done, and
-    // the filter runs inside gather() calls at kFilteredPerGathered texels per texel of budget.
-    std::size_t left = total - std::min(mapped.gather_cursor, total);
-    if (const auto filter = filters_.find(surface); filter != filters_.end()) {
-        left += (filter->second->left() + kFilteredPerGathered - 1) / kFilteredPerGathered;
-    }
-    return left;
+    return priority;
 }
 
 std::vector<MapRequest> IlluminationMaps::gather_requests() const {
     std::vector<MapRequest> requests;
-    const PhotonMap& map = world_.photon_map();
     const bool ready = aims_ready();
     const bool current = aims_current();
     for (std::uint32_t s = 0; s < surfaces_.size(); ++s) {
         if (wants_gather(s, ready, current)) {
-            const MapSurface& mapped = surfaces_[s];
-            const double delta = deltas_.indirect(map, s);
-            const bool changed = lighting_changed(s, current);
-            // Passes in progress first, the furthest along first, so passes finish one after
-            // another instead of all crawling together (a pass shows only when complete); then
-            // surfaces never gathered; then the largest delta_i / area; refinement last: a
-            // refinement pass in progress, then the surfaces with the fewest passes averaged.
-            // A change never waits for refinement (a refinement pass of a surface whose light
-            // changed is dropped and started afresh by gather()).
-            const double done = static_cast<double>(mapped.gather_cursor) /
-                                static_cast<double>(mapped.texels.texels.size());
-            double priority = delta / safe_area(mapped.texels.area);
-            if (mapped.gather_in_progress && !mapped.pass_refines) {
-                priority = std::numeric_limits<double>::max() / 2.0 * (1.0 + done);
-            } else if (!mapped.gathered_once) {
-                priority = std::numeric_limits<double>::max() / 4.0;
-            } else if (!changed && mapped.gather_in_progress) {
-                priority = -0.5 + 0.25 * done;
-            } else if (!changed) {
-                priority = -static_cast<double>(mapped.passes_averaged);
-            }
-            requests.push_back({s, priority});
+            requests.push_back({s, gather_priority(s, current)});
         }
     }
     std::stable_sort(
         requests.begin(), requests.end(),
         [](const MapRequest& l, const MapRequest& r) { return l.priority > r.priority; });
     return requests;
+}
+
+std::optional<std::uint32_t> IlluminationMaps::next_gather_surface() const {
+    const bool ready = aims_ready();
+    const bool current = aims_current();
+    std::optional<std::uint32_t> best;
+    double best_priority = 0.0;
+    for (std::uint32_t s = 0; s < surfaces_.size(); ++s) {
+        if (wants_gather(s, ready, current)) {
+            // Strictly greater: the first of equals, as gather_requests()'s stable sort puts it.
+            const double priority = gather_priority(s, current);
+            if (!best || priority > best_priority) {
+                best = s;
+                best_priority = priority;
+            }
+        }
+    }
+    return best;
 }
 
 std::size_t IlluminationMaps::gather(std::uint32_t surface, std::size_t max_texels,

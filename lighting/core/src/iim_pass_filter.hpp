@@ -1,6 +1,5 @@
 #pragma once
 
-#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -30,10 +29,6 @@ class IimPassFilter {
     /// Filters up to `max_texels` more texels; returns how many.
     std::size_t run(std::size_t max_texels);
     [[nodiscard]] bool done() const { return cursor_ >= values_.size(); }
-    /// Texels left to filter.
-    [[nodiscard]] std::size_t left() const {
-        return values_.size() - std::min(cursor_, values_.size());
-    }
     /// The filtered irradiance per texel (complete once done()).
     [[nodiscard]] const std::vector<glm::vec3>& filtered() const { return filtered_; }
     /// The texels' bounding rectangle on the page (x0, y0, x1, y1 inclusive).

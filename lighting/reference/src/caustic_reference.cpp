@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "luxel/lighting/core/photon_tracer.hpp"
+#include "luxel/lighting/reference/caustic_disc_emitter.hpp"
 #include "luxel/lighting/reference/sample_stream.hpp"
 
 namespace luxel::lighting::reference {
@@ -38,7 +39,7 @@ CausticReference::CausticReference(const ReferenceScene& scene, CausticReference
             continue;  // area-light caustics are path traced (PathEstimator)
         }
         for (std::uint32_t s = 0; s < spheres.size(); ++s) {
-            CausticEmitter emitter(lights[l].source, spheres[s], scene.bounds());
+            CausticDiscEmitter emitter(lights[l], spheres[s], scene.bounds());
             if (!emitter.reaches_generator()) {
                 continue;
             }
@@ -54,8 +55,7 @@ void CausticReference::trace(const Pair& pair, std::uint64_t index, Deposit& dep
     ++counters.emitted;
     const std::uint64_t halton = index + 1;  // index 0 is the origin of every dimension
     const glm::dvec2 d(photon_sample(halton, 0, pair.seed), photon_sample(halton, 1, pair.seed));
-    const glm::dvec2 p(photon_sample(halton, 2, pair.seed), photon_sample(halton, 3, pair.seed));
-    EmittedPhoton photon = pair.emitter.emit(d, p, 1);
+    EmittedPhoton photon = pair.emitter.emit(d, 1.0);
     if (!(glm::max(photon.power.x, glm::max(photon.power.y, photon.power.z)) > 0.0f)) {
         ++counters.absorbed;
         return;

@@ -4,6 +4,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -161,11 +162,9 @@ class IlluminationMaps {
     /// progress, the call continues that pass instead. Returns the texels done.
     std::size_t rebuild_aim(std::uint32_t surface,
                             std::size_t max_texels = std::numeric_limits<std::size_t>::max());
-    /// Whether surface `s` is in aim_requests(): its AIM was never built, is being rebuilt, or
-    /// delta_f is over the threshold.
-    [[nodiscard]] bool needs_aim(std::uint32_t s) const;
-    /// Texels of `surface`'s AIM left to do: the rest of the rebuild in progress, or all.
-    [[nodiscard]] std::size_t aim_texels_left(std::uint32_t surface) const;
+    /// The first of aim_requests(), without listing and sorting them all: what an AIM unit
+    /// works on when it runs (nullopt: nothing to rebuild).
+    [[nodiscard]] std::optional<std::uint32_t> next_aim_surface() const;
 
     /// Surfaces whose IIM needs gathering (a pass in progress, or delta_i over the threshold),
     /// highest delta_i / area first. No new pass starts while a surface holding photons has
@@ -177,10 +176,9 @@ class IlluminationMaps {
     /// `now_seconds`, to fade in over the blend time.
     std::size_t gather(std::uint32_t surface, std::size_t max_texels, IrradianceGatherer& gatherer,
                        double now_seconds);
-    /// Whether surface `s` is in gather_requests().
-    [[nodiscard]] bool needs_gather(std::uint32_t s) const;
-    /// Texels of `surface` left to gather: the rest of the pass in progress, or all.
-    [[nodiscard]] std::size_t gather_texels_left(std::uint32_t surface) const;
+    /// The first of gather_requests() (the pass furthest along, ...), without listing and
+    /// sorting them all: what a gather unit works on when it runs (nullopt: nothing to gather).
+    [[nodiscard]] std::optional<std::uint32_t> next_gather_surface() const;
 
     /// Whether every surface holding photons has had its first AIM (gather passes wait).
     [[nodiscard]] bool aims_ready() const;
@@ -222,8 +220,15 @@ class IlluminationMaps {
     [[nodiscard]] bool lighting_changed(std::uint32_t s, bool aims_are_current) const;
     /// Whether every enclosure ray from the texel is blocked within `ray_length` metres.
     [[nodiscard]] bool enclosed(const GatherTexel& texel, float ray_length) const;
+    /// Whether surface `s` needs an AIM rebuild: never built, in progress, or delta_f over the
+    /// threshold.
+    [[nodiscard]] bool needs_aim(std::uint32_t s) const;
+    /// Its place in aim_requests(), given needs_aim(s).
+    [[nodiscard]] double aim_priority(std::uint32_t s) const;
     /// Whether surface `s` belongs in gather_requests(), given aims_ready() and aims_current().
     [[nodiscard]] bool wants_gather(std::uint32_t s, bool ready, bool current) const;
+    /// Its place in gather_requests(), given wants_gather(s, ..., current).
+    [[nodiscard]] double gather_priority(std::uint32_t s, bool current) const;
     /// Whether surface `s` wants a refinement pass.
     [[nodiscard]] bool wants_refinement(std::uint32_t s) const;
     /// A pass's last texel is gathered: updates the mean and starts its filter.

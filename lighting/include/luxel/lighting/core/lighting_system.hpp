@@ -1,7 +1,6 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -104,15 +103,6 @@ class LightingSystem {
   private:
     SceneCensus take_census() const;
     void queue_work();
-    /// Queues one unit of `kind` per `slice` texels of each requested surface (at most
-    /// `max_units`), keyed by (surface, slice); cancels those of `queued` that are gone and
-    /// leaves the new keys there. `texels_left` says how much of a surface is to do, `work`
-    /// makes a unit's callback for a surface.
-    void queue_surface_units(WorkKind kind, const std::vector<MapRequest>& requests,
-                             std::size_t slice, std::size_t max_units,
-                             std::vector<std::uint64_t>& queued,
-                             const std::function<std::size_t(std::uint32_t)>& texels_left,
-                             const std::function<std::function<void()>(std::uint32_t)>& work);
 
     ecs::Registry& registry_;
     JobSystem& jobs_;
@@ -134,8 +124,8 @@ class LightingSystem {
     std::uint64_t probe_frame_ = 0;    ///< advances only when probes run
     std::uint64_t caustic_frame_ = 0;  ///< advances only when caustic slices run
     std::size_t queued_retrace_units_ = 0;
-    std::vector<std::uint64_t> queued_aim_keys_;     ///< sorted (surface, slice) keys
-    std::vector<std::uint64_t> queued_gather_keys_;  ///< sorted (surface, slice) keys
+    std::size_t queued_aim_units_ = 0;
+    std::size_t queued_gather_units_ = 0;
 };
 
 }  // namespace luxel::lighting

@@ -5,7 +5,7 @@
 
 #include <glm/glm.hpp>
 
-#include "luxel/lighting/core/caustic_emitter.hpp"
+#include "luxel/lighting/reference/caustic_disc_emitter.hpp"
 #include "luxel/lighting/reference/reference_scene.hpp"
 #include "luxel/runtime/jobs.hpp"
 
@@ -36,8 +36,9 @@ struct CausticReferenceCounters {
 };
 
 /// Photons from each delta light toward every specular object's bounding sphere (the
-/// CausticEmitter of the real-time path: uniform in the cone toward the sphere, or a beam over
-/// its disc), followed through mirrors and dielectrics with scatter_specular, and binned at
+/// reference's own CausticDiscEmitter, not the real-time CausticEmitter: through the disc
+/// facing the light, or a beam over it), followed through mirrors and dielectrics with
+/// scatter_specular, and binned at
 /// their first diffuse hit after at least one specular one into the texel holding the hit's
 /// light-map UV, divided by the texel's world area. The result is each texel's mean caustic
 /// irradiance over its area (a box filter the size of a texel).
@@ -77,7 +78,7 @@ class CausticReference {
         std::uint32_t light = 0;
         std::uint32_t sphere = 0;
         std::uint32_t seed = 0;
-        CausticEmitter emitter;
+        CausticDiscEmitter emitter;
     };
     struct Deposit {
         std::int64_t texel = -1;
