@@ -100,8 +100,8 @@ TEST(Refinement, AveragedPassesLowerTheGatherNoiseAsOneOverSqrtPasses) {
 
     // Every lit surface averaged its 8 passes, and then the system idles.
     for (const auto& surface : refined.lighting->maps().surfaces()) {
-        if (!surface.texels.texels.empty() && surface.gathered_once) {
-            EXPECT_EQ(surface.passes_averaged, 8u);
+        if (!surface.texels.texels.empty() && surface.gather.completed_once) {
+            EXPECT_EQ(surface.refinement.passes_averaged, 8u);
         }
     }
     EXPECT_TRUE(refined.lighting->maps().gather_requests().empty());

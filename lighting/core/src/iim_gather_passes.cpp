@@ -24,14 +24,14 @@ bool IlluminationMaps::lighting_changed(std::uint32_t s, bool aims_are_current) 
     // gather, so every surface gathers again.
     return relative(deltas_.indirect(map, s), photons.stored_energy.value()) >
                settings_.iim_threshold ||
-           mapped.gathered_emission != emission_version_ ||
-           (mapped.gathered_stale && aims_are_current);
+           mapped.gather.emission_version != emission_version_ ||
+           (mapped.gather.read_stale_aim && aims_are_current);
 }
 
 bool IlluminationMaps::wants_refinement(std::uint32_t s) const {
     const MapSurface& mapped = surfaces_[s];
-    return refine_ && mapped.gathered_once && !mapped.gathered_stale &&
-           mapped.passes_averaged < settings_.refine_passes;
+    return refine_ && mapped.gather.completed_once && !mapped.gather.read_stale_aim &&
+           mapped.refinement.passes_averaged < settings_.refine_passes;
 }
 
 bool IlluminationMaps::wants_gather(std::uint32_t s, bool ready, bool current) const {
@@ -44,7 +44,8 @@ bool IlluminationMaps::wants_gather(std::uint32_t s, bool ready, bool current) c
     // Refinement only over current AIMs: an average of passes over different AIMs would mix old
     // light into new.
     const bool refine = !changed && current && wants_refinement(s);
-    return mapped.gather_in_progress || (ready && (!mapped.gathered_once || changed || refine));
+    return mapped.gather.in_progress ||
+           (ready && (!mapped.gather.completed_once || changed || refine));
 }
 
 double IlluminationMaps::gather_priority(std::uint32_t s, bool current) const {
@@ -58,17 +59,17 @@ double IlluminationMaps::gather_priority(std::uint32_t s, bool current) const {
     // refinement pass in progress, then the surfaces with the fewest passes averaged.
     // A change never waits for refinement (a refinement pass of a surface whose light
     // changed is dropped and started afresh by gather()).
-    const double done = static_cast<double>(mapped.gather_cursor) /
+    const double done = static_cast<double>(mapped.gather.cursor) /
                         static_cast<double>(mapped.texels.texels.size());
     double priority = delta / safe_area(mapped.texels.area);
-    if (mapped.gather_in_progress && !mapped.pass_refines) {
+    if (mapped.gather.in_progress && !mapped.gather.refines) {
         priority = std::numeric_limits<double>::max() / 2.0 * (1.0 + done);
-    } else if (!mapped.gathered_once) {
+    } else if (!mapped.gather.completed_once) {
         priority = std::numeric_limits<double>::max() / 4.0;
-    } else if (!changed && mapped.gather_in_progress) {
+    } else if (!changed && mapped.gather.in_progress) {
         priority = -0.5 + 0.25 * done;
     } else if (!changed) {
-        priority = -static_cast<double>(mapped.passes_averaged);
+        priority = -static_cast<double>(mapped.refinement.passes_averaged);
     }
     return priority;
 }
@@ -113,44 +114,46 @@ std::size_t IlluminationMaps::gather(std::uint32_t surface, std::size_t max_texe
     if (page_id < 0 || mapped.texels.texels.empty() || max_texels == 0) {
         return 0;
     }
-    if (mapped.gather_in_progress && mapped.pass_refines &&
+    if (mapped.gather.in_progress && mapped.gather.refines &&
         lighting_changed(surface, aims_current())) {
-        mapped.gather_in_progress = false;  // the light changed under a refinement pass
+        mapped.gather.in_progress = false;  // the light changed under a refinement pass
         filters_.erase(surface);
     }
-    if (!mapped.gather_in_progress && !aims_ready()) {
+    if (!mapped.gather.in_progress && !aims_ready()) {
         // Checked again here, not only when the request was made: photons stored since (by
         // retraces earlier in the same frame) may have made a surface lit without an AIM.
         return 0;
     }
     const std::size_t total = mapped.texels.texels.size();
-    if (!mapped.gather_in_progress) {
+    if (!mapped.gather.in_progress) {
         // Changes from now on need another pass; those before are what this pass sees.
-        mapped.gather_in_progress = true;
-        mapped.gather_cursor = 0;
-        mapped.pass_irradiance.assign(total, glm::vec3(0.0f));
+        mapped.gather.in_progress = true;
+        mapped.gather.cursor = 0;
+        mapped.gather.irradiance.assign(total, glm::vec3(0.0f));
         const bool current = aims_current();
-        mapped.pass_refines = mapped.gathered_once && !lighting_changed(surface, current) &&
-                              current && wants_refinement(surface);
-        ++mapped.passes_started;
-        mapped.gathered_emission = emission_version_;
-        mapped.pass_aim_rebuilds = counters_.aim_rebuilds;
-        mapped.gathered_stale = !current;
+        mapped.gather.refines = mapped.gather.completed_once &&
+                                !lighting_changed(surface, current) && current &&
+                                wants_refinement(surface);
+        ++mapped.gather.started;
+        mapped.gather.emission_version = emission_version_;
+        mapped.gather.aim_rebuilds_at_start = counters_.aim_rebuilds;
+        mapped.gather.read_stale_aim = !current;
         deltas_.consume_indirect(world_.photon_map(), surface);
         ++counters_.gather_passes;
     }
-    const std::size_t first = mapped.gather_cursor;
+    const std::size_t first = mapped.gather.cursor;
     const std::size_t count = std::min(max_texels, total - first);
     if (count > 0) {
         std::vector<GatherTexel> all = world_texels(surface);
         for (GatherTexel& texel : all) {
-            texel.pass = mapped.passes_started;
+            texel.pass = mapped.gather.started;
         }
         const std::span<const GatherTexel> batch(all.data() + first, count);
-        gatherer.gather(batch, std::span<glm::vec3>(mapped.pass_irradiance.data() + first, count));
-        mapped.gather_cursor = first + count;
+        gatherer.gather(batch,
+                        std::span<glm::vec3>(mapped.gather.irradiance.data() + first, count));
+        mapped.gather.cursor = first + count;
         counters_.texels_gathered += count;
-        if (mapped.gather_cursor >= total) {
+        if (mapped.gather.cursor >= total) {
             begin_filter(surface);
         }
     }
@@ -174,38 +177,38 @@ std::size_t IlluminationMaps::gather(std::uint32_t surface, std::size_t max_texe
 void IlluminationMaps::begin_filter(std::uint32_t surface) {
     MapSurface& mapped = surfaces_[surface];
     const std::size_t count = mapped.texels.texels.size();
-    const bool refining = mapped.pass_refines && mapped.passes_averaged > 0 &&
-                          mapped.mean_irradiance.size() == count &&
-                          mapped.irradiance_m2.size() == count;
-    mapped.pass_passes = refining ? mapped.passes_averaged + 1 : 1;
-    const std::uint32_t passes = mapped.pass_passes;
+    const bool refining = mapped.gather.refines && mapped.refinement.passes_averaged > 0 &&
+                          mapped.refinement.mean.size() == count &&
+                          mapped.refinement.m2.size() == count;
+    mapped.gather.passes_when_done = refining ? mapped.refinement.passes_averaged + 1 : 1;
+    const std::uint32_t passes = mapped.gather.passes_when_done;
     // The per-texel mean of the passes (unfiltered) and, for the noise estimate, the sum of
     // squared deviations (Welford's update, in double per step so long runs do not drift).
     // Kept only while more passes may be averaged in.
     const bool keep_mean = refine_ && settings_.refine_passes > 1;
     std::vector<glm::vec3> values(count);
     if (keep_mean) {
-        mapped.mean_irradiance.resize(count);
-        mapped.irradiance_m2.resize(count);
+        mapped.refinement.mean.resize(count);
+        mapped.refinement.m2.resize(count);
         for (std::size_t i = 0; i < count; ++i) {
-            const glm::dvec3 x(sanitized(mapped.pass_irradiance[i]));
+            const glm::dvec3 x(sanitized(mapped.gather.irradiance[i]));
             if (!refining) {
-                mapped.mean_irradiance[i] = glm::vec3(x);
-                mapped.irradiance_m2[i] = glm::vec3(0.0f);
+                mapped.refinement.mean[i] = glm::vec3(x);
+                mapped.refinement.m2[i] = glm::vec3(0.0f);
             } else {
-                const glm::dvec3 old_mean(mapped.mean_irradiance[i]);
+                const glm::dvec3 old_mean(mapped.refinement.mean[i]);
                 const glm::dvec3 mean = old_mean + (x - old_mean) / static_cast<double>(passes);
-                mapped.mean_irradiance[i] = glm::vec3(mean);
-                mapped.irradiance_m2[i] =
-                    glm::vec3(glm::dvec3(mapped.irradiance_m2[i]) + (x - old_mean) * (x - mean));
+                mapped.refinement.mean[i] = glm::vec3(mean);
+                mapped.refinement.m2[i] =
+                    glm::vec3(glm::dvec3(mapped.refinement.m2[i]) + (x - old_mean) * (x - mean));
             }
-            values[i] = mapped.mean_irradiance[i];
+            values[i] = mapped.refinement.mean[i];
         }
     } else {
-        mapped.mean_irradiance = {};
-        mapped.irradiance_m2 = {};
+        mapped.refinement.mean = {};
+        mapped.refinement.m2 = {};
         for (std::size_t i = 0; i < count; ++i) {
-            values[i] = sanitized(mapped.pass_irradiance[i]);
+            values[i] = sanitized(mapped.gather.irradiance[i]);
         }
     }
     // With three passes or more each texel knows its noise: the variance of its mean, summed
@@ -219,15 +222,15 @@ void IlluminationMaps::begin_filter(std::uint32_t surface) {
         noise.resize(count);
         const double scale = 1.0 / (static_cast<double>(passes - 1) * static_cast<double>(passes));
         for (std::size_t i = 0; i < count; ++i) {
-            const glm::dvec3 m2(mapped.irradiance_m2[i]);
+            const glm::dvec3 m2(mapped.refinement.m2[i]);
             noise[i] = (m2.x + m2.y + m2.z) * scale;
         }
     }
     filters_[surface] =
         std::make_unique<IimPassFilter>(mapped.texels.texels, std::move(values), std::move(noise),
                                         settings_.iim_filter_radius, sigmas);
-    mapped.pass_irradiance.clear();
-    mapped.pass_irradiance.shrink_to_fit();
+    mapped.gather.irradiance.clear();
+    mapped.gather.irradiance.shrink_to_fit();
 }
 
 void IlluminationMaps::finish_pass(std::uint32_t surface, double now_seconds) {
@@ -237,8 +240,8 @@ void IlluminationMaps::finish_pass(std::uint32_t surface, double now_seconds) {
         return;
     }
     const IimPassFilter& filter = *found->second;
-    if (counters_.aim_rebuilds != mapped.pass_aim_rebuilds) {
-        mapped.gathered_stale = true;  // an AIM changed under the pass
+    if (counters_.aim_rebuilds != mapped.gather.aim_rebuilds_at_start) {
+        mapped.gather.read_stale_aim = true;  // an AIM changed under the pass
     }
     const auto page_id = static_cast<std::size_t>(aim_.surface_page[surface]);
     IimPage& page = iim_pages_[page_id];
@@ -274,14 +277,14 @@ void IlluminationMaps::finish_pass(std::uint32_t surface, double now_seconds) {
     const int top = std::max(bounds.y - 1, 0);
     page.current.mark_changed(
         {left, top, std::min(bounds.z + 2, size) - left, std::min(bounds.w + 2, size) - top});
-    mapped.passes_averaged = mapped.pass_passes;
-    if (mapped.passes_averaged >= settings_.refine_passes) {
+    mapped.refinement.passes_averaged = mapped.gather.passes_when_done;
+    if (mapped.refinement.passes_averaged >= settings_.refine_passes) {
         // Done refining: the IIM holds the filtered mean.
-        mapped.mean_irradiance = {};
-        mapped.irradiance_m2 = {};
+        mapped.refinement.mean = {};
+        mapped.refinement.m2 = {};
     }
-    mapped.gather_in_progress = false;
-    mapped.gathered_once = true;
+    mapped.gather.in_progress = false;
+    mapped.gather.completed_once = true;
     filters_.erase(found);
 }
 

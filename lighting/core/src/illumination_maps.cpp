@@ -105,7 +105,7 @@ void IlluminationMaps::add_surface(std::uint32_t surface) {
                 static_cast<std::int32_t>(surface);
         }
     }
-    mapped.gather_cursor = mapped.texels.texels.size();
+    mapped.gather.cursor = mapped.texels.texels.size();
     surfaces_.push_back(std::move(mapped));
     surfaces_of_[info.entity].push_back(surface);
     refresh_transform(surface);

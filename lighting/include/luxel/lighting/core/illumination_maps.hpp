@@ -77,7 +77,45 @@ struct MapRequest {
     double priority = 0.0;
 };
 
-/// One light-mapped surface as the maps know it.
+/// A surface's gather passes (docs/METHOD.md §6.5): the one in progress, and what the last one
+/// to start saw.
+struct GatherPassState {
+    bool in_progress = false;
+    /// The next texel of the pass in progress; the surface's texel count when none is.
+    std::size_t cursor = 0;
+    /// The pass in progress's irradiance per texel; it is filtered and committed (faded in)
+    /// when the pass completes, so a surface never shows half a pass.
+    std::vector<glm::vec3> irradiance;
+    /// The pass in progress refines (averages into) the IIM instead of replacing it.
+    bool refines = false;
+    /// Passes averaged once the pass in progress is in (set when its gathering completes).
+    std::uint32_t passes_when_done = 0;
+    /// Passes started on this surface (each gathers with new samples).
+    std::uint32_t started = 0;
+    /// IlluminationMaps::emission_version() when the last pass started.
+    std::uint64_t emission_version = 0;
+    /// MapCounters::aim_rebuilds when the last pass started.
+    std::uint64_t aim_rebuilds_at_start = 0;
+    /// The last pass read an AIM that was out of date (a rebuild was pending when it started,
+    /// or completed while it ran): it gathers again once every AIM is current. Without this a
+    /// pass that starts between a retrace and the AIM rebuild it causes consumes delta_i and
+    /// leaves the IIM on the old AIM for good.
+    bool read_stale_aim = false;
+    /// A pass has completed on this surface.
+    bool completed_once = false;
+};
+
+/// The refinement of a surface's IIM (docs/METHOD.md §6.6): passes averaged since its lighting
+/// last changed, their mean irradiance per texel before filtering, and the sum of squared
+/// deviations from it (Welford), kept only while refining is possible.
+struct RefinementStats {
+    std::uint32_t passes_averaged = 0;
+    std::vector<glm::vec3> mean;
+    std::vector<glm::vec3> m2;
+};
+
+/// One light-mapped surface as the maps know it: what the registry keeps (entity, texels,
+/// material, transform), whether its AIM exists, its gather passes and its refinement.
 struct MapSurface {
     ecs::Entity entity;
     SurfaceTexels texels;  ///< object space
@@ -86,39 +124,13 @@ struct MapSurface {
     /// The material's emitted radiance (before AreaLight's scale and switch; 0 when not
     /// emissive). RadianceAtlas::surface_emission holds what the surface emits now.
     glm::vec3 material_emission{0.0f};
-    /// IlluminationMaps::emission_version() when this surface's last gather pass started.
-    std::uint64_t gathered_emission = 0;
-    /// The last pass read an AIM that was out of date (a rebuild was pending when it started,
-    /// or completed while it ran): it gathers again once every AIM is current. Without this a
-    /// pass that starts between a retrace and the AIM rebuild it causes consumes delta_i and
-    /// leaves the IIM on the old AIM for good.
-    bool gathered_stale = false;
-    /// MapCounters::aim_rebuilds when the pass started.
-    std::uint64_t pass_aim_rebuilds = 0;
-    /// Passes started on this surface (each gathers with new samples).
-    std::uint32_t passes_started = 0;
-    /// The pass in progress refines (averages into) the IIM instead of replacing it.
-    bool pass_refines = false;
-    /// Passes averaged once the pass in progress is in (set when its gathering completes).
-    std::uint32_t pass_passes = 0;
-    /// Passes averaged in the IIM since its lighting last changed, their mean irradiance per
-    /// texel before filtering, and the sum of squared deviations from it (Welford), kept only
-    /// while refining is possible.
-    std::uint32_t passes_averaged = 0;
-    std::vector<glm::vec3> mean_irradiance;
-    std::vector<glm::vec3> irradiance_m2;
     IimContent content = IimContent::Radiance;
     glm::mat4 to_world{1.0f};
     /// World metres per page texel (the object-space scale times the transform's).
     double world_metres_per_texel = 0.0;
     bool aim_built = false;
-    bool gathered_once = false;
-    /// The next texel of a gather pass in progress; texels.texels.size() when none is.
-    std::size_t gather_cursor = 0;
-    /// The pass in progress's irradiance per texel; it is filtered and committed (faded in)
-    /// when the pass completes, so a surface never shows half a pass.
-    std::vector<glm::vec3> pass_irradiance;
-    bool gather_in_progress = false;
+    GatherPassState gather;
+    RefinementStats refinement;
 };
 
 /// Counters since construction.
