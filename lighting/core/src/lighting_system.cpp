@@ -126,6 +126,11 @@ const LightingStats& LightingSystem::update(double budget_ms, double now_seconds
 }
 
 void LightingSystem::queue_work() {
+    queue_photon_units();
+    queue_map_units();
+}
+
+void LightingSystem::queue_photon_units() {
     // Probes: one photon of every group, while something may have changed a path.
     if (plan_.selective_probes()) {
         scheduler_.enqueue({WorkKind::PhotonProbe, 0, 1.0,
@@ -168,7 +173,9 @@ void LightingSystem::queue_work() {
     } else {
         scheduler_.cancel(WorkKind::CausticSlice, 0);
     }
+}
 
+void LightingSystem::queue_map_units() {
     // AIM rebuilds are sequential by nature (one kd-tree at a time): the units are slices of
     // "the next AIM work", each taking the maps' first request when it runs (the rebuild in
     // progress, then unbuilt maps, then the largest delta_f / area; a waiting surface's delta

@@ -103,6 +103,10 @@ class LightingSystem {
   private:
     SceneCensus take_census() const;
     void queue_work();
+    /// Probes, group retraces and caustic slices.
+    void queue_photon_units();
+    /// Slices of the next AIM rebuild and of the next gather pass.
+    void queue_map_units();
 
     ecs::Registry& registry_;
     JobSystem& jobs_;
