@@ -5,11 +5,15 @@
 // everything it writes passes the validator.
 
 #include <sys/wait.h>
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 namespace luxel::testing {
 
@@ -39,6 +43,16 @@ inline ValidatorResult run_gltf_validator(const std::vector<std::filesystem::pat
     const int status = pclose(pipe);
     result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return result;
+}
+
+/// Every file passes: exit 0 and one summary line per file, no error lines.
+inline void expect_every_file_valid(const std::vector<std::filesystem::path>& files) {
+    const ValidatorResult result = run_gltf_validator(files);
+    EXPECT_EQ(result.exit_code, 0) << result.output;
+    EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'),
+              static_cast<std::ptrdiff_t>(files.size()))
+        << "one summary line per file, no error lines:\n"
+        << result.output;
 }
 
 }  // namespace luxel::testing
