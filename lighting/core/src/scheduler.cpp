@@ -46,31 +46,31 @@ class RunningFlag {
     bool& flag_;
 };
 
+}  // namespace
+
 /// One queued unit as seen at the start of a frame.
-struct Candidate {
+struct Scheduler::Candidate {
     WorkKind kind;
     std::uint64_t key;
     std::uint64_t sequence;
     std::uint64_t waited;
     double effective;
     bool overdue;
+
+    /// Overdue units first, oldest first; then by effective priority; ties by enqueue order.
+    [[nodiscard]] bool goes_before(const Candidate& other) const {
+        if (overdue != other.overdue) {
+            return overdue;
+        }
+        if (overdue && waited != other.waited) {
+            return waited > other.waited;
+        }
+        if (effective != other.effective) {
+            return effective > other.effective;
+        }
+        return sequence < other.sequence;
+    }
 };
-
-/// Overdue units first, oldest first; then by effective priority; ties by enqueue order.
-bool goes_before(const Candidate& a, const Candidate& b) {
-    if (a.overdue != b.overdue) {
-        return a.overdue;
-    }
-    if (a.overdue && a.waited != b.waited) {
-        return a.waited > b.waited;
-    }
-    if (a.effective != b.effective) {
-        return a.effective > b.effective;
-    }
-    return a.sequence < b.sequence;
-}
-
-}  // namespace
 
 Scheduler::Scheduler(const Clock& clock, SchedulerSettings settings)
     : clock_(&clock), settings_(settings), cost_(settings.cost) {
@@ -137,27 +137,19 @@ std::size_t Scheduler::pending_total() const {
     return total;
 }
 
-FrameReport Scheduler::run(double budget_ms) {
-    if (running_) {
-        throw std::logic_error("Scheduler::run called from a work unit");
-    }
+FrameReport Scheduler::paused_report() const {
+    // Paused: nothing runs and nothing ages (frame_ does not advance).
     FrameReport report;
     report.frame = frame_;
-    // NaN compares false: it pauses like 0. +inf runs everything queued.
-    if (!(budget_ms > 0.0)) {
-        // Paused: nothing runs and nothing ages (frame_ does not advance).
-        report.paused = true;
-        report.budget_ms = 0.0;
-        for (std::size_t k = 0; k < kWorkKindCount; ++k) {
-            report.kinds[k].pending_after = queues_[k].size();
-        }
-        return report;
+    report.paused = true;
+    report.budget_ms = 0.0;
+    for (std::size_t k = 0; k < kWorkKindCount; ++k) {
+        report.kinds[k].pending_after = queues_[k].size();
     }
-    report.budget_ms = budget_ms;
-    const RunningFlag running(running_);
-    const Nanoseconds start = clock_->now();
-    const double budget = report.budget_ms;
+    return report;
+}
 
+std::vector<Scheduler::Candidate> Scheduler::ordered_candidates() const {
     std::vector<Candidate> order;
     order.reserve(pending_total());
     for (std::size_t k = 0; k < kWorkKindCount; ++k) {
@@ -169,7 +161,26 @@ FrameReport Scheduler::run(double budget_ms) {
                                       effective, waited >= settings_.max_wait_frames});
         }
     }
-    std::sort(order.begin(), order.end(), goes_before);
+    std::sort(order.begin(), order.end(),
+              [](const Candidate& a, const Candidate& b) { return a.goes_before(b); });
+    return order;
+}
+
+FrameReport Scheduler::run(double budget_ms) {
+    if (running_) {
+        throw std::logic_error("Scheduler::run called from a work unit");
+    }
+    // NaN compares false: it pauses like 0. +inf runs everything queued.
+    if (!(budget_ms > 0.0)) {
+        return paused_report();
+    }
+    FrameReport report;
+    report.frame = frame_;
+    report.budget_ms = budget_ms;
+    const RunningFlag running(running_);
+    const Nanoseconds start = clock_->now();
+    const double budget = report.budget_ms;
+    const std::vector<Candidate> order = ordered_candidates();
 
     PerKind<double> kind_used{};
     // Two sweeps: the first keeps each kind within its share of the budget; if a unit was held
@@ -195,9 +206,7 @@ FrameReport Scheduler::run(double budget_ms) {
             if (it == queues_[k].end() || it->second.sequence != c.sequence) {
                 continue;
             }
-            Entry& entry = it->second;
-            const double predicted = cost_.predict(c.kind, entry.size);
-            const double bound = cost_.prediction_error(c.kind, entry.size);
+            const double predicted = cost_.predict(c.kind, it->second.size);
             const double share = settings_.max_share[k];
             const bool within_share =
                 sweep == 1 || share == 0.0 || kind_used[k] + predicted <= share * budget;
@@ -209,35 +218,7 @@ FrameReport Scheduler::run(double budget_ms) {
             if (!fits && !forced) {
                 continue;
             }
-            std::function<void()> callback = std::move(entry.run);
-            const double size = entry.size;
-            queues_[k].erase(it);  // before the callback, which may enqueue the same key again
-
-            const Nanoseconds t0 = clock_->now();
-            callback();
-            const double actual = to_milliseconds(clock_->now() - t0);
-            cost_.record(c.kind, size, actual);
-
-            kind_used[k] += actual;
-            KindFrameReport& kr = report.kinds[k];
-            kr.units_done += 1;
-            kr.ms += actual;
-            kr.predicted_ms += predicted;
-            report.units_done += 1;
-            report.max_error_ms = std::max(report.max_error_ms, std::abs(actual - predicted));
-            report.max_error_bound_ms = std::max(report.max_error_bound_ms, bound);
-            if (forced) {
-                report.forced_units += 1;
-                report.forced_ms = actual;
-            }
-            if (settings_.record_units) {
-                report.units.push_back(UnitRecord{c.kind, c.key, size, predicted, bound, actual,
-                                                  c.waited, c.effective, forced});
-            }
-            KindTotals& kt = totals_.kinds[k];
-            kt.units_done += 1;
-            kt.predicted_ms += predicted;
-            kt.actual_ms += actual;
+            kind_used[k] += run_unit(c, predicted, forced, report);
         }
     }
 
@@ -249,6 +230,41 @@ FrameReport Scheduler::run(double budget_ms) {
     totals_.forced_units += report.forced_units;
     frame_ += 1;
     return report;
+}
+
+double Scheduler::run_unit(const Candidate& c, double predicted, bool forced, FrameReport& report) {
+    const std::size_t k = index(c.kind);
+    const auto it = queues_[k].find(c.key);
+    std::function<void()> callback = std::move(it->second.run);
+    const double size = it->second.size;
+    const double bound = cost_.prediction_error(c.kind, size);
+    queues_[k].erase(it);  // before the callback, which may enqueue the same key again
+
+    const Nanoseconds t0 = clock_->now();
+    callback();
+    const double actual = to_milliseconds(clock_->now() - t0);
+    cost_.record(c.kind, size, actual);
+
+    KindFrameReport& kr = report.kinds[k];
+    kr.units_done += 1;
+    kr.ms += actual;
+    kr.predicted_ms += predicted;
+    report.units_done += 1;
+    report.max_error_ms = std::max(report.max_error_ms, std::abs(actual - predicted));
+    report.max_error_bound_ms = std::max(report.max_error_bound_ms, bound);
+    if (forced) {
+        report.forced_units += 1;
+        report.forced_ms = actual;
+    }
+    if (settings_.record_units) {
+        report.units.push_back(UnitRecord{c.kind, c.key, size, predicted, bound, actual, c.waited,
+                                          c.effective, forced});
+    }
+    KindTotals& kt = totals_.kinds[k];
+    kt.units_done += 1;
+    kt.predicted_ms += predicted;
+    kt.actual_ms += actual;
+    return actual;
 }
 
 }  // namespace luxel::lighting

@@ -155,6 +155,14 @@ class Scheduler {
     [[nodiscard]] std::uint64_t frame() const { return frame_; }
 
   private:
+    struct Candidate;
+    [[nodiscard]] FrameReport paused_report() const;
+    /// Every queued unit in the order run() takes them (see the class comment).
+    [[nodiscard]] std::vector<Candidate> ordered_candidates() const;
+    /// Runs candidate `c` (queued and chosen), learns its cost and records it in `report`;
+    /// returns what it took (ms).
+    double run_unit(const Candidate& c, double predicted, bool forced, FrameReport& report);
+
     struct Entry {
         double priority = 0.0;
         double size = 1.0;
