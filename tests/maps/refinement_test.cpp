@@ -99,9 +99,10 @@ TEST(Refinement, AveragedPassesLowerTheGatherNoiseAsOneOverSqrtPasses) {
     ASSERT_EQ(refined.iim().size(), truth.size());
 
     // Every lit surface averaged its 8 passes, and then the system idles.
-    for (const auto& surface : refined.lighting->maps().surfaces()) {
-        if (!surface.texels.texels.empty() && surface.gather.completed_once) {
-            EXPECT_EQ(surface.refinement.passes_averaged, 8u);
+    const lighting::IlluminationMaps& maps = refined.lighting->maps();
+    for (std::uint32_t s = 0; s < maps.surfaces().size(); ++s) {
+        if (!maps.surfaces()[s].texels.texels.empty() && maps.gather_state(s).completed_once) {
+            EXPECT_EQ(maps.refinement(s).passes_averaged, 8u);
         }
     }
     EXPECT_TRUE(refined.lighting->maps().gather_requests().empty());

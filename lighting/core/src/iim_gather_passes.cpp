@@ -1,4 +1,4 @@
-#include "luxel/lighting/core/illumination_maps.hpp"
+#include "iim_gather_passes.hpp"
 
 #include <algorithm>
 #include <array>
@@ -10,47 +10,63 @@
 #include "iim_pass_filter.hpp"
 #include "map_support.hpp"
 
-// IlluminationMaps, part 3 of 3: the IIM's gather passes (docs/METHOD.md §6): which surfaces
-// gather, a pass in slices, refinement, and the filter and fade-in of a completed pass.
 namespace luxel::lighting {
 
 using namespace map_support;
 
-bool IlluminationMaps::lighting_changed(std::uint32_t s, bool aims_are_current) const {
+IimGatherPasses::IimGatherPasses(MapRegistry& registry, const AimRebuilder& aims,
+                                 const PhotonWorld& world, SurfaceDeltas& deltas,
+                                 const IlluminationSettings& settings)
+    : registry_(registry), aims_(aims), world_(world), deltas_(deltas), settings_(settings) {}
+
+IimGatherPasses::~IimGatherPasses() = default;
+
+void IimGatherPasses::sync() {
+    const std::span<const MapSurface> surfaces = registry_.surfaces();
+    for (std::size_t s = states_.size(); s < surfaces.size(); ++s) {
+        GatherPassState state;
+        state.cursor = surfaces[s].texels.texels.size();  // no pass in progress
+        states_.push_back(std::move(state));
+        refinements_.emplace_back();
+    }
+}
+
+bool IimGatherPasses::lighting_changed(std::uint32_t s, bool aims_are_current) const {
     const PhotonMap& map = world_.photon_map();
     const SurfacePhotons& photons = map.surface(s);
-    const MapSurface& mapped = surfaces_[s];
+    const GatherPassState& state = states_[s];
     // An area light's emission changed: its direct light on every surface comes from the
     // gather, so every surface gathers again.
     return relative(deltas_.indirect(map, s), photons.stored_energy.value()) >
                settings_.iim_threshold ||
-           mapped.gather.emission_version != emission_version_ ||
-           (mapped.gather.read_stale_aim && aims_are_current);
+           state.emission_version != registry_.emission_version() ||
+           (state.read_stale_aim && aims_are_current);
 }
 
-bool IlluminationMaps::wants_refinement(std::uint32_t s) const {
-    const MapSurface& mapped = surfaces_[s];
-    return refine_ && mapped.gather.completed_once && !mapped.gather.read_stale_aim &&
-           mapped.refinement.passes_averaged < settings_.refine_passes;
+bool IimGatherPasses::wants_refinement(std::uint32_t s) const {
+    const GatherPassState& state = states_[s];
+    const RefinementStats& refinement = refinements_[s];
+    return refine_ && state.completed_once && !state.read_stale_aim &&
+           refinement.passes_averaged < settings_.refine_passes;
 }
 
-bool IlluminationMaps::wants_gather(std::uint32_t s, bool ready, bool current) const {
-    const MapSurface& mapped = surfaces_[s];
-    if (mapped.texels.texels.empty() || !registry_.valid(mapped.entity) ||
-        s >= world_.photon_map().surface_count()) {
+bool IimGatherPasses::wants_gather(std::uint32_t s, bool ready, bool current) const {
+    const GatherPassState& state = states_[s];
+    if (!registry_.live(s) || s >= world_.photon_map().surface_count()) {
         return false;
     }
     const bool changed = lighting_changed(s, current);
     // Refinement only over current AIMs: an average of passes over different AIMs would mix old
     // light into new.
     const bool refine = !changed && current && wants_refinement(s);
-    return mapped.gather.in_progress ||
-           (ready && (!mapped.gather.completed_once || changed || refine));
+    return state.in_progress || (ready && (!state.completed_once || changed || refine));
 }
 
-double IlluminationMaps::gather_priority(std::uint32_t s, bool current) const {
+double IimGatherPasses::priority(std::uint32_t s, bool current) const {
     const PhotonMap& map = world_.photon_map();
-    const MapSurface& mapped = surfaces_[s];
+    const MapSurface& mapped = registry_.surface(s);
+    const GatherPassState& state = states_[s];
+    const RefinementStats& refinement = refinements_[s];
     const double delta = deltas_.indirect(map, s);
     const bool changed = lighting_changed(s, current);
     // Passes in progress first, the furthest along first, so passes finish one after
@@ -59,28 +75,28 @@ double IlluminationMaps::gather_priority(std::uint32_t s, bool current) const {
     // refinement pass in progress, then the surfaces with the fewest passes averaged.
     // A change never waits for refinement (a refinement pass of a surface whose light
     // changed is dropped and started afresh by gather()).
-    const double done = static_cast<double>(mapped.gather.cursor) /
-                        static_cast<double>(mapped.texels.texels.size());
-    double priority = delta / safe_area(mapped.texels.area);
-    if (mapped.gather.in_progress && !mapped.gather.refines) {
-        priority = std::numeric_limits<double>::max() / 2.0 * (1.0 + done);
-    } else if (!mapped.gather.completed_once) {
-        priority = std::numeric_limits<double>::max() / 4.0;
-    } else if (!changed && mapped.gather.in_progress) {
-        priority = -0.5 + 0.25 * done;
+    const double done =
+        static_cast<double>(state.cursor) / static_cast<double>(mapped.texels.texels.size());
+    double rank = delta / safe_area(mapped.texels.area);
+    if (state.in_progress && !state.refines) {
+        rank = std::numeric_limits<double>::max() / 2.0 * (1.0 + done);
+    } else if (!state.completed_once) {
+        rank = std::numeric_limits<double>::max() / 4.0;
+    } else if (!changed && state.in_progress) {
+        rank = -0.5 + 0.25 * done;
     } else if (!changed) {
-        priority = -static_cast<double>(mapped.refinement.passes_averaged);
+        rank = -static_cast<double>(refinement.passes_averaged);
     }
-    return priority;
+    return rank;
 }
 
-std::vector<MapRequest> IlluminationMaps::gather_requests() const {
+std::vector<MapRequest> IimGatherPasses::requests() const {
     std::vector<MapRequest> requests;
-    const bool ready = aims_ready();
-    const bool current = aims_current();
-    for (std::uint32_t s = 0; s < surfaces_.size(); ++s) {
+    const bool ready = aims_.ready();
+    const bool current = aims_.current();
+    for (std::uint32_t s = 0; s < states_.size(); ++s) {
         if (wants_gather(s, ready, current)) {
-            requests.push_back({s, gather_priority(s, current)});
+            requests.push_back({s, priority(s, current)});
         }
     }
     std::stable_sort(
@@ -89,71 +105,73 @@ std::vector<MapRequest> IlluminationMaps::gather_requests() const {
     return requests;
 }
 
-std::optional<std::uint32_t> IlluminationMaps::next_gather_surface() const {
-    const bool ready = aims_ready();
-    const bool current = aims_current();
+std::optional<std::uint32_t> IimGatherPasses::next_surface() const {
+    const bool ready = aims_.ready();
+    const bool current = aims_.current();
     std::optional<std::uint32_t> best;
     double best_priority = 0.0;
-    for (std::uint32_t s = 0; s < surfaces_.size(); ++s) {
+    for (std::uint32_t s = 0; s < states_.size(); ++s) {
         if (wants_gather(s, ready, current)) {
-            // Strictly greater: the first of equals, as gather_requests()'s stable sort puts it.
-            const double priority = gather_priority(s, current);
-            if (!best || priority > best_priority) {
+            // Strictly greater: the first of equals, as requests()'s stable sort puts it.
+            const double candidate = priority(s, current);
+            if (!best || candidate > best_priority) {
                 best = s;
-                best_priority = priority;
+                best_priority = candidate;
             }
         }
     }
     return best;
 }
 
-std::size_t IlluminationMaps::gather(std::uint32_t surface, std::size_t max_texels,
-                                     IrradianceGatherer& gatherer, double now_seconds) {
-    MapSurface& mapped = surfaces_.at(surface);
-    const std::int32_t page_id = aim_.surface_page.at(surface);
-    if (page_id < 0 || mapped.texels.texels.empty() || max_texels == 0) {
+void IimGatherPasses::start_pass(std::uint32_t surface) {
+    // Changes from now on need another pass; those before are what this pass sees.
+    GatherPassState& state = states_[surface];
+    state.in_progress = true;
+    state.cursor = 0;
+    state.irradiance.assign(registry_.surface(surface).texels.texels.size(), glm::vec3(0.0f));
+    const bool current = aims_.current();
+    state.refines = state.completed_once && !lighting_changed(surface, current) && current &&
+                    wants_refinement(surface);
+    ++state.started;
+    state.emission_version = registry_.emission_version();
+    state.aim_rebuilds_at_start = aims_.rebuilds();
+    state.read_stale_aim = !current;
+    deltas_.consume_indirect(world_.photon_map(), surface);
+    ++passes_;
+}
+
+std::size_t IimGatherPasses::gather(std::uint32_t surface, std::size_t max_texels,
+                                    IrradianceGatherer& gatherer, double now_seconds) {
+    const MapSurface& mapped = registry_.surface(surface);
+    GatherPassState& state = states_.at(surface);
+    if (registry_.page_of(surface) < 0 || mapped.texels.texels.empty() || max_texels == 0) {
         return 0;
     }
-    if (mapped.gather.in_progress && mapped.gather.refines &&
-        lighting_changed(surface, aims_current())) {
-        mapped.gather.in_progress = false;  // the light changed under a refinement pass
+    if (state.in_progress && state.refines && lighting_changed(surface, aims_.current())) {
+        state.in_progress = false;  // the light changed under a refinement pass
         filters_.erase(surface);
     }
-    if (!mapped.gather.in_progress && !aims_ready()) {
+    if (!state.in_progress && !aims_.ready()) {
         // Checked again here, not only when the request was made: photons stored since (by
         // retraces earlier in the same frame) may have made a surface lit without an AIM.
         return 0;
     }
-    const std::size_t total = mapped.texels.texels.size();
-    if (!mapped.gather.in_progress) {
-        // Changes from now on need another pass; those before are what this pass sees.
-        mapped.gather.in_progress = true;
-        mapped.gather.cursor = 0;
-        mapped.gather.irradiance.assign(total, glm::vec3(0.0f));
-        const bool current = aims_current();
-        mapped.gather.refines = mapped.gather.completed_once &&
-                                !lighting_changed(surface, current) && current &&
-                                wants_refinement(surface);
-        ++mapped.gather.started;
-        mapped.gather.emission_version = emission_version_;
-        mapped.gather.aim_rebuilds_at_start = counters_.aim_rebuilds;
-        mapped.gather.read_stale_aim = !current;
-        deltas_.consume_indirect(world_.photon_map(), surface);
-        ++counters_.gather_passes;
+    if (!state.in_progress) {
+        start_pass(surface);
     }
-    const std::size_t first = mapped.gather.cursor;
+    const std::size_t total = mapped.texels.texels.size();
+    const std::size_t first = state.cursor;
     const std::size_t count = std::min(max_texels, total - first);
     if (count > 0) {
-        std::vector<GatherTexel> all = world_texels(surface);
+        std::vector<GatherTexel> all = registry_.world_texels(surface);
         for (GatherTexel& texel : all) {
-            texel.pass = mapped.gather.started;
+            texel.pass = state.started;
         }
         const std::span<const GatherTexel> batch(all.data() + first, count);
-        gatherer.gather(batch,
-                        std::span<glm::vec3>(mapped.gather.irradiance.data() + first, count));
-        mapped.gather.cursor = first + count;
-        counters_.texels_gathered += count;
-        if (mapped.gather.cursor >= total) {
+        gatherer.gather(batch, std::span<glm::vec3>(state.irradiance.data() + first, count));
+        state.cursor = first + count;
+        texels_gathered_ += count;
+        if (state.cursor >= total) {
             begin_filter(surface);
         }
     }
@@ -174,41 +192,42 @@ std::size_t IlluminationMaps::gather(std::uint32_t surface, std::size_t max_texe
 /// gathering's noise is per texel while indirect light varies slowly, so a small filter removes
 /// most of the noise for little bias), noise-aware from the third pass. The filter runs in
 /// slices (gather() gives it the budget its call has left), then finish_pass() fades it in.
-void IlluminationMaps::begin_filter(std::uint32_t surface) {
-    MapSurface& mapped = surfaces_[surface];
+void IimGatherPasses::begin_filter(std::uint32_t surface) {
+    const MapSurface& mapped = registry_.surface(surface);
+    GatherPassState& state = states_[surface];
+    RefinementStats& refinement = refinements_[surface];
     const std::size_t count = mapped.texels.texels.size();
-    const bool refining = mapped.gather.refines && mapped.refinement.passes_averaged > 0 &&
-                          mapped.refinement.mean.size() == count &&
-                          mapped.refinement.m2.size() == count;
-    mapped.gather.passes_when_done = refining ? mapped.refinement.passes_averaged + 1 : 1;
-    const std::uint32_t passes = mapped.gather.passes_when_done;
+    const bool refining = state.refines && refinement.passes_averaged > 0 &&
+                          refinement.mean.size() == count && refinement.m2.size() == count;
+    state.passes_when_done = refining ? refinement.passes_averaged + 1 : 1;
+    const std::uint32_t passes = state.passes_when_done;
     // The per-texel mean of the passes (unfiltered) and, for the noise estimate, the sum of
     // squared deviations (Welford's update, in double per step so long runs do not drift).
     // Kept only while more passes may be averaged in.
     const bool keep_mean = refine_ && settings_.refine_passes > 1;
     std::vector<glm::vec3> values(count);
     if (keep_mean) {
-        mapped.refinement.mean.resize(count);
-        mapped.refinement.m2.resize(count);
+        refinement.mean.resize(count);
+        refinement.m2.resize(count);
         for (std::size_t i = 0; i < count; ++i) {
-            const glm::dvec3 x(sanitized(mapped.gather.irradiance[i]));
+            const glm::dvec3 x(sanitized(state.irradiance[i]));
             if (!refining) {
-                mapped.refinement.mean[i] = glm::vec3(x);
-                mapped.refinement.m2[i] = glm::vec3(0.0f);
+                refinement.mean[i] = glm::vec3(x);
+                refinement.m2[i] = glm::vec3(0.0f);
             } else {
-                const glm::dvec3 old_mean(mapped.refinement.mean[i]);
+                const glm::dvec3 old_mean(refinement.mean[i]);
                 const glm::dvec3 mean = old_mean + (x - old_mean) / static_cast<double>(passes);
-                mapped.refinement.mean[i] = glm::vec3(mean);
-                mapped.refinement.m2[i] =
-                    glm::vec3(glm::dvec3(mapped.refinement.m2[i]) + (x - old_mean) * (x - mean));
+                refinement.mean[i] = glm::vec3(mean);
+                refinement.m2[i] =
+                    glm::vec3(glm::dvec3(refinement.m2[i]) + (x - old_mean) * (x - mean));
             }
-            values[i] = mapped.refinement.mean[i];
+            values[i] = refinement.mean[i];
         }
     } else {
-        mapped.refinement.mean = {};
-        mapped.refinement.m2 = {};
+        refinement.mean = {};
+        refinement.m2 = {};
         for (std::size_t i = 0; i < count; ++i) {
-            values[i] = sanitized(mapped.gather.irradiance[i]);
+            values[i] = sanitized(state.irradiance[i]);
         }
     }
     // With three passes or more each texel knows its noise: the variance of its mean, summed
@@ -222,29 +241,31 @@ void IlluminationMaps::begin_filter(std::uint32_t surface) {
         noise.resize(count);
         const double scale = 1.0 / (static_cast<double>(passes - 1) * static_cast<double>(passes));
         for (std::size_t i = 0; i < count; ++i) {
-            const glm::dvec3 m2(mapped.refinement.m2[i]);
+            const glm::dvec3 m2(refinement.m2[i]);
             noise[i] = (m2.x + m2.y + m2.z) * scale;
         }
     }
     filters_[surface] =
         std::make_unique<IimPassFilter>(mapped.texels.texels, std::move(values), std::move(noise),
                                         settings_.iim_filter_radius, sigmas);
-    mapped.gather.irradiance.clear();
-    mapped.gather.irradiance.shrink_to_fit();
+    state.irradiance.clear();
+    state.irradiance.shrink_to_fit();
 }
 
-void IlluminationMaps::finish_pass(std::uint32_t surface, double now_seconds) {
-    MapSurface& mapped = surfaces_[surface];
+void IimGatherPasses::finish_pass(std::uint32_t surface, double now_seconds) {
+    const MapSurface& mapped = registry_.surface(surface);
+    GatherPassState& state = states_[surface];
+    RefinementStats& refinement = refinements_[surface];
     const auto found = filters_.find(surface);
     if (found == filters_.end()) {
         return;
     }
     const IimPassFilter& filter = *found->second;
-    if (counters_.aim_rebuilds != mapped.gather.aim_rebuilds_at_start) {
-        mapped.gather.read_stale_aim = true;  // an AIM changed under the pass
+    if (aims_.rebuilds() != state.aim_rebuilds_at_start) {
+        state.read_stale_aim = true;  // an AIM changed under the pass
     }
-    const auto page_id = static_cast<std::size_t>(aim_.surface_page[surface]);
-    IimPage& page = iim_pages_[page_id];
+    const std::int32_t page_id = registry_.page_of(surface);
+    IimPage& page = registry_.iim_pages()[static_cast<std::size_t>(page_id)];
     const auto& texels = mapped.texels.texels;
     const std::vector<glm::vec3>& filtered = filter.filtered();
     for (std::size_t i = 0; i < texels.size() && i < filtered.size(); ++i) {
@@ -255,7 +276,6 @@ void IlluminationMaps::finish_pass(std::uint32_t surface, double now_seconds) {
         page.commit(texels[i].x, texels[i].y, value, now_seconds, settings_.blend_seconds);
     }
     // Fill the padding so bilinear lookups at the border hold.
-    const auto& owners = owners_[page_id];
     const int size = page.current.size;
     for (const SurfaceTexel& texel : texels) {
         for (int dy = -1; dy <= 1; ++dy) {
@@ -263,8 +283,7 @@ void IlluminationMaps::finish_pass(std::uint32_t surface, double now_seconds) {
                 const int x = texel.x + dx;
                 const int y = texel.y + dy;
                 if (x < 0 || y < 0 || x >= size || y >= size ||
-                    owners[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) +
-                           static_cast<std::size_t>(x)] >= 0) {
+                    registry_.owner(page_id, x, y) >= 0) {
                     continue;
                 }
                 page.commit(x, y, page.current.at(texel.x, texel.y), now_seconds,
@@ -277,14 +296,14 @@ void IlluminationMaps::finish_pass(std::uint32_t surface, double now_seconds) {
     const int top = std::max(bounds.y - 1, 0);
     page.current.mark_changed(
         {left, top, std::min(bounds.z + 2, size) - left, std::min(bounds.w + 2, size) - top});
-    mapped.refinement.passes_averaged = mapped.gather.passes_when_done;
-    if (mapped.refinement.passes_averaged >= settings_.refine_passes) {
+    refinement.passes_averaged = state.passes_when_done;
+    if (refinement.passes_averaged >= settings_.refine_passes) {
         // Done refining: the IIM holds the filtered mean.
-        mapped.refinement.mean = {};
-        mapped.refinement.m2 = {};
+        refinement.mean = {};
+        refinement.m2 = {};
     }
-    mapped.gather.in_progress = false;
-    mapped.gather.completed_once = true;
+    state.in_progress = false;
+    state.completed_once = true;
     filters_.erase(found);
 }
 

@@ -1,193 +1,107 @@
 #include "luxel/lighting/core/illumination_maps.hpp"
 
-#include <algorithm>
-#include <array>
-#include <cmath>
-#include <limits>
+#include <utility>
 
-#include <glm/gtc/constants.hpp>
+#include "aim_rebuilder.hpp"
+#include "iim_gather_passes.hpp"
+#include "map_registry.hpp"
 
-#include "aim_rebuild_state.hpp"
-#include "iim_pass_filter.hpp"
-#include "luxel/ecs/hierarchy.hpp"
-#include "luxel/scene/image_decode.hpp"
-#include "map_support.hpp"
-
-// IlluminationMaps, part 1 of 3: the registry of surfaces and pages, their transforms and the
-// emission table. The AIM rebuild is aim_rebuild.cpp, the IIM's gather passes
-// iim_gather_passes.cpp.
+// The maps' public face: each call goes to the stage that owns it.
 namespace luxel::lighting {
-namespace {
 
-glm::mat4 world_matrix(const ecs::Registry& registry, ecs::Entity entity) {
-    if (const auto* world = registry.try_get<ecs::WorldTransform>(entity)) {
-        return world->matrix;
-    }
-    return ecs::compute_world_matrix(registry, entity);
-}
-
-}  // namespace
-
-using namespace map_support;
 IlluminationMaps::IlluminationMaps(ecs::Registry& registry, const PhotonWorld& world,
                                    IlluminationSettings settings)
-    : registry_(registry),
-      world_(world),
-      settings_(settings),
-      moves_(registry.observe<ecs::WorldTransform>()),
-      area_changes_(registry.observe<AreaLight>()) {
+    : settings_(settings),
+      registry_(std::make_unique<MapRegistry>(registry, world)),
+      aims_(std::make_unique<AimRebuilder>(*registry_, world, deltas_, settings_)),
+      gathers_(std::make_unique<IimGatherPasses>(*registry_, *aims_, world, deltas_, settings_)) {
     sync();
 }
 
 IlluminationMaps::~IlluminationMaps() = default;
 
-std::int32_t IlluminationMaps::page_index(const scene::Scene* source, int page, int page_size) {
-    const auto key = std::make_pair(source, page);
-    if (const auto found = pages_.find(key); found != pages_.end()) {
-        return found->second;
-    }
-    const auto index = static_cast<std::int32_t>(aim_.pages.size());
-    aim_.pages.emplace_back(page_size);
-    iim_pages_.emplace_back(page_size);
-    owners_.emplace_back(static_cast<std::size_t>(page_size) * static_cast<std::size_t>(page_size),
-                         -1);
-    pages_.emplace(key, index);
-    return index;
-}
-
-void IlluminationMaps::add_surface(std::uint32_t surface) {
-    const SurfaceInfo& info = world_.surfaces()[surface];
-    MapSurface mapped;
-    mapped.entity = info.entity;
-    const auto* instance = registry_.try_get<scene::MeshInstance>(info.entity);
-    const auto* layout = registry_.try_get<LightmappedSurface>(info.entity);
-    std::int32_t page = -1;
-    if (instance != nullptr && layout != nullptr && info.layout_id >= 0 && info.primitive >= 0) {
-        const scene::Mesh& mesh = instance->geometry();
-        const auto& primitive = mesh.primitives.at(static_cast<std::size_t>(info.primitive));
-        for (const auto& entry : layout->layout.surfaces) {
-            if (entry.id != info.layout_id) {
-                continue;
-            }
-            page = page_index(instance->source.get(), entry.page, layout->layout.page_size);
-            mapped.texels = rasterize_surface(primitive, entry.page, layout->layout.page_size);
-            mapped.footprint = SurfaceFootprint(primitive, mapped.texels);
-            break;
-        }
-        if (primitive.material >= 0) {
-            const scene::Material& material =
-                instance->source->materials.at(static_cast<std::size_t>(primitive.material));
-            // The albedo the photon tracer bounces with (textured: factor x the texture's
-            // mean), so the AIM and the photons agree.
-            mapped.albedo = scene::mean_diffuse_albedo(*instance->source, material);
-            mapped.content =
-                material.base_color_image >= 0 ? IimContent::Irradiance : IimContent::Radiance;
-        }
-    }
-    if (instance != nullptr && info.primitive >= 0) {
-        const auto& primitive =
-            instance->geometry().primitives.at(static_cast<std::size_t>(info.primitive));
-        if (primitive.material >= 0) {
-            const scene::Material& material =
-                instance->source->materials.at(static_cast<std::size_t>(primitive.material));
-            if (material.is_emissive()) {
-                mapped.material_emission = sanitized(material.emitted_radiance());
-            }
-        }
-    }
-    aim_.surface_page.push_back(page);
-    aim_.surface_emission.push_back(glm::vec3(0.0f));
-    if (page >= 0) {
-        auto& owners = owners_[static_cast<std::size_t>(page)];
-        const auto size = static_cast<std::size_t>(mapped.texels.page_size);
-        for (const SurfaceTexel& texel : mapped.texels.texels) {
-            owners[static_cast<std::size_t>(texel.y) * size + static_cast<std::size_t>(texel.x)] =
-                static_cast<std::int32_t>(surface);
-        }
-    }
-    mapped.gather.cursor = mapped.texels.texels.size();
-    surfaces_.push_back(std::move(mapped));
-    surfaces_of_[info.entity].push_back(surface);
-    refresh_transform(surface);
-    if (refresh_emission(surface)) {
-        ++emission_version_;
-    }
-}
-
-bool IlluminationMaps::refresh_emission(std::uint32_t surface) {
-    const MapSurface& mapped = surfaces_[surface];
-    glm::vec3 emission(0.0f);
-    // Emission counts where the photon world emits photons for it: an entity with an enabled
-    // AreaLight (scene instantiation gives every emissive mesh one).
-    const auto* area =
-        registry_.valid(mapped.entity) ? registry_.try_get<AreaLight>(mapped.entity) : nullptr;
-    if (area != nullptr && area->enabled) {
-        emission = sanitized(mapped.material_emission * area->scale);
-    }
-    glm::vec3& current = aim_.surface_emission[surface];
-    if (current == emission) {
-        return false;
-    }
-    current = emission;
-    return true;
-}
-
-void IlluminationMaps::refresh_transform(std::uint32_t surface) {
-    MapSurface& mapped = surfaces_[surface];
-    if (!registry_.valid(mapped.entity)) {
-        return;
-    }
-    mapped.to_world = world_matrix(registry_, mapped.entity);
-    // Light maps assume a similarity transform (no shear): its scale is the cube root of the
-    // volume change.
-    const double scale =
-        std::cbrt(std::abs(static_cast<double>(glm::determinant(glm::mat3(mapped.to_world)))));
-    mapped.world_metres_per_texel = mapped.texels.metres_per_texel * scale;
-}
-
 void IlluminationMaps::sync() {
-    for (auto s = static_cast<std::uint32_t>(surfaces_.size()); s < world_.surfaces().size(); ++s) {
-        add_surface(s);
-    }
-    area_changes_.consume([&](ecs::Entity entity, ecs::ChangeKind) {
-        const auto found = surfaces_of_.find(entity);
-        if (found == surfaces_of_.end()) {
-            return;
-        }
-        for (std::uint32_t surface : found->second) {
-            if (refresh_emission(surface)) {
-                ++emission_version_;
-            }
-        }
-    });
-    moves_.consume([&](ecs::Entity entity, ecs::ChangeKind kind) {
-        if (kind == ecs::ChangeKind::Destroyed) {
-            return;
-        }
-        const auto found = surfaces_of_.find(entity);
-        if (found == surfaces_of_.end()) {
-            return;
-        }
-        for (std::uint32_t surface : found->second) {
-            refresh_transform(surface);
-        }
-    });
+    registry_->sync();
+    gathers_->sync();
+}
+
+std::vector<MapRequest> IlluminationMaps::aim_requests() const {
+    return aims_->requests();
+}
+
+std::size_t IlluminationMaps::rebuild_aim(std::uint32_t surface, std::size_t max_texels) {
+    return aims_->rebuild(surface, max_texels);
+}
+
+std::optional<std::uint32_t> IlluminationMaps::next_aim_surface() const {
+    return aims_->next_surface();
+}
+
+std::vector<MapRequest> IlluminationMaps::gather_requests() const {
+    return gathers_->requests();
+}
+
+std::size_t IlluminationMaps::gather(std::uint32_t surface, std::size_t max_texels,
+                                     IrradianceGatherer& gatherer, double now_seconds) {
+    return gathers_->gather(surface, max_texels, gatherer, now_seconds);
+}
+
+std::optional<std::uint32_t> IlluminationMaps::next_gather_surface() const {
+    return gathers_->next_surface();
+}
+
+bool IlluminationMaps::aims_ready() const {
+    return aims_->ready();
+}
+
+bool IlluminationMaps::aims_current() const {
+    return aims_->current();
+}
+
+void IlluminationMaps::set_refinement(bool refine) {
+    gathers_->set_refinement(refine);
+}
+
+const RadianceAtlas& IlluminationMaps::aim() const {
+    return registry_->aim();
+}
+
+std::span<const IimPage> IlluminationMaps::iim_pages() const {
+    return std::as_const(*registry_).iim_pages();
+}
+
+std::span<IimPage> IlluminationMaps::iim_pages() {
+    return registry_->iim_pages();
+}
+
+std::span<const MapSurface> IlluminationMaps::surfaces() const {
+    return registry_->surfaces();
+}
+
+const GatherPassState& IlluminationMaps::gather_state(std::uint32_t s) const {
+    return gathers_->state(s);
+}
+
+const RefinementStats& IlluminationMaps::refinement(std::uint32_t s) const {
+    return gathers_->refinement(s);
+}
+
+MapCounters IlluminationMaps::counters() const {
+    MapCounters counters;
+    counters.aim_rebuilds = aims_->rebuilds();
+    counters.aim_texels = aims_->texels();
+    counters.enclosed_texels = aims_->enclosed_texels();
+    counters.gather_passes = gathers_->passes();
+    counters.texels_gathered = gathers_->texels_gathered();
+    return counters;
+}
+
+std::uint64_t IlluminationMaps::emission_version() const {
+    return registry_->emission_version();
 }
 
 std::vector<GatherTexel> IlluminationMaps::world_texels(std::uint32_t surface) const {
-    const MapSurface& mapped = surfaces_.at(surface);
-    const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(mapped.to_world)));
-    std::vector<GatherTexel> texels;
-    texels.reserve(mapped.texels.texels.size());
-    for (const SurfaceTexel& texel : mapped.texels.texels) {
-        GatherTexel world;
-        world.position = glm::vec3(mapped.to_world * glm::vec4(texel.position, 1.0f));
-        const glm::vec3 n = normal_matrix * texel.normal;
-        const float length = glm::length(n);
-        world.normal = length > 0.0f && std::isfinite(length) ? n / length : texel.normal;
-        texels.push_back(world);
-    }
-    return texels;
+    return registry_->world_texels(surface);
 }
 
 }  // namespace luxel::lighting

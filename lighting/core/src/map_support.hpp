@@ -5,8 +5,7 @@
 
 #include <glm/glm.hpp>
 
-// Small guards the three parts of IlluminationMaps share (illumination_maps.cpp: the surface
-// and page registry, transforms and emission; aim_rebuild.cpp; iim_gather_passes.cpp).
+// Small guards the maps' stages share (MapRegistry, AimRebuilder, IimGatherPasses).
 namespace luxel::lighting::map_support {
 
 inline bool finite_vector(const glm::vec3& v) {

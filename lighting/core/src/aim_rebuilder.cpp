@@ -1,4 +1,4 @@
-#include "luxel/lighting/core/illumination_maps.hpp"
+#include "aim_rebuilder.hpp"
 
 #include <algorithm>
 #include <array>
@@ -7,56 +7,65 @@
 
 #include <glm/gtc/constants.hpp>
 
-#include "aim_rebuild_state.hpp"
 #include "luxel/lighting/core/ray_scene.hpp"
 #include "map_support.hpp"
 
-// IlluminationMaps, part 2 of 3: the AIM (docs/METHOD.md §5): which surfaces need a rebuild,
-// the rebuild in slices from one kd-tree at a time, enclosure rays and dilation.
 namespace luxel::lighting {
 
 using namespace map_support;
 
-bool IlluminationMaps::needs_aim(std::uint32_t s) const {
+/// A rebuild in progress: the surface's kd-tree (the only one in memory) and where it got to.
+struct AimRebuilder::RebuildState {
+    std::uint32_t surface = 0;
+    std::unique_ptr<PhotonDensity> density;
+    std::vector<GatherTexel> texels;  ///< world space, at the rebuild's start
+    std::size_t cursor = 0;
+};
+
+AimRebuilder::AimRebuilder(MapRegistry& registry, const PhotonWorld& world, SurfaceDeltas& deltas,
+                           const IlluminationSettings& settings)
+    : registry_(registry), world_(world), deltas_(deltas), settings_(settings) {}
+
+AimRebuilder::~AimRebuilder() = default;
+
+bool AimRebuilder::needs_rebuild(std::uint32_t s) const {
     const PhotonMap& map = world_.photon_map();
-    const MapSurface& mapped = surfaces_[s];
-    if (mapped.texels.texels.empty() || !registry_.valid(mapped.entity) ||
-        s >= map.surface_count()) {
+    if (!registry_.live(s) || s >= map.surface_count()) {
         return false;
     }
     const SurfacePhotons& photons = map.surface(s);
     const double change = relative(deltas_.full(map, s), photons.stored_energy.value());
-    const bool in_progress = aim_rebuild_ && aim_rebuild_->surface == s;
-    return !mapped.aim_built || in_progress || change > settings_.aim_threshold;
+    const bool in_progress = rebuild_ && rebuild_->surface == s;
+    return !built(s) || in_progress || change > settings_.aim_threshold;
 }
 
-bool IlluminationMaps::aims_current() const {
-    for (std::uint32_t s = 0; s < surfaces_.size(); ++s) {
-        if (needs_aim(s)) {
+bool AimRebuilder::current() const {
+    for (std::uint32_t s = 0; s < registry_.surfaces().size(); ++s) {
+        if (needs_rebuild(s)) {
             return false;
         }
     }
     return true;
 }
 
-double IlluminationMaps::aim_priority(std::uint32_t s) const {
-    const MapSurface& mapped = surfaces_[s];
+double AimRebuilder::priority(std::uint32_t s) const {
+    const MapSurface& mapped = registry_.surface(s);
     // The rebuild in progress, then unbuilt maps, then the surfaces whose light changed most per
     // square metre.
-    if (aim_rebuild_ && aim_rebuild_->surface == s) {
+    if (rebuild_ && rebuild_->surface == s) {
         return std::numeric_limits<double>::max();
     }
-    if (!mapped.aim_built) {
+    if (!built(s)) {
         return std::numeric_limits<double>::max() / 2.0;
     }
     return deltas_.full(world_.photon_map(), s) / safe_area(mapped.texels.area);
 }
 
-std::vector<MapRequest> IlluminationMaps::aim_requests() const {
+std::vector<MapRequest> AimRebuilder::requests() const {
     std::vector<MapRequest> requests;
-    for (std::uint32_t s = 0; s < surfaces_.size(); ++s) {
-        if (needs_aim(s)) {
-            requests.push_back({s, aim_priority(s)});
+    for (std::uint32_t s = 0; s < registry_.surfaces().size(); ++s) {
+        if (needs_rebuild(s)) {
+            requests.push_back({s, priority(s)});
         }
     }
     std::stable_sort(
@@ -65,50 +74,49 @@ std::vector<MapRequest> IlluminationMaps::aim_requests() const {
     return requests;
 }
 
-std::optional<std::uint32_t> IlluminationMaps::next_aim_surface() const {
+std::optional<std::uint32_t> AimRebuilder::next_surface() const {
     std::optional<std::uint32_t> best;
     double best_priority = 0.0;
-    for (std::uint32_t s = 0; s < surfaces_.size(); ++s) {
-        if (needs_aim(s)) {
-            // Strictly greater: the first of equals, as aim_requests()'s stable sort puts it.
-            const double priority = aim_priority(s);
-            if (!best || priority > best_priority) {
+    for (std::uint32_t s = 0; s < registry_.surfaces().size(); ++s) {
+        if (needs_rebuild(s)) {
+            // Strictly greater: the first of equals, as requests()'s stable sort puts it.
+            const double candidate = priority(s);
+            if (!best || candidate > best_priority) {
                 best = s;
-                best_priority = priority;
+                best_priority = candidate;
             }
         }
     }
     return best;
 }
 
-std::size_t IlluminationMaps::rebuild_aim(std::uint32_t surface, std::size_t max_texels) {
-    MapSurface& mapped = surfaces_.at(surface);
-    const std::int32_t page_id = aim_.surface_page.at(surface);
+std::size_t AimRebuilder::rebuild(std::uint32_t surface, std::size_t max_texels) {
+    const MapSurface& mapped = registry_.surface(surface);
+    const std::int32_t page_id = registry_.page_of(surface);
     const PhotonMap& map = world_.photon_map();
     if (page_id < 0 || surface >= map.surface_count() || max_texels == 0) {
         return 0;
     }
-    if (aim_rebuild_ && aim_rebuild_->surface != surface) {
+    if (rebuild_ && rebuild_->surface != surface) {
         // One tree at a time: the rebuild in progress goes on (this call's effort goes to it), so
         // rebuilds finish in order however the requests interleave. Only a rebuild whose surface
         // went away is dropped.
-        if (registry_.valid(surfaces_[aim_rebuild_->surface].entity)) {
-            return rebuild_aim(aim_rebuild_->surface, max_texels);
+        if (registry_.live(rebuild_->surface)) {
+            return rebuild(rebuild_->surface, max_texels);
         }
-        aim_rebuild_.reset();
+        rebuild_.reset();
     }
-    if (!aim_rebuild_) {
-        aim_rebuild_ = std::make_unique<AimRebuildState>();
-        aim_rebuild_->surface = surface;
+    if (!rebuild_) {
+        rebuild_ = std::make_unique<RebuildState>();
+        rebuild_->surface = surface;
         const std::array<std::uint32_t, 1> sources{surface};
-        aim_rebuild_->density =
-            std::make_unique<PhotonDensity>(map, sources, PhotonSelection::Full);
-        aim_rebuild_->texels = world_texels(surface);
+        rebuild_->density = std::make_unique<PhotonDensity>(map, sources, PhotonSelection::Full);
+        rebuild_->texels = registry_.world_texels(surface);
         // Photons that change from now on need another rebuild; this one sees the tree's snapshot.
         deltas_.consume_full(map, surface);
     }
-    AimRebuildState& rebuild = *aim_rebuild_;
-    RadiancePage& page = aim_.pages[static_cast<std::size_t>(page_id)];
+    RebuildState& rebuild = *rebuild_;
+    RadiancePage& page = registry_.aim_page(page_id);
     const double metres_per_texel = mapped.world_metres_per_texel;
     DensitySettings density = settings_.density;
     if (metres_per_texel > 0.0 && settings_.max_radius_texels > 0.0f) {
@@ -127,7 +135,7 @@ std::size_t IlluminationMaps::rebuild_aim(std::uint32_t surface, std::size_t max
         glm::vec3 radiance(0.0f);
         if (ray_length > 0.0f && enclosed(rebuild.texels[i], ray_length)) {
             page.at(texel.x, texel.y) = radiance;
-            ++counters_.enclosed_texels;
+            ++enclosed_texels_;
             x0 = std::min(x0, texel.x);
             y0 = std::min(y0, texel.y);
             x1 = std::max(x1, texel.x);
@@ -168,16 +176,19 @@ std::size_t IlluminationMaps::rebuild_aim(std::uint32_t surface, std::size_t max
         y1 = std::min(y1, page.size - 1);
         page.mark_changed({x0, y0, x1 - x0 + 1, y1 - y0 + 1});
     }
-    counters_.aim_texels += end - first;
+    texels_ += end - first;
     if (complete) {
-        mapped.aim_built = true;
-        ++counters_.aim_rebuilds;
-        aim_rebuild_.reset();
+        if (built_.size() <= surface) {
+            built_.resize(surface + 1, false);
+        }
+        built_[surface] = true;
+        ++rebuilds_;
+        rebuild_.reset();
     }
     return end - first;
 }
 
-bool IlluminationMaps::enclosed(const GatherTexel& texel, float ray_length) const {
+bool AimRebuilder::enclosed(const GatherTexel& texel, float ray_length) const {
     // Rays over the hemisphere: the normal and eight cosine-distributed directions around it.
     // A texel under an object resting on its surface has (nearly) all of them blocked within a
     // texel or two; one in a corner or beside a wall has the ones pointing away free (half or
@@ -200,14 +211,11 @@ bool IlluminationMaps::enclosed(const GatherTexel& texel, float ray_length) cons
     return free <= kFreeAllowed;
 }
 
-void IlluminationMaps::dilate(std::uint32_t surface, RadiancePage& page) const {
-    const MapSurface& mapped = surfaces_[surface];
-    const auto& owners = owners_[static_cast<std::size_t>(aim_.surface_page[surface])];
+void AimRebuilder::dilate(std::uint32_t surface, RadiancePage& page) const {
+    const MapSurface& mapped = registry_.surface(surface);
+    const std::int32_t page_id = registry_.page_of(surface);
     const int size = page.size;
-    const auto owner = [&](int x, int y) {
-        return owners[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) +
-                      static_cast<std::size_t>(x)];
-    };
+    const auto owner = [&](int x, int y) { return registry_.owner(page_id, x, y); };
     const auto self = static_cast<std::int32_t>(surface);
     for (const SurfaceTexel& texel : mapped.texels.texels) {
         for (int dy = -1; dy <= 1; ++dy) {
@@ -234,12 +242,13 @@ void IlluminationMaps::dilate(std::uint32_t surface, RadiancePage& page) const {
     }
 }
 
-bool IlluminationMaps::aims_ready() const {
+bool AimRebuilder::ready() const {
     // A gather pass started before every lit surface has an AIM would gather black where the AIM is
     // missing and consume the delta_i that should have brought it back.
     const PhotonMap& map = world_.photon_map();
-    for (std::uint32_t s = 0; s < surfaces_.size() && s < map.surface_count(); ++s) {
-        if (!surfaces_[s].aim_built && !surfaces_[s].texels.texels.empty() &&
+    const std::span<const MapSurface> surfaces = registry_.surfaces();
+    for (std::uint32_t s = 0; s < surfaces.size() && s < map.surface_count(); ++s) {
+        if (!built(s) && !surfaces[s].texels.texels.empty() &&
             map.surface(s).stored_energy.value() > 0.0) {
             return false;
         }

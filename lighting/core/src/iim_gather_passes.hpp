@@ -1,0 +1,90 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "aim_rebuilder.hpp"
+#include "luxel/lighting/core/gather.hpp"
+#include "luxel/lighting/core/illumination_settings.hpp"
+#include "luxel/lighting/core/map_surface.hpp"
+#include "luxel/lighting/core/photon_world.hpp"
+#include "luxel/lighting/core/surface_deltas.hpp"
+#include "map_registry.hpp"
+
+namespace luxel::lighting {
+
+class IimPassFilter;
+
+/// The maps' third stage, the IIM (docs/METHOD.md §6): which surfaces gather (delta_i over the
+/// threshold, an emission changed, a pass read a stale AIM, or refinement), a gather pass in
+/// slices, the refinement's running mean and variance, and the filter and fade-in of a completed
+/// pass. It owns every surface's GatherPassState and RefinementStats and the filters in progress;
+/// it writes the registry's IIM pages and consumes delta_i in the maps' SurfaceDeltas. It reads
+/// the AIM stage only to know whether the AIMs are ready and current.
+class IimGatherPasses {
+  public:
+    IimGatherPasses(MapRegistry& registry, const AimRebuilder& aims, const PhotonWorld& world,
+                    SurfaceDeltas& deltas, const IlluminationSettings& settings);
+    ~IimGatherPasses();
+    IimGatherPasses(const IimGatherPasses&) = delete;
+    IimGatherPasses& operator=(const IimGatherPasses&) = delete;
+
+    /// Takes in the surfaces the registry added (call after MapRegistry::sync).
+    void sync();
+
+    /// Surfaces needing a gather, highest priority first (see IlluminationMaps::gather_requests).
+    [[nodiscard]] std::vector<MapRequest> requests() const;
+    /// The first of requests(), by one scan.
+    [[nodiscard]] std::optional<std::uint32_t> next_surface() const;
+    /// See IlluminationMaps::gather.
+    std::size_t gather(std::uint32_t surface, std::size_t max_texels, IrradianceGatherer& gatherer,
+                       double now_seconds);
+
+    void set_refinement(bool refine) { refine_ = refine; }
+    [[nodiscard]] const GatherPassState& state(std::uint32_t s) const { return states_.at(s); }
+    [[nodiscard]] const RefinementStats& refinement(std::uint32_t s) const {
+        return refinements_.at(s);
+    }
+    [[nodiscard]] std::uint64_t passes() const { return passes_; }
+    [[nodiscard]] std::uint64_t texels_gathered() const { return texels_gathered_; }
+
+  private:
+    /// Filtering a texel costs about a fortieth of gathering it with 64 rays: a gather call's
+    /// unused texels of budget filter this many texels each.
+    static constexpr std::size_t kFilteredPerGathered = 32;
+
+    /// Whether what surface `s` gathers has changed since its last pass (delta_i over the
+    /// threshold, an emission changed, or the pass read a stale AIM that is current now).
+    [[nodiscard]] bool lighting_changed(std::uint32_t s, bool aims_are_current) const;
+    /// Whether surface `s` belongs in requests(), given the AIMs' ready() and current().
+    [[nodiscard]] bool wants_gather(std::uint32_t s, bool ready, bool current) const;
+    /// Its place in requests(), given wants_gather(s, ..., current).
+    [[nodiscard]] double priority(std::uint32_t s, bool current) const;
+    /// Whether surface `s` wants a refinement pass.
+    [[nodiscard]] bool wants_refinement(std::uint32_t s) const;
+    /// Starts a pass over `surface`: what changed until now is what it sees.
+    void start_pass(std::uint32_t surface);
+    /// A pass's last texel is gathered: updates the mean and starts its filter.
+    void begin_filter(std::uint32_t surface);
+    /// The filter is done: fades the pass into the IIM.
+    void finish_pass(std::uint32_t surface, double now_seconds);
+
+    MapRegistry& registry_;
+    const AimRebuilder& aims_;
+    const PhotonWorld& world_;
+    SurfaceDeltas& deltas_;
+    const IlluminationSettings& settings_;
+    std::vector<GatherPassState> states_;       ///< by surface
+    std::vector<RefinementStats> refinements_;  ///< by surface
+    /// Completed passes being filtered, by surface.
+    std::map<std::uint32_t, std::unique_ptr<IimPassFilter>> filters_;
+    bool refine_ = false;
+    std::uint64_t passes_ = 0;
+    std::uint64_t texels_gathered_ = 0;
+};
+
+}  // namespace luxel::lighting

@@ -1,0 +1,192 @@
+#include "map_registry.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <glm/gtc/constants.hpp>
+
+#include "luxel/ecs/hierarchy.hpp"
+#include "luxel/scene/image_decode.hpp"
+#include "map_support.hpp"
+
+namespace luxel::lighting {
+namespace {
+
+glm::mat4 world_matrix(const ecs::Registry& registry, ecs::Entity entity) {
+    if (const auto* world = registry.try_get<ecs::WorldTransform>(entity)) {
+        return world->matrix;
+    }
+    return ecs::compute_world_matrix(registry, entity);
+}
+
+}  // namespace
+
+using namespace map_support;
+MapRegistry::MapRegistry(ecs::Registry& registry, const PhotonWorld& world)
+    : registry_(registry),
+      world_(world),
+      moves_(registry.observe<ecs::WorldTransform>()),
+      area_changes_(registry.observe<AreaLight>()) {}
+
+bool MapRegistry::live(std::uint32_t s) const {
+    const MapSurface& mapped = surfaces_.at(s);
+    return !mapped.texels.texels.empty() && registry_.valid(mapped.entity);
+}
+
+std::int32_t MapRegistry::owner(std::int32_t page, int x, int y) const {
+    const auto& owners = owners_.at(static_cast<std::size_t>(page));
+    const auto size = static_cast<std::size_t>(aim_.pages[static_cast<std::size_t>(page)].size);
+    return owners[static_cast<std::size_t>(y) * size + static_cast<std::size_t>(x)];
+}
+
+std::int32_t MapRegistry::page_index(const scene::Scene* source, int page, int page_size) {
+    const auto key = std::make_pair(source, page);
+    if (const auto found = pages_.find(key); found != pages_.end()) {
+        return found->second;
+    }
+    const auto index = static_cast<std::int32_t>(aim_.pages.size());
+    aim_.pages.emplace_back(page_size);
+    iim_pages_.emplace_back(page_size);
+    owners_.emplace_back(static_cast<std::size_t>(page_size) * static_cast<std::size_t>(page_size),
+                         -1);
+    pages_.emplace(key, index);
+    return index;
+}
+
+void MapRegistry::add_surface(std::uint32_t surface) {
+    const SurfaceInfo& info = world_.surfaces()[surface];
+    MapSurface mapped;
+    mapped.entity = info.entity;
+    const auto* instance = registry_.try_get<scene::MeshInstance>(info.entity);
+    const auto* layout = registry_.try_get<LightmappedSurface>(info.entity);
+    std::int32_t page = -1;
+    if (instance != nullptr && layout != nullptr && info.layout_id >= 0 && info.primitive >= 0) {
+        const scene::Mesh& mesh = instance->geometry();
+        const auto& primitive = mesh.primitives.at(static_cast<std::size_t>(info.primitive));
+        for (const auto& entry : layout->layout.surfaces) {
+            if (entry.id != info.layout_id) {
+                continue;
+            }
+            page = page_index(instance->source.get(), entry.page, layout->layout.page_size);
+            mapped.texels = rasterize_surface(primitive, entry.page, layout->layout.page_size);
+            mapped.footprint = SurfaceFootprint(primitive, mapped.texels);
+            break;
+        }
+        if (primitive.material >= 0) {
+            const scene::Material& material =
+                instance->source->materials.at(static_cast<std::size_t>(primitive.material));
+            // The albedo the photon tracer bounces with (textured: factor x the texture's
+            // mean), so the AIM and the photons agree.
+            mapped.albedo = scene::mean_diffuse_albedo(*instance->source, material);
+            mapped.content =
+                material.base_color_image >= 0 ? IimContent::Irradiance : IimContent::Radiance;
+        }
+    }
+    if (instance != nullptr && info.primitive >= 0) {
+        const auto& primitive =
+            instance->geometry().primitives.at(static_cast<std::size_t>(info.primitive));
+        if (primitive.material >= 0) {
+            const scene::Material& material =
+                instance->source->materials.at(static_cast<std::size_t>(primitive.material));
+            if (material.is_emissive()) {
+                mapped.material_emission = sanitized(material.emitted_radiance());
+            }
+        }
+    }
+    aim_.surface_page.push_back(page);
+    aim_.surface_emission.push_back(glm::vec3(0.0f));
+    if (page >= 0) {
+        auto& owners = owners_[static_cast<std::size_t>(page)];
+        const auto size = static_cast<std::size_t>(mapped.texels.page_size);
+        for (const SurfaceTexel& texel : mapped.texels.texels) {
+            owners[static_cast<std::size_t>(texel.y) * size + static_cast<std::size_t>(texel.x)] =
+                static_cast<std::int32_t>(surface);
+        }
+    }
+    surfaces_.push_back(std::move(mapped));
+    surfaces_of_[info.entity].push_back(surface);
+    refresh_transform(surface);
+    if (refresh_emission(surface)) {
+        ++emission_version_;
+    }
+}
+
+bool MapRegistry::refresh_emission(std::uint32_t surface) {
+    const MapSurface& mapped = surfaces_[surface];
+    glm::vec3 emission(0.0f);
+    // Emission counts where the photon world emits photons for it: an entity with an enabled
+    // AreaLight (scene instantiation gives every emissive mesh one).
+    const auto* area =
+        registry_.valid(mapped.entity) ? registry_.try_get<AreaLight>(mapped.entity) : nullptr;
+    if (area != nullptr && area->enabled) {
+        emission = sanitized(mapped.material_emission * area->scale);
+    }
+    glm::vec3& current = aim_.surface_emission[surface];
+    if (current == emission) {
+        return false;
+    }
+    current = emission;
+    return true;
+}
+
+void MapRegistry::refresh_transform(std::uint32_t surface) {
+    MapSurface& mapped = surfaces_[surface];
+    if (!registry_.valid(mapped.entity)) {
+        return;
+    }
+    mapped.to_world = world_matrix(registry_, mapped.entity);
+    // Light maps assume a similarity transform (no shear): its scale is the cube root of the
+    // volume change.
+    const double scale =
+        std::cbrt(std::abs(static_cast<double>(glm::determinant(glm::mat3(mapped.to_world)))));
+    mapped.world_metres_per_texel = mapped.texels.metres_per_texel * scale;
+}
+
+void MapRegistry::sync() {
+    for (auto s = static_cast<std::uint32_t>(surfaces_.size()); s < world_.surfaces().size(); ++s) {
+        add_surface(s);
+    }
+    area_changes_.consume([&](ecs::Entity entity, ecs::ChangeKind) {
+        const auto found = surfaces_of_.find(entity);
+        if (found == surfaces_of_.end()) {
+            return;
+        }
+        for (std::uint32_t surface : found->second) {
+            if (refresh_emission(surface)) {
+                ++emission_version_;
+            }
+        }
+    });
+    moves_.consume([&](ecs::Entity entity, ecs::ChangeKind kind) {
+        if (kind == ecs::ChangeKind::Destroyed) {
+            return;
+        }
+        const auto found = surfaces_of_.find(entity);
+        if (found == surfaces_of_.end()) {
+            return;
+        }
+        for (std::uint32_t surface : found->second) {
+            refresh_transform(surface);
+        }
+    });
+}
+
+std::vector<GatherTexel> MapRegistry::world_texels(std::uint32_t surface) const {
+    const MapSurface& mapped = surfaces_.at(surface);
+    const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(mapped.to_world)));
+    std::vector<GatherTexel> texels;
+    texels.reserve(mapped.texels.texels.size());
+    for (const SurfaceTexel& texel : mapped.texels.texels) {
+        GatherTexel world;
+        world.position = glm::vec3(mapped.to_world * glm::vec4(texel.position, 1.0f));
+        const glm::vec3 n = normal_matrix * texel.normal;
+        const float length = glm::length(n);
+        world.normal = length > 0.0f && std::isfinite(length) ? n / length : texel.normal;
+        texels.push_back(world);
+    }
+    return texels;
+}
+
+}  // namespace luxel::lighting

@@ -1,0 +1,79 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "luxel/ecs/observer.hpp"
+#include "luxel/ecs/registry.hpp"
+#include "luxel/ecs/transform.hpp"
+#include "luxel/lighting/components.hpp"
+#include "luxel/lighting/core/gather.hpp"
+#include "luxel/lighting/core/iim_page.hpp"
+#include "luxel/lighting/core/map_surface.hpp"
+#include "luxel/lighting/core/photon_world.hpp"
+#include "luxel/lighting/core/radiance_atlas.hpp"
+
+namespace luxel::lighting {
+
+/// The maps' first stage (docs/METHOD.md §5.1): the surfaces the photon world stores photons on,
+/// each with its texels, footprint, material and transform; the pages they live on (AIM and IIM
+/// alike) and which surface owns each page texel; and the emission table the gathers read. It
+/// follows the ECS through observers (moves, AreaLight changes) and owns nothing of the AIM
+/// rebuild or the gather passes, which write the pages it holds.
+class MapRegistry {
+  public:
+    MapRegistry(ecs::Registry& registry, const PhotonWorld& world);
+
+    /// Takes in surfaces the photon world added, transforms of entities that moved and area
+    /// lights that changed.
+    void sync();
+
+    [[nodiscard]] std::span<const MapSurface> surfaces() const { return surfaces_; }
+    [[nodiscard]] const MapSurface& surface(std::uint32_t s) const { return surfaces_.at(s); }
+    /// Whether surface `s` has texels and its entity still exists.
+    [[nodiscard]] bool live(std::uint32_t s) const;
+    /// The page surface `s` lives on; -1 when it has no light map.
+    [[nodiscard]] std::int32_t page_of(std::uint32_t s) const { return aim_.surface_page.at(s); }
+    /// The surface that owns texel (x, y) of page `page` (-1: padding or unused).
+    [[nodiscard]] std::int32_t owner(std::int32_t page, int x, int y) const;
+
+    [[nodiscard]] const RadianceAtlas& aim() const { return aim_; }
+    /// The AIM rebuild writes the pages, never the surface table.
+    [[nodiscard]] RadiancePage& aim_page(std::int32_t page) {
+        return aim_.pages.at(static_cast<std::size_t>(page));
+    }
+    [[nodiscard]] std::span<const IimPage> iim_pages() const { return iim_pages_; }
+    /// The gather passes write the pages (and tests that play the gatherer).
+    [[nodiscard]] std::span<IimPage> iim_pages() { return iim_pages_; }
+
+    /// Bumped whenever a surface's emission changes (an area light switched, rescaled, added).
+    [[nodiscard]] std::uint64_t emission_version() const { return emission_version_; }
+    /// The world-space texel centres of a surface (what its AIM rebuild and gathers start from).
+    [[nodiscard]] std::vector<GatherTexel> world_texels(std::uint32_t surface) const;
+
+  private:
+    void add_surface(std::uint32_t surface);
+    void refresh_transform(std::uint32_t surface);
+    /// Sets aim_.surface_emission[surface] from its material and its entity's AreaLight;
+    /// returns whether it changed.
+    bool refresh_emission(std::uint32_t surface);
+    std::int32_t page_index(const scene::Scene* source, int page, int page_size);
+
+    ecs::Registry& registry_;
+    const PhotonWorld& world_;
+    RadianceAtlas aim_;
+    std::vector<IimPage> iim_pages_;
+    /// Per page texel, the surface that owns it (-1: padding or unused).
+    std::vector<std::vector<std::int32_t>> owners_;
+    std::vector<MapSurface> surfaces_;
+    std::map<std::pair<const scene::Scene*, int>, std::int32_t> pages_;
+    std::map<ecs::Entity, std::vector<std::uint32_t>> surfaces_of_;
+    ecs::Observer<ecs::WorldTransform> moves_;
+    ecs::Observer<AreaLight> area_changes_;
+    std::uint64_t emission_version_ = 0;
+};
+
+}  // namespace luxel::lighting

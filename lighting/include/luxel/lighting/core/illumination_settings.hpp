@@ -1,0 +1,49 @@
+#pragma once
+
+#include <cstdint>
+
+#include "luxel/lighting/core/photon_density.hpp"
+
+namespace luxel::lighting {
+
+/// How photons become light maps: the AIM's density estimate and rebuild threshold, the IIM's
+/// gather threshold, filter, fade-in and refinement.
+struct IlluminationSettings {
+    /// The density estimate; its max_radius (metres) is replaced per surface by
+    /// max_radius_texels, below.
+    DensitySettings density;
+    /// The capped search radius in light-map texels of the surface (10 texels = 0.5 m at
+    /// luxel-prep's default 5 cm): tied to the light map, not to metres, so a level scaled by
+    /// 1e-3 or 1e4 gets the same light maps.
+    float max_radius_texels = 10.0f;
+    /// A surface's AIM is rebuilt when delta_f exceeds this fraction of the energy stored on
+    /// it (relative, so the threshold means the same for a 1 mW and a 1 MW light).
+    double aim_threshold = 0.05;
+    /// A surface's texels are gathered again when delta_i exceeds this fraction of its stored
+    /// energy.
+    double iim_threshold = 0.05;
+    /// Seconds over which an updated IIM texel fades in (0: at once).
+    double blend_seconds = 0.5;
+    /// A completed gather pass is filtered over the surface's own texels with a tent of this
+    /// radius (texels; 0: none) before it fades in: docs/RESULTS.md measures the trade.
+    int iim_filter_radius = 2;
+    /// While a surface's lighting stays unchanged, it is gathered again until this many passes
+    /// are averaged in its IIM (1: one pass, no refinement). Each pass takes new samples
+    /// (GatherTexel::pass), so the gather's noise falls as 1 / sqrt(passes); refinement
+    /// requests come after every other request, so they use budget that would otherwise go
+    /// idle, and they stop once done. Only gatherers that sample refine (IrradianceGatherer::
+    /// refines()); docs/RESULTS.md measures the trade.
+    std::uint32_t refine_passes = 16;
+    /// AIM texels whose hemisphere is closed within this many texels (every enclosure ray blocked:
+    /// the floor under a box resting on it, the box's bottom) get no light: no photon can
+    /// reach them, and a density estimate there would borrow the photons around the object
+    /// (its radius grows until it finds some) and leak light under it. 0: no enclosure rays.
+    double enclosure_ray_texels = 1.5;
+    /// Once three or more passes are averaged, the filter weighs each neighbour by how well
+    /// the texels' noise explains their difference: exp(-d^2 / (2 k^2 (var_i + var_j))) with
+    /// k this many standard deviations of the texels' means (0: the plain tent). Noise is
+    /// smoothed; a feature sharper than the tent (the focus under a glass sphere) is kept.
+    float iim_filter_noise_sigmas = 2.5f;
+};
+
+}  // namespace luxel::lighting

@@ -1,0 +1,90 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "luxel/ecs/entity.hpp"
+#include "luxel/lighting/core/surface_footprint.hpp"
+#include "luxel/lighting/core/surface_texels.hpp"
+
+// What the maps know of one light-mapped surface, split by owner: the registry's part
+// (MapSurface), the gather passes' (GatherPassState) and the refinement's (RefinementStats).
+namespace luxel::lighting {
+
+/// What an IIM texel holds (as the source does): irradiance for textured surfaces, whose
+/// albedo varies within a texel and is applied per pixel; radiance pre-multiplied by the
+/// albedo (albedo * E / pi) for uniform ones, saving the renderer a lookup.
+enum class IimContent { Irradiance, Radiance };
+
+/// A piece of work the scheduler can order: a surface and its priority (delta / area, W/m^2).
+struct MapRequest {
+    std::uint32_t surface = 0;
+    double priority = 0.0;
+};
+
+/// One light-mapped surface as the map registry keeps it: entity, texels, material, transform.
+/// Entries without texels belong to surfaces that have no light map.
+struct MapSurface {
+    ecs::Entity entity;
+    SurfaceTexels texels;  ///< object space
+    SurfaceFootprint footprint;
+    glm::vec3 albedo{0.5f};
+    /// The material's emitted radiance (before AreaLight's scale and switch; 0 when not
+    /// emissive). RadianceAtlas::surface_emission holds what the surface emits now.
+    glm::vec3 material_emission{0.0f};
+    IimContent content = IimContent::Radiance;
+    glm::mat4 to_world{1.0f};
+    /// World metres per page texel (the object-space scale times the transform's).
+    double world_metres_per_texel = 0.0;
+};
+
+/// A surface's gather passes (docs/METHOD.md §6.5): the one in progress, and what the last one
+/// to start saw.
+struct GatherPassState {
+    bool in_progress = false;
+    /// The next texel of the pass in progress; the surface's texel count when none is.
+    std::size_t cursor = 0;
+    /// The pass in progress's irradiance per texel; it is filtered and committed (faded in)
+    /// when the pass completes, so a surface never shows half a pass.
+    std::vector<glm::vec3> irradiance;
+    /// The pass in progress refines (averages into) the IIM instead of replacing it.
+    bool refines = false;
+    /// Passes averaged once the pass in progress is in (set when its gathering completes).
+    std::uint32_t passes_when_done = 0;
+    /// Passes started on this surface (each gathers with new samples).
+    std::uint32_t started = 0;
+    /// MapRegistry::emission_version() when the last pass started.
+    std::uint64_t emission_version = 0;
+    /// AimRebuilder::rebuilds() when the last pass started.
+    std::uint64_t aim_rebuilds_at_start = 0;
+    /// The last pass read an AIM that was out of date (a rebuild was pending when it started,
+    /// or completed while it ran): it gathers again once every AIM is current. Without this a
+    /// pass that starts between a retrace and the AIM rebuild it causes consumes delta_i and
+    /// leaves the IIM on the old AIM for good.
+    bool read_stale_aim = false;
+    /// A pass has completed on this surface.
+    bool completed_once = false;
+};
+
+/// The refinement of a surface's IIM (docs/METHOD.md §6.6): passes averaged since its lighting
+/// last changed, their mean irradiance per texel before filtering, and the sum of squared
+/// deviations from it (Welford), kept only while refining is possible.
+struct RefinementStats {
+    std::uint32_t passes_averaged = 0;
+    std::vector<glm::vec3> mean;
+    std::vector<glm::vec3> m2;
+};
+
+/// Counters since construction.
+struct MapCounters {
+    std::uint64_t aim_rebuilds = 0;
+    std::uint64_t aim_texels = 0;
+    std::uint64_t gather_passes = 0;
+    std::uint64_t texels_gathered = 0;
+    std::uint64_t enclosed_texels = 0;  ///< AIM texels found enclosed (set to 0)
+};
+
+}  // namespace luxel::lighting
