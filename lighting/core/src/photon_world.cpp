@@ -1,21 +1,22 @@
 #include "luxel/lighting/core/photon_world.hpp"
 
 #include <algorithm>
-#include <cmath>
 
-#include "luxel/runtime/log.hpp"
-#include "luxel/scene/image_decode.hpp"
-#include "photon_world_support.hpp"
+#include "caustic_lists.hpp"
+#include "light_groups.hpp"
+#include "photon_geometry.hpp"
 
-// PhotonWorld, part 1 of 4: construction and sync(), which reads the ECS change lists in order.
+// PhotonWorld: construction, the observers and sync(), which reads the ECS change lists in order
+// and hands each change to the part that owns it (PhotonGeometry, LightGroups, CausticLists).
 namespace luxel::lighting {
-
-using photon_world_support::world_matrix;
 
 PhotonWorld::PhotonWorld(ecs::Registry& registry, PhotonWorldSettings settings)
     : registry_(registry),
       settings_(settings),
       map_(std::make_unique<PhotonMap>(0, 0)),
+      geometry_(std::make_unique<PhotonGeometry>(registry, *map_, settings.implicit_surfaces)),
+      lights_(std::make_unique<LightGroups>(registry, *map_, settings.selective)),
+      caustics_(std::make_unique<CausticLists>(settings.caustics)),
       mesh_changes_(registry.observe<scene::MeshInstance>(ecs::ObserverStart::WithExisting)),
       moves_(registry.observe<ecs::WorldTransform>()),
       point_changes_(registry.observe<PointLight>(ecs::ObserverStart::WithExisting)),
@@ -43,22 +44,74 @@ void PhotonWorld::sync() {
     collect(spot_changes_);
     collect(directional_changes_);
     collect(area_changes_);
-    scene_.commit();
+    geometry_->commit();
 
     sync_lights(light_touched);
-    const bool objects_changed = scene_changed_;
+    const bool objects_changed = geometry_->take_changed();
     // The scene disc of directional lights follows the scene's bounds.
-    if (scene_changed_) {
-        for (auto& [entity, record] : lights_) {
-            if (record->directional &&
-                !std::binary_search(light_touched.begin(), light_touched.end(), entity)) {
-                refresh_light(entity);
-            }
-        }
-        scene_changed_ = false;
+    if (objects_changed) {
+        lights_->refresh_directional(light_touched, geometry_->sphere());
     }
     std::sort(generators_touched.begin(), generators_touched.end());
-    sync_caustics(light_touched, generators_touched, objects_changed);
+    caustics_->sync(*geometry_, *lights_, light_touched, generators_touched, objects_changed);
+}
+
+/// Meshes added, removed or replaced, mirrored into the ray scene; every such entity may be an
+/// area light whose geometry changed.
+void PhotonWorld::sync_meshes(std::vector<ecs::Entity>& light_touched,
+                              std::vector<ecs::Entity>& meshes_added) {
+    mesh_changes_.consume([&](ecs::Entity entity, ecs::ChangeKind kind) {
+        ++last_sync_.meshes_changed;
+        switch (kind) {
+            case ecs::ChangeKind::Destroyed:
+                geometry_->remove_mesh(entity);
+                break;
+            case ecs::ChangeKind::Constructed:
+                geometry_->add_mesh(entity);
+                meshes_added.push_back(entity);
+                break;
+            case ecs::ChangeKind::Updated:
+                geometry_->remove_mesh(entity);
+                geometry_->add_mesh(entity);
+                meshes_added.push_back(entity);
+                break;
+        }
+        light_touched.push_back(entity);  // an area light's geometry may have changed
+    });
+}
+
+void PhotonWorld::sync_generators(const std::vector<ecs::Entity>& meshes_added,
+                                  std::vector<ecs::Entity>& generators_touched) {
+    // Caustic generators: a mesh added above already took its optics from the component; one
+    // added earlier is re-added so that its triangles use (or stop using) the generator's own
+    // materials. An edited component rewrites those materials in place.
+    generator_changes_.consume([&](ecs::Entity entity, ecs::ChangeKind kind) {
+        generators_touched.push_back(entity);
+        const bool mesh_is_current =
+            std::binary_search(meshes_added.begin(), meshes_added.end(), entity);
+        const bool has_object = geometry_->object(entity).has_value();
+        switch (kind) {
+            case ecs::ChangeKind::Destroyed:
+                caustics_->remove_generator(entity);
+                geometry_->forget_generator(entity);
+                if (has_object && registry_.valid(entity) &&
+                    registry_.has<scene::MeshInstance>(entity)) {
+                    geometry_->remove_mesh(entity);
+                    geometry_->add_mesh(entity);
+                }
+                break;
+            case ecs::ChangeKind::Constructed:
+                caustics_->add_generator(entity);
+                if (has_object && !mesh_is_current) {
+                    geometry_->remove_mesh(entity);
+                    geometry_->add_mesh(entity);
+                }
+                break;
+            case ecs::ChangeKind::Updated:
+                geometry_->set_generator_optics(entity, registry_.get<CausticGenerator>(entity));
+                break;
+        }
+    });
 }
 
 /// Moved objects: a dynamic one's instance transform, a static one rebuilt in place.
@@ -67,17 +120,8 @@ void PhotonWorld::sync_moves(std::vector<ecs::Entity>& light_touched) {
         if (kind == ecs::ChangeKind::Destroyed) {
             return;
         }
-        if (const auto found = objects_.find(entity); found != objects_.end()) {
+        if (geometry_->move(entity)) {
             ++last_sync_.objects_moved;
-            if (scene_.is_dynamic(found->second)) {
-                scene_.set_transform(found->second, world_matrix(registry_, entity));
-            } else {
-                // A static object moved after all: rebuild it in place (rare, and logged).
-                log::debug("static mesh moved; rebuilding the static BVH");
-                remove_mesh(entity);
-                add_mesh(entity);
-            }
-            scene_changed_ = true;
         }
         light_touched.push_back(entity);
     });
@@ -90,8 +134,9 @@ void PhotonWorld::sync_lights(std::vector<ecs::Entity>& light_touched) {
     std::sort(light_touched.begin(), light_touched.end());
     light_touched.erase(std::unique(light_touched.begin(), light_touched.end()),
                         light_touched.end());
+    const BoundingSphere scene = geometry_->sphere();
     for (ecs::Entity entity : light_touched) {
-        if (lights_.contains(entity) ||
+        if (lights_->contains(entity) ||
             (registry_.valid(entity) &&
              registry_.has_any<PointLight, SpotLight, DirectionalLight, AreaLight>(entity))) {
             ++last_sync_.lights_refreshed;
@@ -101,19 +146,71 @@ void PhotonWorld::sync_lights(std::vector<ecs::Entity>& light_touched) {
             (registry_.has_any<PointLight, SpotLight, DirectionalLight>(entity) ||
              (registry_.has<AreaLight>(entity) && registry_.has<scene::MeshInstance>(entity)));
         if (is_light) {
-            refresh_light(entity);
+            lights_->refresh(entity, scene);
         } else {
-            remove_light(entity);
+            lights_->remove(entity);
         }
     }
 }
 
+CausticFrameStats PhotonWorld::update_caustics(std::uint64_t frame, JobSystem& jobs) {
+    return caustics_->update(frame, *geometry_, jobs);
+}
+
+std::span<const CausticPair> PhotonWorld::caustics() const {
+    return caustics_->pairs();
+}
+
+CausticTotals PhotonWorld::caustic_totals() const {
+    return caustics_->totals();
+}
+
+bool PhotonWorld::caustics_pending() const {
+    return caustics_->pending();
+}
+
+std::size_t PhotonWorld::light_count() const {
+    return lights_->size();
+}
+
+std::size_t PhotonWorld::generator_count() const {
+    return caustics_->generator_count();
+}
+
 std::size_t PhotonWorld::dynamic_object_count() const {
-    std::size_t count = 0;
-    for (const auto& entry : objects_) {
-        count += scene_.is_dynamic(entry.second) ? 1 : 0;
-    }
-    return count;
+    return geometry_->dynamic_object_count();
+}
+
+const std::vector<std::uint32_t>& PhotonWorld::pending_groups() const {
+    return lights_->pending();
+}
+
+EmissionStats PhotonWorld::probe(std::uint64_t frame, JobSystem& jobs) {
+    return lights_->probe(frame, geometry_->scene(), geometry_->materials(), jobs);
+}
+
+EmissionStats PhotonWorld::retrace_pending(JobSystem& jobs, std::size_t max_groups) {
+    return lights_->retrace_pending(geometry_->scene(), geometry_->materials(), jobs, max_groups);
+}
+
+const RayScene& PhotonWorld::ray_scene() const {
+    return geometry_->scene();
+}
+
+const std::vector<SurfaceInfo>& PhotonWorld::surfaces() const {
+    return geometry_->surfaces();
+}
+
+const std::vector<TraceMaterial>& PhotonWorld::materials() const {
+    return geometry_->materials();
+}
+
+ecs::Entity PhotonWorld::light_of_group(std::uint32_t group) const {
+    return lights_->light_of_group(group);
+}
+
+std::vector<const LightPhotons*> PhotonWorld::active_lights() const {
+    return lights_->active();
 }
 
 }  // namespace luxel::lighting

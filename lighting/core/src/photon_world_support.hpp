@@ -1,25 +1,13 @@
 #pragma once
 
-#include <memory>
-
 #include <glm/glm.hpp>
 
 #include "luxel/ecs/hierarchy.hpp"
+#include "luxel/ecs/registry.hpp"
 #include "luxel/ecs/transform.hpp"
-#include "luxel/lighting/core/photon_world.hpp"
-#include "luxel/lighting/core/selective_emitter.hpp"
 
-// What the parts of PhotonWorld share (photon_world.cpp: construction and sync();
-// photon_world_geometry.cpp: meshes and materials into the ray scene; photon_world_lights.cpp:
-// lights, their photon groups, probes and retraces; photon_world_caustics.cpp: the caustic
-// lists).
+// What the parts of PhotonWorld share (photon_geometry.cpp, light_groups.cpp).
 namespace luxel::lighting {
-
-struct PhotonWorld::LightRecord {
-    std::unique_ptr<LightPhotons> photons;
-    bool enabled = true;
-    bool directional = false;
-};
 
 namespace photon_world_support {
 

@@ -1,7 +1,6 @@
 #pragma once
 
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <span>
 #include <vector>
@@ -17,6 +16,10 @@
 #include "luxel/runtime/jobs.hpp"
 
 namespace luxel::lighting {
+
+class PhotonGeometry;
+class LightGroups;
+class CausticLists;
 
 struct PhotonWorldSettings {
     SelectiveSettings selective;
@@ -93,19 +96,19 @@ class PhotonWorld {
     /// The caustic lists, ordered by (generator, light). The span and references into it stay
     /// valid until a sync() that adds or removes a pair (a generator or light coming, going or
     /// being switched).
-    [[nodiscard]] std::span<const CausticPair> caustics() const { return caustic_pairs_; }
+    [[nodiscard]] std::span<const CausticPair> caustics() const;
     [[nodiscard]] CausticTotals caustic_totals() const;
     /// Whether some caustic list has slices waiting for a retrace.
     [[nodiscard]] bool caustics_pending() const;
     [[nodiscard]] const PhotonSyncStats& last_sync() const { return last_sync_; }
     /// Counts for the FeaturePlan: lights (enabled or not), caustic generators, and mesh
     /// objects that may move.
-    [[nodiscard]] std::size_t light_count() const { return lights_.size(); }
-    [[nodiscard]] std::size_t generator_count() const { return generators_.size(); }
+    [[nodiscard]] std::size_t light_count() const;
+    [[nodiscard]] std::size_t generator_count() const;
     [[nodiscard]] std::size_t dynamic_object_count() const;
 
     /// Groups waiting for a retrace (invalidated by probes or by light changes).
-    [[nodiscard]] const std::vector<std::uint32_t>& pending_groups() const { return pending_; }
+    [[nodiscard]] const std::vector<std::uint32_t>& pending_groups() const;
     /// Selective emission, in the two steps the LightingSystem schedules as separate units:
     /// the probes of `frame` (photon frame mod M of every group of every enabled light), which
     /// add the groups whose paths diverge to pending_groups() ...
@@ -113,36 +116,19 @@ class PhotonWorld {
     /// ... and the retrace of up to `max_groups` pending groups (all when 0), oldest first.
     EmissionStats retrace_pending(JobSystem& jobs, std::size_t max_groups = 0);
 
-    [[nodiscard]] const RayScene& ray_scene() const { return scene_; }
+    [[nodiscard]] const RayScene& ray_scene() const;
     /// The photon world is the map's writer; readers keep their own positions in its change
     /// counts (SurfaceDeltas). The mutable overload is for tests that play the tracer.
     [[nodiscard]] const PhotonMap& photon_map() const { return *map_; }
     [[nodiscard]] PhotonMap& photon_map() { return *map_; }
-    [[nodiscard]] const std::vector<SurfaceInfo>& surfaces() const { return surfaces_; }
-    [[nodiscard]] const std::vector<TraceMaterial>& materials() const { return materials_; }
+    [[nodiscard]] const std::vector<SurfaceInfo>& surfaces() const;
+    [[nodiscard]] const std::vector<TraceMaterial>& materials() const;
     /// The light entity whose groups include global group `group`, or null_entity.
     [[nodiscard]] ecs::Entity light_of_group(std::uint32_t group) const;
     /// The emitters of the enabled lights.
     [[nodiscard]] std::vector<const LightPhotons*> active_lights() const;
 
   private:
-    struct LightRecord;
-    /// A caustic generator's bounding sphere, which its caustic photons are aimed at.
-    struct GeneratorRecord {
-        ObjectId object = kNoObject;  ///< the object local_sphere was computed for
-        BoundingSphere local_sphere;  ///< around the object's vertices, in its mesh's frame
-        BoundingSphere world_sphere;
-    };
-
-    void add_mesh(ecs::Entity entity);
-    void remove_mesh(ecs::Entity entity);
-    void refresh_light(ecs::Entity entity);
-    void remove_light(ecs::Entity entity);
-    std::uint32_t material_index(const scene::Scene* source, int material);
-    BoundingSphere scene_sphere() const;
-    std::uint32_t generator_material(ecs::Entity entity, std::uint32_t shared,
-                                     const CausticGenerator& optics);
-    void forget_generator_materials(ecs::Entity entity);
     // sync()'s steps, in order; each adds the entities whose lights it may have touched.
     void sync_meshes(std::vector<ecs::Entity>& light_touched,
                      std::vector<ecs::Entity>& meshes_added);
@@ -150,27 +136,16 @@ class PhotonWorld {
                          std::vector<ecs::Entity>& generators_touched);
     void sync_moves(std::vector<ecs::Entity>& light_touched);
     void sync_lights(std::vector<ecs::Entity>& light_touched);
-    void sync_caustics(std::span<const ecs::Entity> lights_touched,
-                       std::span<const ecs::Entity> generators_touched, bool objects_changed);
 
     ecs::Registry& registry_;
     PhotonWorldSettings settings_;
-    RayScene scene_;
     std::unique_ptr<PhotonMap> map_;
-    std::vector<SurfaceInfo> surfaces_;
-    std::vector<TraceMaterial> materials_;
-    std::map<std::pair<const scene::Scene*, int>, std::uint32_t> material_ids_;
-    std::map<ecs::Entity, ObjectId> objects_;
-    std::map<ecs::Entity, std::unique_ptr<LightRecord>> lights_;
-    std::vector<std::uint32_t> pending_;
-    std::map<ecs::Entity, GeneratorRecord> generators_;
-    /// (generator entity, shared material id) -> the generator's own material id.
-    std::map<std::pair<ecs::Entity, std::uint32_t>, std::uint32_t> generator_materials_;
-    std::vector<CausticPair> caustic_pairs_;  ///< sorted by (generator, light)
-    std::uint32_t next_caustic_seed_ = 1;
-    std::uint32_t next_group_ = 0;
-    std::uint32_t next_seed_ = 1;
-    bool scene_changed_ = false;
+    /// Its three parts, each with its own state: the geometry mirrored into the ray scene, the
+    /// lights with their photon groups, the caustic lists. PhotonWorld holds the observers and
+    /// runs sync() across them.
+    std::unique_ptr<PhotonGeometry> geometry_;
+    std::unique_ptr<LightGroups> lights_;
+    std::unique_ptr<CausticLists> caustics_;
     PhotonSyncStats last_sync_;
 
     ecs::Observer<scene::MeshInstance> mesh_changes_;

@@ -1,14 +1,13 @@
-#include "luxel/lighting/core/photon_world.hpp"
+#include "photon_geometry.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "luxel/runtime/log.hpp"
 #include "luxel/scene/image_decode.hpp"
 #include "photon_world_support.hpp"
 
-// PhotonWorld, part 2 of 4: meshes and materials mirrored into the ray scene, caustic
-// generators' own optics.
 namespace luxel::lighting {
 namespace {
 
@@ -48,7 +47,11 @@ TraceMaterial generator_optics(const TraceMaterial& shared, const CausticGenerat
 
 using photon_world_support::world_matrix;
 
-std::uint32_t PhotonWorld::material_index(const scene::Scene* source, int material) {
+PhotonGeometry::PhotonGeometry(const ecs::Registry& registry, PhotonMap& map,
+                               bool implicit_surfaces)
+    : registry_(registry), map_(map), implicit_surfaces_(implicit_surfaces) {}
+
+std::uint32_t PhotonGeometry::material_index(const scene::Scene* source, int material) {
     const auto key = std::make_pair(source, material);
     if (const auto found = material_ids_.find(key); found != material_ids_.end()) {
         return found->second;
@@ -62,8 +65,8 @@ std::uint32_t PhotonWorld::material_index(const scene::Scene* source, int materi
     return index;
 }
 
-std::uint32_t PhotonWorld::generator_material(ecs::Entity entity, std::uint32_t shared,
-                                              const CausticGenerator& optics) {
+std::uint32_t PhotonGeometry::generator_material(ecs::Entity entity, std::uint32_t shared,
+                                                 const CausticGenerator& optics) {
     const auto key = std::make_pair(entity, shared);
     auto found = generator_materials_.find(key);
     if (found == generator_materials_.end()) {
@@ -75,14 +78,22 @@ std::uint32_t PhotonWorld::generator_material(ecs::Entity entity, std::uint32_t 
     return found->second;
 }
 
-void PhotonWorld::forget_generator_materials(ecs::Entity entity) {
+void PhotonGeometry::set_generator_optics(ecs::Entity entity, const CausticGenerator& optics) {
+    for (const auto& [key, own] : generator_materials_) {
+        if (key.first == entity) {
+            materials_[own] = generator_optics(materials_[key.second], optics);
+        }
+    }
+}
+
+void PhotonGeometry::forget_generator(ecs::Entity entity) {
     // The material slots themselves stay (ids are baked into triangles until re-added); they
     // are a few dozen bytes each and generators are rarely removed.
     std::erase_if(generator_materials_,
                   [&](const auto& entry) { return entry.first.first == entity; });
 }
 
-void PhotonWorld::add_mesh(ecs::Entity entity) {
+void PhotonGeometry::add_mesh(ecs::Entity entity) {
     const scene::MeshInstance& instance = registry_.get<scene::MeshInstance>(entity);
     const scene::Mesh& mesh = instance.geometry();
     const bool dynamic = registry_.has<scene::Dynamic>(entity);
@@ -101,10 +112,10 @@ void PhotonWorld::add_mesh(ecs::Entity entity) {
                 }
             }
         }
-        if (layout_id >= 0 || (layout == nullptr && settings_.implicit_surfaces && !dynamic)) {
+        if (layout_id >= 0 || (layout == nullptr && implicit_surfaces_ && !dynamic)) {
             surface = static_cast<std::int32_t>(surfaces_.size());
             surfaces_.push_back({entity, static_cast<int>(p), layout_id});
-            map_->add_surfaces(1);
+            map_.add_surfaces(1);
         }
         const auto base = static_cast<std::uint32_t>(triangles.positions.size());
         triangles.positions.insert(triangles.positions.end(), primitive.positions.begin(),
@@ -141,10 +152,10 @@ void PhotonWorld::add_mesh(ecs::Entity entity) {
     }
     objects_[entity] =
         scene_.add_object(std::move(triangles), world_matrix(registry_, entity), dynamic);
-    scene_changed_ = true;
+    changed_ = true;
 }
 
-void PhotonWorld::remove_mesh(ecs::Entity entity) {
+void PhotonGeometry::remove_mesh(ecs::Entity entity) {
     const auto found = objects_.find(entity);
     if (found == objects_.end()) {
         return;
@@ -153,80 +164,53 @@ void PhotonWorld::remove_mesh(ecs::Entity entity) {
     // it) and retrace: the surfaces are not reused.
     scene_.remove_object(found->second);
     objects_.erase(found);
-    scene_changed_ = true;
+    changed_ = true;
 }
 
-BoundingSphere PhotonWorld::scene_sphere() const {
+bool PhotonGeometry::move(ecs::Entity entity) {
+    const auto found = objects_.find(entity);
+    if (found == objects_.end()) {
+        return false;
+    }
+    if (scene_.is_dynamic(found->second)) {
+        scene_.set_transform(found->second, world_matrix(registry_, entity));
+    } else {
+        // A static object moved after all: rebuild it in place (rare, and logged).
+        log::debug("static mesh moved; rebuilding the static BVH");
+        remove_mesh(entity);
+        add_mesh(entity);
+    }
+    changed_ = true;
+    return true;
+}
+
+bool PhotonGeometry::take_changed() {
+    return std::exchange(changed_, false);
+}
+
+std::optional<ObjectId> PhotonGeometry::object(ecs::Entity entity) const {
+    const auto found = objects_.find(entity);
+    if (found == objects_.end()) {
+        return std::nullopt;
+    }
+    return found->second;
+}
+
+std::size_t PhotonGeometry::dynamic_object_count() const {
+    std::size_t count = 0;
+    for (const auto& entry : objects_) {
+        count += scene_.is_dynamic(entry.second) ? 1 : 0;
+    }
+    return count;
+}
+
+BoundingSphere PhotonGeometry::sphere() const {
     const glm::vec3 lo = scene_.bounds_min();
     const glm::vec3 hi = scene_.bounds_max();
     if (lo.x > hi.x) {
         return {};
     }
     return {(lo + hi) * 0.5f, std::max(0.5f * glm::length(hi - lo), 1e-6f)};
-}
-
-/// Meshes added, removed or replaced, mirrored into the ray scene; every such entity may be an
-/// area light whose geometry changed.
-void PhotonWorld::sync_meshes(std::vector<ecs::Entity>& light_touched,
-                              std::vector<ecs::Entity>& meshes_added) {
-    mesh_changes_.consume([&](ecs::Entity entity, ecs::ChangeKind kind) {
-        ++last_sync_.meshes_changed;
-        switch (kind) {
-            case ecs::ChangeKind::Destroyed:
-                remove_mesh(entity);
-                break;
-            case ecs::ChangeKind::Constructed:
-                add_mesh(entity);
-                meshes_added.push_back(entity);
-                break;
-            case ecs::ChangeKind::Updated:
-                remove_mesh(entity);
-                add_mesh(entity);
-                meshes_added.push_back(entity);
-                break;
-        }
-        light_touched.push_back(entity);  // an area light's geometry may have changed
-    });
-}
-
-void PhotonWorld::sync_generators(const std::vector<ecs::Entity>& meshes_added,
-                                  std::vector<ecs::Entity>& generators_touched) {
-    // Caustic generators: a mesh added above already took its optics from the component; one
-    // added earlier is re-added so that its triangles use (or stop using) the generator's own
-    // materials. An edited component rewrites those materials in place.
-    generator_changes_.consume([&](ecs::Entity entity, ecs::ChangeKind kind) {
-        generators_touched.push_back(entity);
-        const bool mesh_is_current =
-            std::binary_search(meshes_added.begin(), meshes_added.end(), entity);
-        const bool has_object = objects_.contains(entity);
-        switch (kind) {
-            case ecs::ChangeKind::Destroyed:
-                generators_.erase(entity);
-                forget_generator_materials(entity);
-                if (has_object && registry_.valid(entity) &&
-                    registry_.has<scene::MeshInstance>(entity)) {
-                    remove_mesh(entity);
-                    add_mesh(entity);
-                }
-                break;
-            case ecs::ChangeKind::Constructed:
-                generators_[entity] = GeneratorRecord{};
-                if (has_object && !mesh_is_current) {
-                    remove_mesh(entity);
-                    add_mesh(entity);
-                }
-                break;
-            case ecs::ChangeKind::Updated: {
-                const CausticGenerator& optics = registry_.get<CausticGenerator>(entity);
-                for (const auto& [key, own] : generator_materials_) {
-                    if (key.first == entity) {
-                        materials_[own] = generator_optics(materials_[key.second], optics);
-                    }
-                }
-                break;
-            }
-        }
-    });
 }
 
 }  // namespace luxel::lighting

@@ -1,20 +1,23 @@
-#include "luxel/lighting/core/photon_world.hpp"
+#include "light_groups.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "luxel/runtime/log.hpp"
-#include "luxel/scene/image_decode.hpp"
 #include "photon_world_support.hpp"
 
-// PhotonWorld, part 3 of 4: lights, their photon groups, probes and retraces (docs/METHOD.md §4).
 namespace luxel::lighting {
 
 using photon_world_support::world_matrix;
 
-void PhotonWorld::refresh_light(ecs::Entity entity) {
+LightGroups::LightGroups(const ecs::Registry& registry, PhotonMap& map,
+                         const SelectiveSettings& settings)
+    : registry_(registry), map_(map), settings_(settings) {}
+
+LightGroups::~LightGroups() = default;
+
+void LightGroups::refresh(ecs::Entity entity, const BoundingSphere& scene) {
     if (!registry_.valid(entity)) {
-        remove_light(entity);
+        remove(entity);
         return;
     }
     const glm::mat4 world = world_matrix(registry_, entity);
@@ -63,69 +66,100 @@ void PhotonWorld::refresh_light(ecs::Entity entity) {
             }
         }
     } else {
-        remove_light(entity);
+        remove(entity);
         return;
     }
 
-    auto& record = lights_[entity];
-    if (!record) {
-        record = std::make_unique<LightRecord>();
-        const std::uint32_t first = map_->add_groups(settings_.selective.groups);
-        record->photons = std::make_unique<LightPhotons>(PhotonEmitter(source, scene_sphere()),
-                                                         first, next_seed_++, settings_.selective);
-        next_group_ = first + settings_.selective.groups;
+    Record& record = lights_[entity];
+    if (!record.photons) {
+        const std::uint32_t first = map_.add_groups(settings_.groups);
+        record.photons = std::make_unique<LightPhotons>(PhotonEmitter(source, scene), first,
+                                                        next_seed_++, settings_);
     } else {
-        record->photons->set_emitter(PhotonEmitter(source, scene_sphere()));
+        record.photons->set_emitter(PhotonEmitter(source, scene));
     }
-    record->directional = directional;
-    record->enabled = enabled;
-    const LightPhotons& photons = *record->photons;
+    record.directional = directional;
+    record.enabled = enabled;
+    const LightPhotons& photons = *record.photons;
     // A moved, changed or switched light invalidates all its groups.
     for (std::uint32_t g = 0; g < photons.group_count(); ++g) {
         const std::uint32_t global = photons.first_group() + g;
         if (enabled) {
-            if (std::find(pending_.begin(), pending_.end(), global) == pending_.end()) {
-                pending_.push_back(global);
-            }
+            add_pending(global);
         } else {
-            map_->clear_group(global);
+            map_.clear_group(global);
         }
     }
     if (!enabled) {
-        std::erase_if(pending_, [&](std::uint32_t g) {
-            return g >= photons.first_group() && g < photons.first_group() + photons.group_count();
-        });
+        drop_pending(photons);
     }
 }
 
-void PhotonWorld::remove_light(ecs::Entity entity) {
+void LightGroups::remove(ecs::Entity entity) {
     const auto found = lights_.find(entity);
     if (found == lights_.end()) {
         return;
     }
-    const LightPhotons& photons = *found->second->photons;
+    const LightPhotons& photons = *found->second.photons;
     for (std::uint32_t g = 0; g < photons.group_count(); ++g) {
-        map_->clear_group(photons.first_group() + g);
+        map_.clear_group(photons.first_group() + g);
     }
-    std::erase_if(pending_, [&](std::uint32_t g) {
-        return g >= photons.first_group() && g < photons.first_group() + photons.group_count();
-    });
+    drop_pending(photons);
     lights_.erase(found);
 }
 
-std::vector<const LightPhotons*> PhotonWorld::active_lights() const {
+void LightGroups::refresh_directional(std::span<const ecs::Entity> skip,
+                                      const BoundingSphere& scene) {
+    std::vector<ecs::Entity> directional;
+    for (const auto& [entity, record] : lights_) {
+        if (record.directional && !std::binary_search(skip.begin(), skip.end(), entity)) {
+            directional.push_back(entity);
+        }
+    }
+    for (ecs::Entity entity : directional) {
+        refresh(entity, scene);  // may remove it: not while iterating lights_
+    }
+}
+
+void LightGroups::add_pending(std::uint32_t group) {
+    if (std::find(pending_.begin(), pending_.end(), group) == pending_.end()) {
+        pending_.push_back(group);
+    }
+}
+
+void LightGroups::drop_pending(const LightPhotons& photons) {
+    std::erase_if(pending_, [&](std::uint32_t g) {
+        return g >= photons.first_group() && g < photons.first_group() + photons.group_count();
+    });
+}
+
+std::vector<ecs::Entity> LightGroups::enabled_entities() const {
+    std::vector<ecs::Entity> enabled;
+    for (const auto& [entity, record] : lights_) {
+        if (record.enabled) {
+            enabled.push_back(entity);
+        }
+    }
+    return enabled;
+}
+
+const LightSource& LightGroups::source(ecs::Entity entity) const {
+    return lights_.at(entity).photons->emitter().light();
+}
+
+std::vector<const LightPhotons*> LightGroups::active() const {
     std::vector<const LightPhotons*> active;
     for (const auto& [entity, record] : lights_) {
-        if (record->enabled) {
-            active.push_back(record->photons.get());
+        if (record.enabled) {
+            active.push_back(record.photons.get());
         }
     }
     return active;
 }
 
-ecs::Entity PhotonWorld::light_of_group(std::uint32_t group) const {
+ecs::Entity LightGroups::light_of_group(std::uint32_t group) const {
     for (const auto& [entity, record] : lights_) {
-        const LightPhotons& photons = *record->photons;
+        const LightPhotons& photons = *record.photons;
         if (group >= photons.first_group() &&
             group < photons.first_group() + photons.group_count()) {
             return entity;
@@ -134,29 +168,30 @@ ecs::Entity PhotonWorld::light_of_group(std::uint32_t group) const {
     return ecs::null_entity;
 }
 
-EmissionStats PhotonWorld::probe(std::uint64_t frame, JobSystem& jobs) {
-    const auto lights = active_lights();
+EmissionStats LightGroups::probe(std::uint64_t frame, const RayScene& scene,
+                                 std::span<const TraceMaterial> materials, JobSystem& jobs) {
+    const auto lights = active();
     std::vector<std::uint32_t> invalid;
     // Groups already waiting need no probe verdict; probing them anyway keeps this simple and
     // costs one photon each.
-    EmissionStats stats = run_probes(scene_, materials_, lights, *map_, frame,
-                                     settings_.selective.tolerance, jobs, invalid);
+    EmissionStats stats =
+        run_probes(scene, materials, lights, map_, frame, settings_.tolerance, jobs, invalid);
     for (std::uint32_t group : invalid) {
-        if (std::find(pending_.begin(), pending_.end(), group) == pending_.end()) {
-            pending_.push_back(group);
-        }
+        add_pending(group);
     }
     return stats;
 }
 
-EmissionStats PhotonWorld::retrace_pending(JobSystem& jobs, std::size_t max_groups) {
+EmissionStats LightGroups::retrace_pending(const RayScene& scene,
+                                           std::span<const TraceMaterial> materials,
+                                           JobSystem& jobs, std::size_t max_groups) {
     const std::size_t count =
         max_groups == 0 ? pending_.size() : std::min(max_groups, pending_.size());
     const std::vector<std::uint32_t> batch(pending_.begin(),
                                            pending_.begin() + static_cast<std::ptrdiff_t>(count));
     pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(count));
-    const auto lights = active_lights();
-    return retrace_groups(scene_, materials_, lights, *map_, batch, jobs);
+    const auto lights = active();
+    return retrace_groups(scene, materials, lights, map_, batch, jobs);
 }
 
 }  // namespace luxel::lighting

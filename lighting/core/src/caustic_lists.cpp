@@ -1,0 +1,168 @@
+#include "caustic_lists.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace luxel::lighting {
+namespace {
+
+/// The sphere around a point set's bounding box (centre of the box, radius to the farthest
+/// point): not the smallest sphere, but tight for the compact shapes that make caustics.
+BoundingSphere sphere_around(const std::vector<glm::vec3>& points) {
+    if (points.empty()) {
+        return {glm::vec3(0.0f), 0.0f};
+    }
+    glm::vec3 lo = points.front();
+    glm::vec3 hi = points.front();
+    for (const glm::vec3& p : points) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    const glm::vec3 centre = 0.5f * (lo + hi);
+    float radius2 = 0.0f;
+    for (const glm::vec3& p : points) {
+        const glm::vec3 offset = p - centre;
+        radius2 = std::max(radius2, glm::dot(offset, offset));
+    }
+    return {centre, std::sqrt(radius2)};
+}
+
+BoundingSphere transformed(const BoundingSphere& sphere, const glm::mat4& transform) {
+    const float scale =
+        std::max({glm::length(glm::vec3(transform[0])), glm::length(glm::vec3(transform[1])),
+                  glm::length(glm::vec3(transform[2]))});
+    return {glm::vec3(transform * glm::vec4(sphere.centre, 1.0f)), sphere.radius * scale};
+}
+
+}  // namespace
+
+void CausticLists::add_generator(ecs::Entity entity) {
+    generators_[entity] = GeneratorRecord{};
+}
+
+void CausticLists::remove_generator(ecs::Entity entity) {
+    generators_.erase(entity);
+}
+
+void CausticLists::update_spheres(const PhotonGeometry& geometry) {
+    for (auto& [entity, record] : generators_) {
+        const std::optional<ObjectId> object = geometry.object(entity);
+        if (!object) {
+            record.object = kNoObject;  // a generator without geometry aims nothing
+            continue;
+        }
+        if (record.object != *object) {
+            record.object = *object;
+            record.local_sphere = sphere_around(geometry.scene().mesh(*object).positions);
+        }
+        record.world_sphere = transformed(record.local_sphere, geometry.scene().transform(*object));
+    }
+}
+
+std::vector<std::uint8_t> CausticLists::merge_pairs(
+    const std::vector<std::pair<ecs::Entity, ecs::Entity>>& wanted) {
+    // Only when pairs come or go is the list vector rebuilt (merging, so that surviving lists
+    // keep their photons); otherwise references into pairs() stay valid across syncs.
+    std::vector<std::uint8_t> fresh(wanted.size(), 0);
+    const bool same_pairs =
+        std::equal(wanted.begin(), wanted.end(), pairs_.begin(), pairs_.end(),
+                   [](const auto& key, const CausticPair& pair) {
+                       return key.first == pair.generator && key.second == pair.light;
+                   });
+    if (same_pairs) {
+        return fresh;
+    }
+    std::vector<CausticPair> next;
+    next.reserve(wanted.size());
+    auto existing = pairs_.begin();
+    for (std::size_t i = 0; i < wanted.size(); ++i) {
+        const auto& [generator, light] = wanted[i];
+        while (existing != pairs_.end() &&
+               std::make_pair(existing->generator, existing->light) < wanted[i]) {
+            ++existing;  // its generator or light went away or was switched off
+        }
+        if (existing != pairs_.end() && existing->generator == generator &&
+            existing->light == light) {
+            next.push_back(std::move(*existing));
+            ++existing;
+        } else {
+            next.push_back(
+                {generator, light,
+                 CausticPhotonList(settings_.photons_per_pair, settings_.slices, next_seed_++)});
+            fresh[i] = 1;
+        }
+    }
+    pairs_ = std::move(next);
+    return fresh;
+}
+
+void CausticLists::sync(const PhotonGeometry& geometry, const LightGroups& lights,
+                        std::span<const ecs::Entity> lights_touched,
+                        std::span<const ecs::Entity> generators_touched, bool objects_changed) {
+    update_spheres(geometry);
+    // The pairs that should exist, in (generator, light) order as both maps iterate.
+    std::vector<std::pair<ecs::Entity, ecs::Entity>> wanted;
+    const std::vector<ecs::Entity> enabled = lights.enabled_entities();
+    for (const auto& [generator, record] : generators_) {
+        if (record.object == kNoObject || settings_.photons_per_pair == 0) {
+            continue;
+        }
+        for (ecs::Entity light : enabled) {
+            if (light != generator) {
+                wanted.emplace_back(generator, light);
+            }
+        }
+    }
+    const std::vector<std::uint8_t> fresh = merge_pairs(wanted);
+
+    const BoundingSphere scene_bounds = geometry.sphere();
+    for (std::size_t i = 0; i < pairs_.size(); ++i) {
+        CausticPair& pair = pairs_[i];
+        const bool stale =
+            fresh[i] != 0 || objects_changed ||
+            std::binary_search(lights_touched.begin(), lights_touched.end(), pair.light) ||
+            std::binary_search(generators_touched.begin(), generators_touched.end(),
+                               pair.generator);
+        if (stale) {
+            pair.photons.set_emitter(CausticEmitter(lights.source(pair.light),
+                                                    generators_.at(pair.generator).world_sphere,
+                                                    scene_bounds));
+        }
+    }
+}
+
+bool CausticLists::pending() const {
+    return std::any_of(pairs_.begin(), pairs_.end(),
+                       [](const CausticPair& pair) { return pair.photons.needs_retrace(); });
+}
+
+CausticFrameStats CausticLists::update(std::uint64_t frame, const PhotonGeometry& geometry,
+                                       JobSystem& jobs) {
+    CausticFrameStats stats;
+    std::vector<CausticPhotonList::SliceWork> work;
+    for (CausticPair& pair : pairs_) {
+        if (const auto slice = pair.photons.slice_for_frame(frame)) {
+            work.push_back({&pair.photons, *slice});
+        }
+    }
+    if (work.empty()) {
+        return stats;  // nothing moved: nothing is traced
+    }
+    stats.trace = CausticPhotonList::retrace(geometry.scene(), geometry.materials(), work,
+                                             settings_.max_specular_interactions, jobs);
+    stats.slices_retraced = static_cast<std::uint32_t>(work.size());
+    return stats;
+}
+
+CausticTotals CausticLists::totals() const {
+    CausticTotals totals;
+    totals.lists = pairs_.size();
+    totals.bytes = pairs_.capacity() * sizeof(CausticPair);
+    for (const CausticPair& pair : pairs_) {
+        totals.stored += pair.photons.stored_count();
+        totals.bytes += pair.photons.bytes_used() - sizeof(CausticPhotonList);
+    }
+    return totals;
+}
+
+}  // namespace luxel::lighting

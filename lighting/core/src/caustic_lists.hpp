@@ -1,0 +1,58 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <span>
+#include <vector>
+
+#include "light_groups.hpp"
+#include "luxel/lighting/core/caustic_photons.hpp"
+#include "luxel/lighting/core/photon_world.hpp"
+#include "photon_geometry.hpp"
+
+namespace luxel::lighting {
+
+/// PhotonWorld's caustics (docs/METHOD.md §7): the caustic generators with the spheres their
+/// photons are aimed at, and one CausticPhotonList per (generator, enabled light) pair, ordered
+/// by (generator, light). A list is re-aimed (and so retraced) when it is new, when any geometry
+/// changed, or when its light or generator was touched.
+class CausticLists {
+  public:
+    explicit CausticLists(const CausticSettings& settings) : settings_(settings) {}
+
+    void add_generator(ecs::Entity entity);
+    void remove_generator(ecs::Entity entity);
+    [[nodiscard]] std::size_t generator_count() const { return generators_.size(); }
+
+    /// Brings the pairs up to date with the generators' geometry and the enabled lights.
+    /// `lights_touched` and `generators_touched` are sorted.
+    void sync(const PhotonGeometry& geometry, const LightGroups& lights,
+              std::span<const ecs::Entity> lights_touched,
+              std::span<const ecs::Entity> generators_touched, bool objects_changed);
+    /// Retraces one slice of every list that needs it, all lists together in one parallel pass.
+    CausticFrameStats update(std::uint64_t frame, const PhotonGeometry& geometry, JobSystem& jobs);
+
+    [[nodiscard]] std::span<const CausticPair> pairs() const { return pairs_; }
+    [[nodiscard]] CausticTotals totals() const;
+    [[nodiscard]] bool pending() const;
+
+  private:
+    /// A caustic generator's bounding sphere, which its caustic photons are aimed at.
+    struct GeneratorRecord {
+        ObjectId object = kNoObject;  ///< the object local_sphere was computed for
+        BoundingSphere local_sphere;  ///< around the object's vertices, in its mesh's frame
+        BoundingSphere world_sphere;
+    };
+    void update_spheres(const PhotonGeometry& geometry);
+    /// Rebuilds the pair vector for the pairs in `wanted` (merging, so surviving lists keep
+    /// their photons); returns which pairs are new.
+    std::vector<std::uint8_t> merge_pairs(
+        const std::vector<std::pair<ecs::Entity, ecs::Entity>>& wanted);
+
+    CausticSettings settings_;
+    std::map<ecs::Entity, GeneratorRecord> generators_;
+    std::vector<CausticPair> pairs_;  ///< sorted by (generator, light)
+    std::uint32_t next_seed_ = 1;
+};
+
+}  // namespace luxel::lighting

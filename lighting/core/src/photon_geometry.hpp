@@ -1,0 +1,68 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "luxel/ecs/registry.hpp"
+#include "luxel/lighting/components.hpp"
+#include "luxel/lighting/core/light_source.hpp"
+#include "luxel/lighting/core/photon_map.hpp"
+#include "luxel/lighting/core/photon_world.hpp"
+#include "luxel/lighting/core/ray_scene.hpp"
+
+namespace luxel::lighting {
+
+/// PhotonWorld's geometry (docs/METHOD.md §3): MeshInstance entities mirrored into the RayScene
+/// (Dynamic ones as instances), their scene materials as TraceMaterials, caustic generators'
+/// own optics for their specular materials, and the light-mapped surfaces photons are stored
+/// on (each added to the photon map as it is found).
+class PhotonGeometry {
+  public:
+    PhotonGeometry(const ecs::Registry& registry, PhotonMap& map, bool implicit_surfaces);
+
+    /// Mirrors the entity's mesh (with its generator's optics, if it has a CausticGenerator).
+    void add_mesh(ecs::Entity entity);
+    /// Its photons stay until their groups' probes notice; its surfaces are not reused.
+    void remove_mesh(ecs::Entity entity);
+    /// A moved entity: a dynamic object's instance transform, a static one rebuilt in place.
+    /// Returns whether the entity is an object of the ray scene.
+    bool move(ecs::Entity entity);
+    /// A generator's edited component: its own materials rewritten in place.
+    void set_generator_optics(ecs::Entity entity, const CausticGenerator& optics);
+    /// A generator went away: its own materials are no longer used when its mesh is re-added.
+    void forget_generator(ecs::Entity entity);
+    /// Makes the edits visible to ray queries (RayScene::commit).
+    void commit() { scene_.commit(); }
+    /// Whether any object was added, removed or moved since the last call.
+    [[nodiscard]] bool take_changed();
+
+    [[nodiscard]] std::optional<ObjectId> object(ecs::Entity entity) const;
+    /// The sphere around the whole scene (directional lights' discs, caustic emitters).
+    [[nodiscard]] BoundingSphere sphere() const;
+    [[nodiscard]] std::size_t dynamic_object_count() const;
+    [[nodiscard]] const RayScene& scene() const { return scene_; }
+    [[nodiscard]] const std::vector<TraceMaterial>& materials() const { return materials_; }
+    [[nodiscard]] const std::vector<SurfaceInfo>& surfaces() const { return surfaces_; }
+
+  private:
+    std::uint32_t material_index(const scene::Scene* source, int material);
+    std::uint32_t generator_material(ecs::Entity entity, std::uint32_t shared,
+                                     const CausticGenerator& optics);
+
+    const ecs::Registry& registry_;
+    PhotonMap& map_;
+    bool implicit_surfaces_;
+    RayScene scene_;
+    std::vector<SurfaceInfo> surfaces_;
+    std::vector<TraceMaterial> materials_;
+    std::map<std::pair<const scene::Scene*, int>, std::uint32_t> material_ids_;
+    /// (generator entity, shared material id) -> the generator's own material id.
+    std::map<std::pair<ecs::Entity, std::uint32_t>, std::uint32_t> generator_materials_;
+    std::map<ecs::Entity, ObjectId> objects_;
+    bool changed_ = false;
+};
+
+}  // namespace luxel::lighting
