@@ -1,7 +1,8 @@
 #pragma once
 
-// One configuration of the real-time path run through a level and measured against the
-// reference: static until converged, then the scripted change.
+// What one luxel-bench invocation measures per configuration (RunResult, Checkpoint), and the
+// Bench that holds the level, the jobs and the GL context for all of its runs; each
+// configuration's run is a ConfigRun (config_run.hpp).
 
 #include <array>
 #include <cstdint>
