@@ -38,14 +38,8 @@ std::uint64_t share(std::uint64_t total, std::uint32_t passes, std::uint32_t pas
     return total / passes + (pass < total % passes ? 1 : 0);
 }
 
-int run(int argc, char** argv) {
-    CLI::App app{
-        "luxel-ref: the reference integrator (path tracing with next-event estimation, and a "
-        "dense photon estimate for caustics from point, spot and directional lights). Writes a "
-        "linear HDR frame of a camera and/or per-texel reference irradiance of every "
-        "light-mapped surface, split into direct, indirect and caustic, with standard errors."};
-    ref::Options options;
-    std::string camera_text;
+/// Declares luxel-ref's flags into `options` (the camera as text, parsed after).
+void add_flags(CLI::App& app, ref::Options& options, std::string& camera_text) {
     app.add_option("--level", options.level,
                    "a prepared level's name (assets/levels/prepared/NAME.glb) or a .glb path")
         ->required();
@@ -82,42 +76,28 @@ int run(int argc, char** argv) {
                  "leave out delta-light caustics reflected onward by diffuse surfaces");
     app.add_option("--lightmaps", options.lightmaps,
                    "per-texel irradiance: .json, or .exr (one file per page and component)");
-    if (!cli::parse(app, argc, argv)) {
-        return 0;
+}
+
+/// The frame's camera: --camera, else the level's first; none when no frame is asked for.
+std::optional<ReferenceCamera> frame_camera(const ref::Options& options,
+                                            const ref::LoadedLevel& level,
+                                            const std::filesystem::path& file) {
+    if (options.image.empty()) {
+        return std::nullopt;
     }
-    cli::check_usage([&] {
-        if (!camera_text.empty()) {
-            options.camera = ref::parse_camera(camera_text);
-        }
-        ref::validate(options);
-    });
-
-    const std::filesystem::path file = ref::resolve_level(options.level);
-    JobSystem jobs(options.threads);
-    Stopwatch clock;
-    const auto level = ref::load_level(file, options.time, options.load_limits);
-    const ReferenceScene& scene = *level->scene;
-    std::fprintf(stderr,
-                 "luxel-ref: %s at t = %.3f s: %zu light-mapped surfaces, %zu texels, %zu "
-                 "lights, %zu specular objects (%.1f s to load)\n",
-                 file.string().c_str(), options.time, scene.surfaces().size(), scene.texel_count(),
-                 scene.lights().size(), scene.generator_spheres().size(),
-                 clock.elapsed_ms() / 1000.0);
-
-    std::optional<ReferenceCamera> camera;
-    if (!options.image.empty()) {
-        if (options.camera) {
-            camera = ReferenceCamera::look_at(options.camera->eye, options.camera->target,
-                                              glm::radians(options.camera->fov_degrees),
-                                              options.width, options.height);
-        } else {
-            camera = ref::level_camera(*level, options.width, options.height);
-            if (!camera) {
-                throw Error(file.string() + " has no camera: give --camera x,y,z:tx,ty,tz:fov");
-            }
-        }
+    if (options.camera) {
+        return ReferenceCamera::look_at(options.camera->eye, options.camera->target,
+                                        glm::radians(options.camera->fov_degrees), options.width,
+                                        options.height);
     }
+    std::optional<ReferenceCamera> camera = ref::level_camera(level, options.width, options.height);
+    if (!camera) {
+        throw Error(file.string() + " has no camera: give --camera x,y,z:tx,ty,tz:fov");
+    }
+    return camera;
+}
 
+ReferenceSettings integrator_settings(const ref::Options& options) {
     // The caustic photons serve both outputs: the light maps' caustic component, and the
     // frame's diffuse surfaces (caustics from delta lights that paths cannot find).
     ReferenceSettings settings;
@@ -129,14 +109,12 @@ int run(int argc, char** argv) {
         options.indirect == "paths" ? IndirectMethod::Paths : IndirectMethod::Photons;
     settings.indirect_photons.seed = options.seed;
     settings.indirect_photons.max_vertices = options.max_vertices;
-    ReferenceIntegrator integrator(scene, settings);
-    ReferenceFrameSettings frame_settings;
-    frame_settings.seed = options.seed;
-    frame_settings.paths = settings.paths;
-    std::optional<ReferenceFrame> frame;
-    if (camera) {
-        frame.emplace(scene, *camera, frame_settings);
-    }
+    return settings;
+}
+
+/// The progressive passes, each reporting its time and the standard errors so far.
+void run_passes(const ref::Options& options, ReferenceIntegrator& integrator,
+                std::optional<ReferenceFrame>& frame, JobSystem& jobs) {
     const bool lightmaps = !options.lightmaps.empty();
     for (std::uint32_t pass = 0; pass < options.passes; ++pass) {
         Stopwatch pass_clock;
@@ -168,7 +146,10 @@ int run(int argc, char** argv) {
         }
         std::fprintf(stderr, "\n");
     }
-    const double seconds = clock.elapsed_ms() / 1000.0;
+}
+
+void write_outputs(const ref::Options& options, const ReferenceIntegrator& integrator,
+                   const std::optional<ReferenceFrame>& frame, double seconds) {
     if (frame) {
         const Image image = frame->image();
         write_exr(options.image, image);
@@ -176,10 +157,9 @@ int run(int argc, char** argv) {
             write_png(options.preview, image);
         }
         std::fprintf(stderr, "luxel-ref: wrote %s (%dx%d, %" PRIu64 " spp)\n",
-                     options.image.string().c_str(), camera->width, camera->height,
-                     frame->samples());
+                     options.image.string().c_str(), image.width, image.height, frame->samples());
     }
-    if (lightmaps) {
+    if (!options.lightmaps.empty()) {
         if (options.lightmaps.extension() == ".json") {
             ref::write_lightmaps_json(options.lightmaps, integrator,
                                       {options.level, options.time, options.seed, seconds});
@@ -190,6 +170,50 @@ int run(int argc, char** argv) {
                          options.lightmaps.string().c_str());
         }
     }
+}
+
+int run(int argc, char** argv) {
+    CLI::App app{
+        "luxel-ref: the reference integrator (path tracing with next-event estimation, and a "
+        "dense photon estimate for caustics from point, spot and directional lights). Writes a "
+        "linear HDR frame of a camera and/or per-texel reference irradiance of every "
+        "light-mapped surface, split into direct, indirect and caustic, with standard errors."};
+    ref::Options options;
+    std::string camera_text;
+    add_flags(app, options, camera_text);
+    if (!cli::parse(app, argc, argv)) {
+        return 0;
+    }
+    cli::check_usage([&] {
+        if (!camera_text.empty()) {
+            options.camera = ref::parse_camera(camera_text);
+        }
+        ref::validate(options);
+    });
+
+    const std::filesystem::path file = ref::resolve_level(options.level);
+    JobSystem jobs(options.threads);
+    Stopwatch clock;
+    const auto level = ref::load_level(file, options.time, options.load_limits);
+    const ReferenceScene& scene = *level->scene;
+    std::fprintf(stderr,
+                 "luxel-ref: %s at t = %.3f s: %zu light-mapped surfaces, %zu texels, %zu "
+                 "lights, %zu specular objects (%.1f s to load)\n",
+                 file.string().c_str(), options.time, scene.surfaces().size(), scene.texel_count(),
+                 scene.lights().size(), scene.generator_spheres().size(),
+                 clock.elapsed_ms() / 1000.0);
+    const std::optional<ReferenceCamera> camera = frame_camera(options, *level, file);
+
+    ReferenceIntegrator integrator(scene, integrator_settings(options));
+    ReferenceFrameSettings frame_settings;
+    frame_settings.seed = options.seed;
+    frame_settings.paths = integrator_settings(options).paths;
+    std::optional<ReferenceFrame> frame;
+    if (camera) {
+        frame.emplace(scene, *camera, frame_settings);
+    }
+    run_passes(options, integrator, frame, jobs);
+    write_outputs(options, integrator, frame, clock.elapsed_ms() / 1000.0);
     std::fprintf(stderr, "luxel-ref: done in %.1f s\n", clock.elapsed_ms() / 1000.0);
     return 0;
 }
