@@ -140,9 +140,19 @@ TEST(BenchCli, ATinyRunWritesEveryOutputAndASecondReusesTheReference) {
 
     const auto runs = read_csv(out / "runs.csv");
     ASSERT_EQ(runs.size(), 3u);  // header, paper @ 8 ms, rays=16 @ 8 ms
-    const std::vector<std::string> must{"method",          "budget_ms",        "ms_median",
-                                        "ms_p95",          "indirect_relrmse", "caustic_relrmse",
-                                        "recovery_frames", "ref_se_indirect"};
+    const std::vector<std::string> must{"method",
+                                        "budget_ms",
+                                        "ms_median",
+                                        "ms_p95",
+                                        "indirect_relrmse",
+                                        "indirect_worst_region",
+                                        "indirect_p99_texel",
+                                        "caustic_relrmse",
+                                        "recovery_frames",
+                                        "worst_region_after",
+                                        "p99_texel_after",
+                                        "recovery_frames_local",
+                                        "ref_se_indirect"};
     for (const std::string& column : must) {
         EXPECT_NE(std::find(runs[0].begin(), runs[0].end(), column), runs[0].end()) << column;
     }
@@ -162,6 +172,33 @@ TEST(BenchCli, ATinyRunWritesEveryOutputAndASecondReusesTheReference) {
         }
     }
     EXPECT_EQ(read_csv(out / "after_change.csv").size(), 1u + 2u * 3u);
+    // The local error: finite, non-negative numbers in every run and after every frame.
+    const auto cell = [&](const std::vector<std::vector<std::string>>& rows, std::size_t row,
+                          const std::string& name) {
+        const auto at = std::find(rows[0].begin(), rows[0].end(), name);
+        EXPECT_NE(at, rows[0].end()) << name;
+        return std::stod(rows[row].at(static_cast<std::size_t>(at - rows[0].begin())));
+    };
+    for (std::size_t r = 1; r < runs.size(); ++r) {
+        for (const char* name : {"indirect_worst_region", "indirect_p99_texel",
+                                 "worst_region_after", "p99_texel_after"}) {
+            const double value = cell(runs, r, name);
+            EXPECT_TRUE(std::isfinite(value) && value >= 0.0) << name << " row " << r;
+        }
+        // Local recovery needs the global error back too: never before the global one.
+        const double global = cell(runs, r, "recovery_frames");
+        const double local = cell(runs, r, "recovery_frames_local");
+        if (global < 0.0) {
+            EXPECT_EQ(local, -1.0) << "row " << r;
+        } else if (local >= 0.0) {
+            EXPECT_GE(local, global) << "row " << r;
+        }
+    }
+    const auto after_rows = read_csv(out / "after_change.csv");
+    for (std::size_t r = 1; r < after_rows.size(); ++r) {
+        EXPECT_GT(cell(after_rows, r, "indirect_worst_region"), 0.0) << "row " << r;
+        EXPECT_GT(cell(after_rows, r, "indirect_p99_texel"), 0.0) << "row " << r;
+    }
 
     std::ifstream json_file(out / "results.json");
     const nlohmann::json json = nlohmann::json::parse(json_file);
@@ -169,8 +206,8 @@ TEST(BenchCli, ATinyRunWritesEveryOutputAndASecondReusesTheReference) {
     EXPECT_EQ(json["runs"][0]["frame_ms"].size(), 4u + 3u);
     EXPECT_EQ(json["level"], "cornell");
 
-    for (const char* png :
-         {"indirect_vs_ms.png", "caustic_vs_ms.png", "image_vs_ms.png", "after_change.png"}) {
+    for (const char* png : {"indirect_vs_ms.png", "caustic_vs_ms.png", "image_vs_ms.png",
+                            "after_change.png", "after_change_region.png"}) {
         const luxel::Image8 image = luxel::read_png(out / png);
         EXPECT_EQ(image.width, 900) << png;
         EXPECT_EQ(image.height, 560) << png;

@@ -29,6 +29,10 @@ struct Checkpoint {
     double indirect = 0.0;  ///< light-map relRMSE
     double caustic = 0.0;
     std::optional<double> image;  ///< image relRMSE; none when the image is off
+    /// The indirect light's local error (MapErrors): worst 8x8-texel region, 99th-percentile
+    /// texel.
+    double indirect_region = 0.0;
+    double indirect_p99 = 0.0;
 };
 
 struct RunResult {
@@ -43,6 +47,9 @@ struct RunResult {
     std::uint32_t static_work_frames = 0;
     double indirect = 0.0;  ///< at the end of the static phase ("converged")
     double caustic = 0.0;
+    /// The converged indirect light's local error (Checkpoint::indirect_region, indirect_p99).
+    double indirect_region = 0.0;
+    double indirect_p99 = 0.0;
     bool changed = false;
     double indirect_at_change = 0.0;  ///< after the move, before any lighting work
     double indirect_after = 0.0;      ///< at the end of the frames after the change
@@ -50,6 +57,17 @@ struct RunResult {
     /// within the frames run.
     int recovery_frames = -1;
     std::vector<double> after_indirect;  ///< per frame after the change (frame 1 first)
+    /// The local error after the change: at the change, at the end, per frame (frame 1 first).
+    double region_at_change = 0.0;
+    double region_after = 0.0;
+    double p99_at_change = 0.0;
+    double p99_after = 0.0;
+    std::vector<double> after_region;
+    std::vector<double> after_p99;
+    /// Frames after the change until the global, the worst-region and the 99th-percentile
+    /// errors are all under twice their converged values (a dark patch the global error
+    /// dilutes holds this back); -1: not within the frames run.
+    int recovery_frames_local = -1;
     std::vector<Checkpoint> checkpoints;
     /// The references' own relative standard errors: direct, indirect, caustic.
     std::array<double, 3> reference_se{};

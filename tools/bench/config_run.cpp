@@ -165,6 +165,7 @@ bool ConfigRun::frame(double budget) {
 void ConfigRun::capture_reference_scene() {
     scene_ = std::make_unique<lighting::reference::ReferenceScene>(
         lighting::reference::ReferenceScene::from_world(lighting_->photons(), lighting_->maps()));
+    regions_ = texel_regions(*scene_);
 }
 
 std::string ConfigRun::file_name(const char* phase, const char* extension) const {
@@ -200,10 +201,12 @@ Checkpoint ConfigRun::measure(const ReferenceMaps& reference, std::uint32_t at, 
         write_maps_json(options_.out / "maps" / file_name(after ? "after" : "static", ".json"),
                         *scene_, maps, reference);
     }
-    const MapErrors errors = map_errors(maps, reference);
+    const MapErrors errors = map_errors(maps, reference, regions_);
     result_.caustic_photons = maps.caustic_photons;
     result_.caustic_unbinned = maps.caustic_unbinned;
     Checkpoint checkpoint{at, after, false, 0.0, errors.indirect, errors.caustic, std::nullopt};
+    checkpoint.indirect_region = errors.indirect_region;
+    checkpoint.indirect_p99 = errors.indirect_p99;
     // Frames are rendered at checkpoints only (after the change: every checkpoint-th
     // frame and the last), not at every frame the indirect curve samples.
     const bool checkpoint_frame = at % options_.checkpoint == 0 || last;
@@ -238,14 +241,19 @@ void ConfigRun::static_phase() {
             const Checkpoint errors = measure(before, f, false);
             result_.indirect = errors.indirect;
             result_.caustic = errors.caustic;
+            result_.indirect_region = errors.indirect_region;
+            result_.indirect_p99 = errors.indirect_p99;
             result_.image = errors.image.value_or(0.0);
         }
     }
     result_.image_net = net_of_reference_noise(result_.image, result_.reference_se_image);
     result_.frame_gpu_ms = percentile(frame_gpu_ms_, 0.5);
     result_.caustic_gpu_ms = percentile(caustic_gpu_ms_, 0.5);
-    std::fprintf(stderr, "luxel-bench: %s @ %g ms: converged indirect %.4f, caustic %.4f",
-                 config.method.c_str(), config.budget_ms, result_.indirect, result_.caustic);
+    std::fprintf(stderr,
+                 "luxel-bench: %s @ %g ms: converged indirect %.4f (worst region %.4f, p99 texel "
+                 "%.4f), caustic %.4f",
+                 config.method.c_str(), config.budget_ms, result_.indirect, result_.indirect_region,
+                 result_.indirect_p99, result_.caustic);
     if (result_.image_measured) {
         std::fprintf(stderr, ", image %.4f (%.4f net of the reference's noise %.4f)", result_.image,
                      result_.image_net, result_.reference_se_image);
@@ -272,15 +280,28 @@ void ConfigRun::change_phase() {
         frame_reference(describe(change), frame_after_);
         result_.reference_se_image_after = frame_after_.relative_standard_error;
     }
-    result_.indirect_at_change = measure(after, 0, true).indirect;
+    const Checkpoint at_change = measure(after, 0, true);
+    result_.indirect_at_change = at_change.indirect;
+    result_.region_at_change = at_change.indirect_region;
+    result_.p99_at_change = at_change.indirect_p99;
     for (std::uint32_t f = 1; f <= options_.after; ++f) {
         frame(config.budget_ms);
         const Checkpoint errors = measure(after, f, true);
         result_.after_indirect.push_back(errors.indirect);
+        result_.after_region.push_back(errors.indirect_region);
+        result_.after_p99.push_back(errors.indirect_p99);
         result_.indirect_after = errors.indirect;
+        result_.region_after = errors.indirect_region;
+        result_.p99_after = errors.indirect_p99;
         result_.image_after = errors.image.value_or(result_.image_after);
-        if (result_.recovery_frames < 0 && errors.indirect < 2.0 * result_.indirect) {
+        const bool global = errors.indirect < 2.0 * result_.indirect;
+        if (result_.recovery_frames < 0 && global) {
             result_.recovery_frames = static_cast<int>(f);
+        }
+        const bool local = global && errors.indirect_region < 2.0 * result_.indirect_region &&
+                           errors.indirect_p99 < 2.0 * result_.indirect_p99;
+        if (result_.recovery_frames_local < 0 && local) {
+            result_.recovery_frames_local = static_cast<int>(f);
         }
     }
     // Only every checkpoint-th frame after the change is kept in the checkpoint table
@@ -291,9 +312,12 @@ void ConfigRun::change_phase() {
     });
     std::fprintf(stderr,
                  "luxel-bench: %s @ %g ms: after the change indirect %.4f -> %.4f, back under "
-                 "2x converged in %d frames",
+                 "2x converged in %d frames; worst region %.4f -> %.4f, p99 texel %.4f -> "
+                 "%.4f, all three under 2x converged in %d frames",
                  config.method.c_str(), config.budget_ms, result_.indirect_at_change,
-                 result_.indirect_after, result_.recovery_frames);
+                 result_.indirect_after, result_.recovery_frames, result_.region_at_change,
+                 result_.region_after, result_.p99_at_change, result_.p99_after,
+                 result_.recovery_frames_local);
     if (result_.image_measured) {
         std::fprintf(stderr, "; image %.4f at the end (reference noise %.4f)", result_.image_after,
                      result_.reference_se_image_after);
@@ -321,9 +345,12 @@ void ConfigRun::animated_phase() {
         const ReferenceMaps reference = reference_for(options_.out / "cache", instant.str(),
                                                       *scene_, options_.reference, *context_.jobs);
         result_.reference_seconds += reference.from_cache ? 0.0 : reference.seconds;
-        const MapErrors errors = map_errors(read_real_time(*lighting_, *scene_, now_), reference);
+        const MapErrors errors =
+            map_errors(read_real_time(*lighting_, *scene_, now_), reference, regions_);
         Checkpoint checkpoint{f,           false, true, played, errors.indirect, errors.caustic,
                               std::nullopt};
+        checkpoint.indirect_region = errors.indirect_region;
+        checkpoint.indirect_p99 = errors.indirect_p99;
         result_.checkpoints.push_back(checkpoint);
         result_.animated_indirect.push_back(errors.indirect);
     }

@@ -77,6 +77,7 @@ class ConfigRun {
     std::optional<lighting::reference::ReferenceCamera> camera_;
     std::unique_ptr<FrameView> view_;
     std::unique_ptr<lighting::reference::ReferenceScene> scene_;
+    std::vector<std::uint32_t> regions_;  ///< texel_regions(*scene_)
     double now_ = 0.0;
     std::vector<double> active_ms_;
     /// The reference frames of the pose before and after the change (none without the image).

@@ -1,11 +1,14 @@
 #include "map_error.hpp"
 
 #include <fstream>
+#include <map>
+#include <tuple>
 
 #include <glm/gtc/constants.hpp>
 #include <nlohmann/json.hpp>
 
 #include "luxel/lighting/reference/error_metrics.hpp"
+#include "luxel/lighting/reference/local_error.hpp"
 #include "luxel/runtime/error.hpp"
 
 namespace luxel::bench {
@@ -71,7 +74,23 @@ RealTimeMaps read_real_time(const lighting::LightingSystem& lighting, const Refe
     return out;
 }
 
-MapErrors map_errors(const RealTimeMaps& maps, const ReferenceMaps& reference) {
+std::vector<std::uint32_t> texel_regions(const ReferenceScene& scene) {
+    std::vector<std::uint32_t> regions(scene.texel_count(), 0);
+    std::map<std::tuple<std::uint32_t, int, int>, std::uint32_t> ids;
+    for (const auto& surface : scene.surfaces()) {
+        for (std::size_t i = 0; i < surface.texels.size(); ++i) {
+            const auto& texel = surface.texels[i];
+            const auto key =
+                std::make_tuple(surface.surface, texel.x / kRegionTexels, texel.y / kRegionTexels);
+            const auto id = ids.try_emplace(key, static_cast<std::uint32_t>(ids.size())).first;
+            regions[surface.first_texel + i] = id->second;
+        }
+    }
+    return regions;
+}
+
+MapErrors map_errors(const RealTimeMaps& maps, const ReferenceMaps& reference,
+                     const std::vector<std::uint32_t>& regions) {
     if (maps.indirect.size() != reference.area.size()) {
         throw Error("luxel-bench: the light maps have " + std::to_string(maps.indirect.size()) +
                     " texels, the reference " + std::to_string(reference.area.size()));
@@ -81,6 +100,10 @@ MapErrors map_errors(const RealTimeMaps& maps, const ReferenceMaps& reference) {
         lighting::reference::relative_rmse(maps.indirect, reference.indirect(), reference.area);
     errors.caustic =
         lighting::reference::relative_rmse(maps.caustic, reference.caustic(), reference.area);
+    const lighting::reference::LocalError local = lighting::reference::local_error(
+        maps.indirect, reference.indirect(), reference.area, regions);
+    errors.indirect_region = local.worst_region;
+    errors.indirect_p99 = local.texel_p99;
     return errors;
 }
 

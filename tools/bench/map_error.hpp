@@ -4,6 +4,7 @@
 // §10.2).
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <vector>
 
@@ -34,9 +35,23 @@ struct RealTimeMaps {
 struct MapErrors {
     double indirect = 0.0;  ///< relRMSE, texel areas as weights
     double caustic = 0.0;
+    /// The indirect light's local error (lighting::reference::local_error): the worst 8x8-texel
+    /// region of a surface, and the 99th-percentile texel, in units of the level's RMS
+    /// reference indirect irradiance.
+    double indirect_region = 0.0;
+    double indirect_p99 = 0.0;
 };
 
-[[nodiscard]] MapErrors map_errors(const RealTimeMaps& maps, const ReferenceMaps& reference);
+/// The side of the square page blocks the local error groups texels by.
+inline constexpr int kRegionTexels = 8;
+
+/// Per reference texel (global order), the id of its region: the kRegionTexels-square block of
+/// its page it lies in, per surface (so a region never mixes two surfaces), numbered densely.
+[[nodiscard]] std::vector<std::uint32_t> texel_regions(
+    const lighting::reference::ReferenceScene& scene);
+
+[[nodiscard]] MapErrors map_errors(const RealTimeMaps& maps, const ReferenceMaps& reference,
+                                   const std::vector<std::uint32_t>& regions);
 
 /// Per texel: surface, x, y, area, and real-time and reference indirect and caustic (and the
 /// reference's direct), for looking at where an error comes from (--dump-maps).
