@@ -29,6 +29,7 @@ lighting::LightingConfig BenchConfig::lighting() const {
     config.texels_per_gather_unit = texels_per_unit;
     config.maps.iim_filter_radius = static_cast<int>(filter);
     config.maps.refine_passes = refine;
+    config.maps.local_passes = local != 0;
     return config;
 }
 
@@ -36,8 +37,8 @@ std::string BenchConfig::knobs() const {
     std::ostringstream out;
     out << "photons=" << groups << "x" << per_group << " aim_n=" << aim_n << " rays=" << rays
         << " texels_per_unit=" << texels_per_unit << " filter=" << filter << " refine=" << refine
-        << " caustics=" << caustic_photons << "x" << caustic_slices << " backend=" << backend
-        << " kernel=" << kernel;
+        << " local=" << local << " caustics=" << caustic_photons << "x" << caustic_slices
+        << " backend=" << backend << " kernel=" << kernel;
     return out.str();
 }
 
@@ -71,6 +72,8 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.filter = whole(value);
             } else if (sweep.knob == "refine") {
                 c.refine = whole(value);
+            } else if (sweep.knob == "local") {
+                c.local = whole(value);
             } else if (sweep.knob == "backend") {
                 c.backend = value;
             } else if (sweep.knob == "kernel") {

@@ -22,6 +22,7 @@ struct BenchConfig {
     std::uint32_t rays = 64;             ///< gather rays per texel (CPU backend)
     std::uint32_t texels_per_unit = 20;  ///< the paper gathers 20 texels per frame
     std::uint32_t filter = 2;            ///< IIM filter radius in texels (luxel's default)
+    std::uint32_t local = 1;    ///< local gather passes after a geometry change (1: on, default)
     std::uint32_t refine = 16;  ///< gather passes averaged while lighting is unchanged (default)
     std::uint32_t caustic_photons = 10'000;  ///< per (generator, light) pair; the paper's
     std::uint32_t caustic_slices = 8;        ///< ... over 8 frames

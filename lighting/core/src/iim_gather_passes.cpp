@@ -29,6 +29,46 @@ void IimGatherPasses::sync() {
         states_.push_back(std::move(state));
         refinements_.emplace_back();
     }
+    if (settings_.local_passes) {
+        for (const MapRegistry::NearbyChange& change : registry_.nearby_changes()) {
+            mark_changed(change.surface, change.region);
+        }
+    }
+    const bool any_stale = std::any_of(states_.begin(), states_.end(), [](const auto& state) {
+        return !state.stale_local_texels.empty();
+    });
+    if (any_stale && aims_.current()) {
+        for (GatherPassState& state : states_) {
+            for (const std::uint32_t i : state.stale_local_texels) {
+                if (i < state.changed_texels.size() && state.changed_texels[i] == 0) {
+                    state.changed_texels[i] = 1;
+                    ++state.changed_count;
+                }
+            }
+            state.stale_local_texels.clear();
+        }
+    }
+}
+
+void IimGatherPasses::mark_changed(std::uint32_t surface, const GeometryChange& region) {
+    GatherPassState& state = states_.at(surface);
+    const std::vector<GatherTexel> texels = registry_.world_texels(surface);
+    state.changed_texels.resize(texels.size(), 0);
+    for (std::size_t i = 0; i < texels.size(); ++i) {
+        const glm::vec3& p = texels[i].position;
+        const bool inside = glm::all(glm::lessThanEqual(region.min, p)) &&
+                            glm::all(glm::lessThanEqual(p, region.max));
+        if (inside && state.changed_texels[i] == 0) {
+            state.changed_texels[i] = 1;
+            ++state.changed_count;
+        }
+    }
+}
+
+std::size_t IimGatherPasses::pass_size(std::uint32_t surface) const {
+    const GatherPassState& state = states_[surface];
+    return state.subset.empty() ? registry_.surface(surface).texels.texels.size()
+                                : state.subset.size();
 }
 
 bool IimGatherPasses::lighting_changed(std::uint32_t s, bool aims_are_current) const {
@@ -36,11 +76,12 @@ bool IimGatherPasses::lighting_changed(std::uint32_t s, bool aims_are_current) c
     const SurfacePhotons& photons = map.surface(s);
     const GatherPassState& state = states_[s];
     // An area light's emission changed: its direct light on every surface comes from the
-    // gather, so every surface gathers again.
+    // gather, so every surface gathers again. Geometry changed near some texels and no means
+    // are kept to re-gather only those: the whole surface gathers again.
     return relative(deltas_.indirect(map, s), photons.stored_energy.value()) >
                settings_.iim_threshold ||
            state.emission_version != registry_.emission_version() ||
-           (state.read_stale_aim && aims_are_current);
+           (state.read_stale_aim && aims_are_current) || (state.changed_count > 0 && !keeps_mean());
 }
 
 bool IimGatherPasses::wants_refinement(std::uint32_t s) const {
@@ -59,7 +100,8 @@ bool IimGatherPasses::wants_gather(std::uint32_t s, bool ready, bool current) co
     // Refinement only over current AIMs: an average of passes over different AIMs would mix old
     // light into new.
     const bool refine = !changed && current && wants_refinement(s);
-    return state.in_progress || (ready && (!state.completed_once || changed || refine));
+    const bool local = state.changed_count > 0;
+    return state.in_progress || (ready && (!state.completed_once || changed || local || refine));
 }
 
 double IimGatherPasses::priority(std::uint32_t s, bool current) const {
@@ -71,17 +113,20 @@ double IimGatherPasses::priority(std::uint32_t s, bool current) const {
     const bool changed = lighting_changed(s, current);
     // Passes in progress first, the furthest along first, so passes finish one after
     // another instead of all crawling together (a pass shows only when complete); then
-    // surfaces never gathered; then the largest delta_i / area; refinement last: a
-    // refinement pass in progress, then the surfaces with the fewest passes averaged.
-    // A change never waits for refinement (a refinement pass of a surface whose light
-    // changed is dropped and started afresh by gather()).
-    const double done =
-        static_cast<double>(state.cursor) / static_cast<double>(mapped.texels.texels.size());
+    // surfaces never gathered; then texels near a geometry change (a local pass: small, and
+    // what a player sees go wrong, such as the dark footprint of a crate that slid away); then
+    // the largest delta_i / area; refinement last: a refinement pass in progress, then the
+    // surfaces with the fewest passes averaged. A change never waits for refinement (a
+    // refinement pass of a surface whose light or geometry changed is dropped by gather()).
+    const double done = static_cast<double>(state.cursor) /
+                        static_cast<double>(std::max<std::size_t>(pass_size(s), 1));
     double rank = delta / safe_area(mapped.texels.area);
     if (state.in_progress && !state.refines) {
         rank = std::numeric_limits<double>::max() / 2.0 * (1.0 + done);
     } else if (!state.completed_once) {
         rank = std::numeric_limits<double>::max() / 4.0;
+    } else if (!changed && state.changed_count > 0) {
+        rank = std::numeric_limits<double>::max() / 8.0;
     } else if (!changed && state.in_progress) {
         rank = -0.5 + 0.25 * done;
     } else if (!changed) {
@@ -126,18 +171,55 @@ std::optional<std::uint32_t> IimGatherPasses::next_surface() const {
 void IimGatherPasses::start_pass(std::uint32_t surface) {
     // Changes from now on need another pass; those before are what this pass sees.
     GatherPassState& state = states_[surface];
+    const RefinementStats& refinement = refinements_[surface];
+    const std::size_t total = registry_.surface(surface).texels.texels.size();
+    const bool current = aims_.current();
+    const bool changed = lighting_changed(surface, current);
     state.in_progress = true;
     state.cursor = 0;
-    state.irradiance.assign(registry_.surface(surface).texels.texels.size(), glm::vec3(0.0f));
-    const bool current = aims_.current();
-    state.refines = state.completed_once && !lighting_changed(surface, current) && current &&
-                    wants_refinement(surface);
+    state.irradiance.assign(total, glm::vec3(0.0f));
+    state.subset.clear();
+    state.changed_texels.resize(total, 0);
+    state.local = state.completed_once && !changed && state.changed_count > 0 && keeps_mean() &&
+                  refinement.texel_passes.size() == total;
+    state.refines =
+        !state.local && state.completed_once && !changed && current && wants_refinement(surface);
+    if (state.local) {
+        for (std::uint32_t i = 0; i < total; ++i) {
+            if (state.changed_texels[i] != 0) {
+                state.subset.push_back(i);
+            }
+        }
+    } else if (state.refines && refinement.texel_passes.size() == total) {
+        // Only the texels still short of refine_passes (after a local pass, the few it
+        // restarted); all of them when they are level, as every pass but local ones leaves them.
+        for (std::uint32_t i = 0; i < total; ++i) {
+            if (refinement.texel_passes[i] < settings_.refine_passes) {
+                state.subset.push_back(i);
+            }
+        }
+        if (state.subset.size() == total) {
+            state.subset.clear();
+        }
+    }
+    if (!state.refines) {
+        // This pass gathers every changed texel again (a local pass is made of them).
+        std::fill(state.changed_texels.begin(), state.changed_texels.end(), 0);
+        state.changed_count = 0;
+    }
     ++state.started;
-    state.emission_version = registry_.emission_version();
+    ++passes_;
     state.aim_rebuilds_at_start = aims_.rebuilds();
+    if (state.local) {
+        // The rest of the surface keeps its passes: the photons' change (delta_i, below the
+        // threshold or a local pass would not run) and the AIM's state stay for the next full
+        // pass to consume; only this pass's texels remember a stale AIM.
+        state.local_read_stale_aim = !current;
+        return;
+    }
+    state.emission_version = registry_.emission_version();
     state.read_stale_aim = !current;
     deltas_.consume_indirect(world_.photon_map(), surface);
-    ++passes_;
 }
 
 std::size_t IimGatherPasses::gather(std::uint32_t surface, std::size_t max_texels,
@@ -147,8 +229,9 @@ std::size_t IimGatherPasses::gather(std::uint32_t surface, std::size_t max_texel
     if (registry_.page_of(surface) < 0 || mapped.texels.texels.empty() || max_texels == 0) {
         return 0;
     }
-    if (state.in_progress && state.refines && lighting_changed(surface, aims_.current())) {
-        state.in_progress = false;  // the light changed under a refinement pass
+    if (state.in_progress && state.refines &&
+        (state.changed_count > 0 || lighting_changed(surface, aims_.current()))) {
+        state.in_progress = false;  // the light or the geometry changed under a refinement pass
         filters_.erase(surface);
     }
     if (!state.in_progress && !aims_.ready()) {
@@ -159,19 +242,31 @@ std::size_t IimGatherPasses::gather(std::uint32_t surface, std::size_t max_texel
     if (!state.in_progress) {
         start_pass(surface);
     }
-    const std::size_t total = mapped.texels.texels.size();
+    const std::size_t size = pass_size(surface);
     const std::size_t first = state.cursor;
-    const std::size_t count = std::min(max_texels, total - first);
+    const std::size_t count = std::min(max_texels, size - first);
     if (count > 0) {
         std::vector<GatherTexel> all = registry_.world_texels(surface);
         for (GatherTexel& texel : all) {
             texel.pass = state.started;
         }
-        const std::span<const GatherTexel> batch(all.data() + first, count);
-        gatherer.gather(batch, std::span<glm::vec3>(state.irradiance.data() + first, count));
+        if (state.subset.empty()) {
+            const std::span<const GatherTexel> batch(all.data() + first, count);
+            gatherer.gather(batch, std::span<glm::vec3>(state.irradiance.data() + first, count));
+        } else {
+            std::vector<GatherTexel> batch(count);
+            std::vector<glm::vec3> out(count);
+            for (std::size_t k = 0; k < count; ++k) {
+                batch[k] = all[state.subset[first + k]];
+            }
+            gatherer.gather(batch, out);
+            for (std::size_t k = 0; k < count; ++k) {
+                state.irradiance[state.subset[first + k]] = out[k];
+            }
+        }
         state.cursor = first + count;
         texels_gathered_ += count;
-        if (state.cursor >= total) {
+        if (state.cursor >= size) {
             begin_filter(surface);
         }
     }
@@ -187,61 +282,99 @@ std::size_t IimGatherPasses::gather(std::uint32_t surface, std::size_t max_texel
     return count;
 }
 
-/// A completed pass's values go into the surface's mean (refinement) and a filter starts over
-/// them: a tent of radius iim_filter_radius texels over the surface's own texels (final
-/// gathering's noise is per texel while indirect light varies slowly, so a small filter removes
-/// most of the noise for little bias), noise-aware from the third pass. The filter runs in
-/// slices (gather() gives it the budget its call has left), then finish_pass() fades it in.
-void IimGatherPasses::begin_filter(std::uint32_t surface) {
-    const MapSurface& mapped = registry_.surface(surface);
+std::vector<glm::vec3> IimGatherPasses::fold_pass(std::uint32_t surface) {
     GatherPassState& state = states_[surface];
     RefinementStats& refinement = refinements_[surface];
-    const std::size_t count = mapped.texels.texels.size();
-    const bool refining = state.refines && refinement.passes_averaged > 0 &&
-                          refinement.mean.size() == count && refinement.m2.size() == count;
-    state.passes_when_done = refining ? refinement.passes_averaged + 1 : 1;
-    const std::uint32_t passes = state.passes_when_done;
-    // The per-texel mean of the passes (unfiltered) and, for the noise estimate, the sum of
-    // squared deviations (Welford's update, in double per step so long runs do not drift).
-    // Kept only while more passes may be averaged in.
-    const bool keep_mean = refine_ && settings_.refine_passes > 1;
+    const std::size_t count = registry_.surface(surface).texels.texels.size();
     std::vector<glm::vec3> values(count);
-    if (keep_mean) {
-        refinement.mean.resize(count);
-        refinement.m2.resize(count);
-        for (std::size_t i = 0; i < count; ++i) {
-            const glm::dvec3 x(sanitized(state.irradiance[i]));
-            if (!refining) {
-                refinement.mean[i] = glm::vec3(x);
-                refinement.m2[i] = glm::vec3(0.0f);
-            } else {
-                const glm::dvec3 old_mean(refinement.mean[i]);
-                const glm::dvec3 mean = old_mean + (x - old_mean) / static_cast<double>(passes);
-                refinement.mean[i] = glm::vec3(mean);
-                refinement.m2[i] =
-                    glm::vec3(glm::dvec3(refinement.m2[i]) + (x - old_mean) * (x - mean));
-            }
-            values[i] = refinement.mean[i];
-        }
-    } else {
-        refinement.mean = {};
-        refinement.m2 = {};
+    if (!keeps_mean()) {
+        refinement = {};
         for (std::size_t i = 0; i < count; ++i) {
             values[i] = sanitized(state.irradiance[i]);
         }
+        state.passes_when_done = 1;
+        return values;
     }
-    // With three passes or more each texel knows its noise: the variance of its mean, summed
-    // over the channels. The filter then leaves out neighbours whose difference is not
-    // explained by the noise (a range weight, as a bilateral filter's, in units of the noise):
-    // noise is smoothed, while a real feature such as the focus of light under a glass sphere
-    // (one texel, several times its neighbours) keeps its value. Fewer passes: the plain tent.
+    // The per-texel mean of the passes (unfiltered) and, for the noise estimate, the sum of
+    // squared deviations (Welford's update, in double per step so long runs do not drift), each
+    // texel with its own count: a local pass restarts the texels it gathered, and refinement
+    // passes then bring those back up while the rest keep theirs. Kept while refinement is on
+    // (two vec3 and a count per texel), since a local pass needs the other texels' means.
+    const bool have_means = refinement.mean.size() == count && refinement.m2.size() == count &&
+                            refinement.texel_passes.size() == count;
+    const bool restart_all = !have_means || (!state.refines && !state.local);
+    if (restart_all) {
+        refinement.mean.assign(count, glm::vec3(0.0f));
+        refinement.m2.assign(count, glm::vec3(0.0f));
+        refinement.texel_passes.assign(count, 0);
+    }
+    const auto fold = [&](std::size_t i) {
+        const glm::dvec3 x(sanitized(state.irradiance[i]));
+        std::uint32_t& n = refinement.texel_passes[i];
+        if (!state.refines || n == 0) {
+            n = 1;
+            refinement.mean[i] = glm::vec3(x);
+            refinement.m2[i] = glm::vec3(0.0f);
+            return;
+        }
+        n += 1;
+        const glm::dvec3 old_mean(refinement.mean[i]);
+        const glm::dvec3 mean = old_mean + (x - old_mean) / static_cast<double>(n);
+        refinement.mean[i] = glm::vec3(mean);
+        refinement.m2[i] = glm::vec3(glm::dvec3(refinement.m2[i]) + (x - old_mean) * (x - mean));
+    };
+    if (state.subset.empty() || restart_all) {
+        for (std::size_t i = 0; i < count; ++i) {
+            fold(i);
+        }
+    } else {
+        for (const std::uint32_t i : state.subset) {
+            fold(i);
+        }
+    }
+    std::uint32_t fewest = std::numeric_limits<std::uint32_t>::max();
+    for (std::size_t i = 0; i < count; ++i) {
+        values[i] = refinement.mean[i];
+        fewest = std::min(fewest, refinement.texel_passes[i]);
+    }
+    state.passes_when_done = count > 0 ? fewest : 0;
+    return values;
+}
+
+/// A completed pass's values go into the texels' means (refinement) and a filter starts over
+/// them: a tent of radius iim_filter_radius texels over the surface's own texels (final
+/// gathering's noise is per texel while indirect light varies slowly, so a small filter removes
+/// most of the noise for little bias), noise-aware where texels have three passes or more. The
+/// filter runs in slices (gather() gives it the budget its call has left), then finish_pass()
+/// fades it in.
+void IimGatherPasses::begin_filter(std::uint32_t surface) {
+    const MapSurface& mapped = registry_.surface(surface);
+    GatherPassState& state = states_[surface];
+    const RefinementStats& refinement = refinements_[surface];
+    std::vector<glm::vec3> values = fold_pass(surface);
+    const std::size_t count = values.size();
+    // With three passes or more a texel knows its noise: the variance of its mean, summed over
+    // the channels. The filter then leaves out neighbours whose difference is not explained by
+    // the noise (a range weight, as a bilateral filter's, in units of the noise): noise is
+    // smoothed, while a real feature such as the focus of light under a glass sphere (one
+    // texel, several times its neighbours) keeps its value. A texel with fewer passes (all of
+    // them early on; after a local pass, the ones it restarted) has no estimate: an infinite
+    // variance, so its pairs weigh as in the plain tent. No texel with three: the plain tent.
     const double sigmas = static_cast<double>(settings_.iim_filter_noise_sigmas);
     std::vector<double> noise;
-    if (sigmas > 0.0 && passes >= 3 && keep_mean) {
+    const bool any_known =
+        keeps_mean() && std::any_of(refinement.texel_passes.begin(), refinement.texel_passes.end(),
+                                    [](std::uint32_t n) { return n >= 3; });
+    if (sigmas > 0.0 && any_known && refinement.texel_passes.size() == count) {
         noise.resize(count);
-        const double scale = 1.0 / (static_cast<double>(passes - 1) * static_cast<double>(passes));
         for (std::size_t i = 0; i < count; ++i) {
+            const std::uint32_t n = refinement.texel_passes[i];
+            if (n < 3) {
+                noise[i] = std::numeric_limits<double>::infinity();
+                continue;
+            }
             const glm::dvec3 m2(refinement.m2[i]);
+            const double scale = 1.0 / (static_cast<double>(n - 1) * static_cast<double>(n));
             noise[i] = (m2.x + m2.y + m2.z) * scale;
         }
     }
@@ -261,7 +394,11 @@ void IimGatherPasses::finish_pass(std::uint32_t surface, double now_seconds) {
         return;
     }
     const IimPassFilter& filter = *found->second;
-    if (aims_.rebuilds() != state.aim_rebuilds_at_start) {
+    const bool aim_changed = aims_.rebuilds() != state.aim_rebuilds_at_start;
+    if (state.local && (state.local_read_stale_aim || aim_changed)) {
+        state.stale_local_texels.insert(state.stale_local_texels.end(), state.subset.begin(),
+                                        state.subset.end());
+    } else if (!state.local && aim_changed) {
         state.read_stale_aim = true;  // an AIM changed under the pass
     }
     const std::int32_t page_id = registry_.page_of(surface);
@@ -296,12 +433,8 @@ void IimGatherPasses::finish_pass(std::uint32_t surface, double now_seconds) {
     const int top = std::max(bounds.y - 1, 0);
     page.current.mark_changed(
         {left, top, std::min(bounds.z + 2, size) - left, std::min(bounds.w + 2, size) - top});
+    // Done refining or not, the means stay (fold_pass says why).
     refinement.passes_averaged = state.passes_when_done;
-    if (refinement.passes_averaged >= settings_.refine_passes) {
-        // Done refining: the IIM holds the filtered mean.
-        refinement.mean = {};
-        refinement.m2 = {};
-    }
     state.in_progress = false;
     state.completed_once = true;
     filters_.erase(found);

@@ -68,6 +68,16 @@ class IimGatherPasses {
     [[nodiscard]] bool wants_refinement(std::uint32_t s) const;
     /// Starts a pass over `surface`: what changed until now is what it sees.
     void start_pass(std::uint32_t surface);
+    /// Marks the surface's texels inside `region` as changed (MapRegistry::nearby_changes).
+    void mark_changed(std::uint32_t surface, const GeometryChange& region);
+    /// Whether the per-texel means are kept (refinement on), which local passes need: without
+    /// them a geometry change re-gathers the whole surface.
+    [[nodiscard]] bool keeps_mean() const { return refine_ && settings_.refine_passes > 1; }
+    /// The texels of the pass in progress: its subset's size, or all of the surface's.
+    [[nodiscard]] std::size_t pass_size(std::uint32_t surface) const;
+    /// Folds a completed pass into the per-texel means (Welford) and returns what the filter
+    /// reads: the means, or without them the pass's own values.
+    std::vector<glm::vec3> fold_pass(std::uint32_t surface);
     /// A pass's last texel is gathered: updates the mean and starts its filter.
     void begin_filter(std::uint32_t surface);
     /// The filter is done: fades the pass into the IIM.

@@ -142,6 +142,37 @@ void MapRegistry::refresh_transform(std::uint32_t surface) {
     const double scale =
         std::cbrt(std::abs(static_cast<double>(glm::determinant(glm::mat3(mapped.to_world)))));
     mapped.world_metres_per_texel = mapped.texels.metres_per_texel * scale;
+    // An empty box (min > max) meets nothing.
+    const GeometryChange empty{glm::vec3(std::numeric_limits<float>::max()),
+                               glm::vec3(std::numeric_limits<float>::lowest())};
+    GeometryChange box = empty;
+    for (const GatherTexel& texel : world_texels(surface)) {
+        box.min = glm::min(box.min, texel.position);
+        box.max = glm::max(box.max, texel.position);
+    }
+    if (surface_boxes_.size() <= surface) {
+        surface_boxes_.resize(surface + 1, empty);
+    }
+    surface_boxes_[surface] = box;
+}
+
+void MapRegistry::find_nearby_changes() {
+    nearby_changes_.clear();
+    for (const GeometryChange& change : world_.geometry_changes()) {
+        if (!finite_vector(change.min) || !finite_vector(change.max)) {
+            continue;
+        }
+        const glm::vec3 margin = glm::vec3(0.5f * glm::length(change.max - change.min));
+        const GeometryChange region{change.min - margin, change.max + margin};
+        for (std::uint32_t s = 0; s < surfaces_.size() && s < surface_boxes_.size(); ++s) {
+            const GeometryChange& box = surface_boxes_[s];
+            const bool meets = glm::all(glm::lessThanEqual(box.min, region.max)) &&
+                               glm::all(glm::lessThanEqual(region.min, box.max));
+            if (meets && live(s)) {
+                nearby_changes_.push_back({s, region});
+            }
+        }
+    }
 }
 
 void MapRegistry::sync() {
@@ -171,6 +202,7 @@ void MapRegistry::sync() {
             refresh_transform(surface);
         }
     });
+    find_nearby_changes();
 }
 
 std::vector<GatherTexel> MapRegistry::world_texels(std::uint32_t surface) const {

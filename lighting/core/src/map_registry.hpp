@@ -54,6 +54,18 @@ class MapRegistry {
     /// The world-space texel centres of a surface (what its AIM rebuild and gathers start from).
     [[nodiscard]] std::vector<GatherTexel> world_texels(std::uint32_t surface) const;
 
+    /// Where the geometry changed near a surface in the last sync(): the photon world's change
+    /// box grown by its own half-diagonal (an object changes the indirect light within about its
+    /// own size of it: the floor under a crate, the wall beside it), and the surfaces whose
+    /// texels' box meets it. Empty when nothing moved, appeared or went away.
+    struct NearbyChange {
+        std::uint32_t surface = 0;
+        GeometryChange region;
+    };
+    [[nodiscard]] const std::vector<NearbyChange>& nearby_changes() const {
+        return nearby_changes_;
+    }
+
   private:
     void add_surface(std::uint32_t surface);
     void refresh_transform(std::uint32_t surface);
@@ -61,6 +73,8 @@ class MapRegistry {
     /// returns whether it changed.
     bool refresh_emission(std::uint32_t surface);
     std::int32_t page_index(const scene::Scene* source, int page, int page_size);
+    /// Collects nearby_changes_ from the photon world's geometry changes.
+    void find_nearby_changes();
 
     ecs::Registry& registry_;
     const PhotonWorld& world_;
@@ -69,6 +83,9 @@ class MapRegistry {
     /// Per page texel, the surface that owns it (-1: padding or unused).
     std::vector<std::vector<std::int32_t>> owners_;
     std::vector<MapSurface> surfaces_;
+    /// Per surface, the world box of its texel centres (min > max: none).
+    std::vector<GeometryChange> surface_boxes_;
+    std::vector<NearbyChange> nearby_changes_;
     std::map<std::pair<const scene::Scene*, int>, std::int32_t> pages_;
     std::map<ecs::Entity, std::vector<std::uint32_t>> surfaces_of_;
     ecs::Observer<ecs::WorldTransform> moves_;

@@ -38,6 +38,10 @@ class PhotonGeometry {
     void commit() { scene_.commit(); }
     /// Whether any object was added, removed or moved since the last call.
     [[nodiscard]] bool take_changed();
+    /// Where geometry changed since the last clear_changes(): each object's box where it was and
+    /// where it is now.
+    [[nodiscard]] const std::vector<GeometryChange>& changes() const { return changes_; }
+    void clear_changes() { changes_.clear(); }
 
     [[nodiscard]] std::optional<ObjectId> object(ecs::Entity entity) const;
     /// The sphere around the whole scene (directional lights' discs, caustic emitters).
@@ -61,7 +65,13 @@ class PhotonGeometry {
     std::map<std::pair<const scene::Scene*, int>, std::uint32_t> material_ids_;
     /// (generator entity, shared material id) -> the generator's own material id.
     std::map<std::pair<ecs::Entity, std::uint32_t>, std::uint32_t> generator_materials_;
+    /// The world box of an object as last added or moved: a move records it as where the
+    /// object was.
+    [[nodiscard]] GeometryChange world_box(ObjectId object) const;
+
     std::map<ecs::Entity, ObjectId> objects_;
+    std::map<ObjectId, GeometryChange> object_boxes_;  ///< world boxes, by object
+    std::vector<GeometryChange> changes_;
     bool changed_ = false;
 };
 

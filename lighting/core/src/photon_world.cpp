@@ -29,6 +29,7 @@ PhotonWorld::~PhotonWorld() = default;
 
 void PhotonWorld::sync() {
     last_sync_ = {};
+    geometry_->clear_changes();
     std::vector<ecs::Entity> light_touched;
     std::vector<ecs::Entity> meshes_added;
     sync_meshes(light_touched, meshes_added);
@@ -155,6 +156,10 @@ void PhotonWorld::sync_lights(std::vector<ecs::Entity>& light_touched) {
 
 CausticFrameStats PhotonWorld::update_caustics(std::uint64_t frame, JobSystem& jobs) {
     return caustics_->update(frame, *geometry_, jobs);
+}
+
+const std::vector<GeometryChange>& PhotonWorld::geometry_changes() const {
+    return geometry_->changes();
 }
 
 std::span<const CausticPair> PhotonWorld::caustics() const {

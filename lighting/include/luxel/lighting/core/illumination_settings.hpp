@@ -44,6 +44,13 @@ struct IlluminationSettings {
     /// k this many standard deviations of the texels' means (0: the plain tent). Noise is
     /// smoothed; a feature sharper than the tent (the focus under a glass sphere) is kept.
     float iim_filter_noise_sigmas = 2.5f;
+    /// Where geometry moves, appears or goes away, the texels within about the object's own
+    /// size of where it was and where it is are gathered again at once, in a pass of their own
+    /// that keeps every other texel's refinement (docs/METHOD.md §6.8): without it, a crate
+    /// sliding off a floor leaves the floor's IIM dark where it stood until the photons' change
+    /// there passes iim_threshold, which a small object's may never do. Off: the paper's
+    /// behaviour, for measuring the difference.
+    bool local_passes = true;
 };
 
 }  // namespace luxel::lighting

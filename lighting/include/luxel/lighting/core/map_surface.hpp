@@ -52,6 +52,22 @@ struct GatherPassState {
     std::vector<glm::vec3> irradiance;
     /// The pass in progress refines (averages into) the IIM instead of replacing it.
     bool refines = false;
+    /// The pass in progress re-gathers only the texels near a geometry change (docs/METHOD.md
+    /// §6.8), replacing their values and keeping every other texel's refinement.
+    bool local = false;
+    /// The texels (indices into the surface's texels) the pass in progress gathers; empty: all.
+    std::vector<std::uint32_t> subset;
+    /// Per texel, whether geometry changed near it since the pass that last covered it (a
+    /// crate moved off the floor: the floor under it now sees the room). Cleared by the pass
+    /// that gathers it again.
+    std::vector<std::uint8_t> changed_texels;
+    std::size_t changed_count = 0;
+    /// The local pass in progress read an AIM that was out of date (read_stale_aim's case for a
+    /// local pass, which keeps the surface's own flag as it is).
+    bool local_read_stale_aim = false;
+    /// Texels of completed local passes that read a stale AIM: changed again once every AIM is
+    /// current, so a crate's footprint is not left at the light of the AIM before the move.
+    std::vector<std::uint32_t> stale_local_texels;
     /// Passes averaged once the pass in progress is in (set when its gathering completes).
     std::uint32_t passes_when_done = 0;
     /// Passes started on this surface (each gathers with new samples).
@@ -73,9 +89,12 @@ struct GatherPassState {
 /// last changed, their mean irradiance per texel before filtering, and the sum of squared
 /// deviations from it (Welford), kept only while refining is possible.
 struct RefinementStats {
+    /// The fewest passes any texel has averaged (a local pass restarts its texels at 1).
     std::uint32_t passes_averaged = 0;
     std::vector<glm::vec3> mean;
     std::vector<glm::vec3> m2;
+    /// Per texel, the passes averaged in its mean.
+    std::vector<std::uint32_t> texel_passes;
 };
 
 /// Counters since construction.

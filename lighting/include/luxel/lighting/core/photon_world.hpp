@@ -52,6 +52,14 @@ struct CausticFrameStats {
     CausticTraceCounters trace;
 };
 
+/// Where the geometry changed in one sync: the world-space box of an object where it was or
+/// where it is now (a move gives both, an object added its new box, one removed its old box).
+/// The maps re-examine what they decided from the geometry there (docs/METHOD.md §6.8).
+struct GeometryChange {
+    glm::vec3 min{0.0f};
+    glm::vec3 max{0.0f};
+};
+
 /// What the last PhotonWorld::sync() took in.
 struct PhotonSyncStats {
     std::uint32_t objects_moved = 0;     ///< mesh entities whose transform changed
@@ -101,6 +109,8 @@ class PhotonWorld {
     /// Whether some caustic list has slices waiting for a retrace.
     [[nodiscard]] bool caustics_pending() const;
     [[nodiscard]] const PhotonSyncStats& last_sync() const { return last_sync_; }
+    /// The boxes where geometry changed in the last sync() (empty when nothing moved).
+    [[nodiscard]] const std::vector<GeometryChange>& geometry_changes() const;
     /// Counts for the FeaturePlan: lights (enabled or not), caustic generators, and mesh
     /// objects that may move.
     [[nodiscard]] std::size_t light_count() const;
