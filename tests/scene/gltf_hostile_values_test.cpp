@@ -162,6 +162,39 @@ TEST(GltfHostileValues, CountsPastTheLimitsAreRefusedBeforeTheyAreRead) {
     EXPECT_EQ(load_error(file.text(), options), "(loaded)");
 }
 
+TEST(GltfHostileValues, PlacedLightsAreCountedOncePerNode) {
+    // One light, placed by 300 nodes: 300 lights in the world, each with a shadow map.
+    GltfBuilder file = triangle();
+    file.document["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}}};
+    file.document["extensionsUsed"] = {"KHR_lights_punctual"};
+    for (int i = 0; i < 300; ++i) {
+        file.document["nodes"].push_back(
+            {{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+        file.document["scenes"][0]["nodes"].push_back(i + 1);
+    }
+    std::string message = load_error(file.text());
+    EXPECT_NE(message.find(kName), std::string::npos) << message;
+    EXPECT_NE(message.find("300 placed lights would each get a shadow map when drawn, more than "
+                           "the limit of 256 (shadowed-lights)"),
+              std::string::npos)
+        << message;
+
+    luxel::scene::LoadOptions options;
+    options.max_shadowed_lights = 300;
+    EXPECT_EQ(load_error(file.text(), options), "(loaded)");
+    options.max_light_instances = 299;
+    message = load_error(file.text(), options);
+    EXPECT_NE(message.find("300 nodes place a light, more than the limit of 299 "
+                           "(light-instances)"),
+              std::string::npos)
+        << message;
+    // Both are names --limit knows.
+    EXPECT_NO_THROW(luxel::scene::set_load_limit(options, "shadowed-lights=1k"));
+    EXPECT_EQ(options.max_shadowed_lights, 1024u);
+    EXPECT_NO_THROW(luxel::scene::set_load_limit(options, "light-instances=2"));
+    EXPECT_EQ(options.max_light_instances, 2u);
+}
+
 /// A PNG signature and IHDR declaring `width` x `height`: all a header read needs.
 std::vector<std::uint8_t> png_header(std::uint32_t width, std::uint32_t height) {
     std::vector<std::uint8_t> bytes = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n',
