@@ -34,8 +34,9 @@ scene::Primitive chart(const std::vector<glm::vec2>& uvs) {
 
 /// The definition, searched over every cell: the distance from `point` to the nearest closed
 /// unit square that no triangle's texel coverage touches. The footprint's grid is the chart's
-/// bounding box with a cell of margin, and everything past it counts as empty, so covered cells
-/// are collected over the whole page and the search runs a few cells past it.
+/// bounding box, clipped to the page, with a cell of margin, and everything past it counts as
+/// empty: covered cells are collected over the page and its margin, and the search runs a few
+/// cells past that.
 double brute_force_distance(const scene::Primitive& primitive, int page_size,
                             const glm::dvec2& point) {
     std::set<std::pair<int, int>> covered;
@@ -44,7 +45,8 @@ double brute_force_distance(const scene::Primitive& primitive, int page_size,
             return glm::dvec2(primitive.texcoords1[primitive.indices[t + k]]) *
                    static_cast<double>(page_size);
         };
-        scene::for_each_covered_texel(corner(0), corner(1), corner(2), {0, 0, page_size, page_size},
+        scene::for_each_covered_texel(corner(0), corner(1), corner(2),
+                                      {-1, -1, page_size + 1, page_size + 1},
                                       [&](int x, int y) { covered.emplace(x, y); });
     }
     double nearest = std::numeric_limits<double>::max();
@@ -64,7 +66,9 @@ double brute_force_distance(const scene::Primitive& primitive, int page_size,
 TEST(SurfaceFootprint, BorderDistancesMatchABruteForceSearch) {
     constexpr int kPage = 24;
     std::mt19937 random(7);
-    std::uniform_real_distribution<float> coordinate(0.1f, 0.9f);
+    std::uniform_real_distribution<float> inside(0.1f, 0.9f);
+    // Every third chart runs off the page, where the grid stops and counts as empty.
+    std::uniform_real_distribution<float> across(-0.3f, 1.3f);
     std::size_t centres = 0;
     std::size_t others = 0;
     for (int trial = 0; trial < 40; ++trial) {
@@ -72,6 +76,7 @@ TEST(SurfaceFootprint, BorderDistancesMatchABruteForceSearch) {
         std::vector<glm::vec2> uvs;
         const int triangles = 1 + trial % 6;
         for (int k = 0; k < 3 * triangles; ++k) {
+            auto& coordinate = trial % 3 == 2 ? across : inside;
             uvs.emplace_back(coordinate(random), coordinate(random));
         }
         const scene::Primitive primitive = chart(uvs);

@@ -123,12 +123,12 @@ std::vector<float> SurfaceFootprint::border_distances(const SurfaceTexels& texel
     std::vector<std::int32_t> up(w * h);
     std::vector<std::int32_t> down(w * h);
     for (int x = 0; x < width_; ++x) {
-        std::int32_t run = 1;
+        std::int32_t run = 0;  // row -1
         for (int y = 0; y < height_; ++y) {
             run = empty_cell(x, y) ? 0 : run + 1;
             up[static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x)] = run;
         }
-        run = 1;
+        run = 0;  // row height_
         for (int y = height_ - 1; y >= 0; --y) {
             run = empty_cell(x, y) ? 0 : run + 1;
             down[static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x)] = run;
