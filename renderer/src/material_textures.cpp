@@ -101,13 +101,20 @@ std::shared_ptr<const gl::Texture> MaterialTextures::get(
                     std::to_string(scene ? scene->images.size() : 0) + " images)");
     }
     const scene::Image& image = scene->images[static_cast<std::size_t>(index)];
-    const scene::DecodedImage decoded = scene::decode_image(image, index);
+    // Decoded when first drawn, long after loading: the scene names its file.
+    scene::DecodedImage decoded;
+    try {
+        decoded = scene::decode_image(image, index);
+    } catch (const Error& e) {
+        throw Error(scene->in_file(std::string("base-colour texture: ") + e.what()));
+    }
     GLint max_size = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
     if (decoded.width > max_size || decoded.height > max_size) {
-        throw Error(scene::image_label(image, index) + ": size " + std::to_string(decoded.width) +
-                    "x" + std::to_string(decoded.height) + " exceeds this driver's texture limit " +
-                    std::to_string(max_size));
+        throw Error(
+            scene->in_file(scene::image_label(image, index) + ": size " +
+                           std::to_string(decoded.width) + "x" + std::to_string(decoded.height) +
+                           " exceeds this driver's texture limit " + std::to_string(max_size)));
     }
     auto texture = std::make_shared<gl::Texture>(gl::Texture::create_2d(
         GL_SRGB8_ALPHA8, decoded.width, decoded.height, mip_levels(decoded.width, decoded.height)));

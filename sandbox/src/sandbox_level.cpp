@@ -61,8 +61,9 @@ std::size_t add_bounces(ecs::Registry& registry, const world::SceneInstance& ins
         bounce.height = settings.value("height", 1.0f);
         bounce.period = settings.value("period", 1.0f);
         if (!(bounce.period > 0.0f) || !std::isfinite(bounce.height)) {
-            throw Error("node '" + scene.nodes[node].name +
-                        "': extras.luxel.bounce needs a positive period and a finite height");
+            throw Error(scene.in_file(
+                "node '" + scene.nodes[node].name +
+                "': extras.luxel.bounce needs a positive period and a finite height"));
         }
         registry.emplace<Bounce>(entity, bounce);
         if (!registry.has<scene::Dynamic>(entity)) {

@@ -107,9 +107,34 @@ void check_image_pixels(const ImportContext& context) {
     }
 }
 
+/// Counted per node, before the world makes an entity, photons or a shadow map for any: one
+/// light named by 50,000 nodes is 50,000 lights.
+void check_light_instances(const ImportContext& context) {
+    const Scene& scene = context.scene();
+    std::uint64_t placed = 0;
+    for (const Node& node : scene.nodes) {
+        placed += node.light >= 0 ? 1 : 0;
+    }
+    const std::uint64_t instances = context.options().max_light_instances;
+    if (placed > instances) {
+        context.fail(std::to_string(placed) + " nodes place a light, more than the limit of " +
+                     std::to_string(instances) + " (light-instances)");
+    }
+    // The renderer gives every placed punctual light a shadow map (frame_lights.cpp): a cube
+    // map for point lights and wide spots, a 2D map for the others.
+    const std::uint64_t shadowed = context.options().max_shadowed_lights;
+    if (placed > shadowed) {
+        context.fail(std::to_string(placed) +
+                     " placed lights would each get a shadow map when drawn, more than the "
+                     "limit of " +
+                     std::to_string(shadowed) + " (shadowed-lights)");
+    }
+}
+
 }  // namespace
 
 void check_combined_limits(const ImportContext& context) {
+    check_light_instances(context);
     check_instanced_triangles(context);
     check_lightmap_texels(context);
     check_image_pixels(context);

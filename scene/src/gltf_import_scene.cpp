@@ -443,15 +443,25 @@ void import_cameras(ImportContext& context) {
         context.scene().cameras.push_back(
             convert_camera(context, model.cameras[i], label("camera", i, model.cameras[i].name)));
     }
-    // The projection rules live in one place: Scene::validate's camera checks.
+    // The projection rules live in one place: Scene::validate's camera checks. Its message
+    // says which ranges apply; the node holding the camera is what an author looks for.
     for (std::size_t i = 0; i < context.scene().cameras.size(); ++i) {
         Scene probe;
         probe.cameras.push_back(context.scene().cameras[i]);
         try {
             probe.validate();
-        } catch (const std::exception&) {
-            context.fail(label("camera", i, model.cameras[i].name) +
-                         ": projection parameters out of range");
+        } catch (const std::exception& e) {
+            const std::string message = e.what();
+            const std::size_t ranges = message.find(": projection parameters");
+            std::string where = label("camera", i, model.cameras[i].name);
+            for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+                if (model.nodes[n].camera == static_cast<int>(i)) {
+                    where += " (on " + label("node", n, model.nodes[n].name) + ")";
+                    break;
+                }
+            }
+            context.fail(where +
+                         (ranges == std::string::npos ? ": " + message : message.substr(ranges)));
         }
     }
 }

@@ -353,6 +353,7 @@ Scene load(std::span<const std::uint8_t> bytes, const std::string& display_name,
     }
 
     Scene scene;
+    scene.source = display_name;
     scene.report.external_files = std::move(files.read);
     ImportContext context(model, display_name, options, scene);
     if (!warning.empty()) {

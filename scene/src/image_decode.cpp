@@ -238,7 +238,11 @@ glm::vec3 mean_diffuse_albedo(const Scene& scene, const Material& material) {
     try {
         albedo *= image_mean_linear_color(scene, material.base_color_image);
     } catch (const Error& e) {
-        throw Error("material '" + material.name + "': base-colour texture: " + e.what());
+        // Decoded long after loading (when an instance is made): the scene names its file.
+        const auto index = &material - scene.materials.data();
+        const bool listed = index >= 0 && static_cast<std::size_t>(index) < scene.materials.size();
+        throw Error(scene.in_file("material " + (listed ? std::to_string(index) + " " : "") + "'" +
+                                  material.name + "': base-colour texture: " + e.what()));
     }
     return glm::clamp(albedo, 0.0f, 1.0f);
 }

@@ -6,21 +6,19 @@
 #include <set>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "luxel/runtime/error.hpp"
+#include "scene_checks.hpp"
 
 namespace luxel::scene {
 namespace {
 
-std::string quoted_name(const std::string& name) {
-    return name.empty() ? "" : " '" + name + "'";
-}
-
-[[noreturn]] void invalid(const std::string& what) {
-    throw Error("invalid scene: " + what);
-}
+using detail::in_range;
+using detail::invalid;
+using detail::quoted_name;
 
 bool finite(float v) {
     return std::isfinite(v);
@@ -35,9 +33,6 @@ bool finite(const glm::vec4& v) {
     return finite(v.x) && finite(v.y) && finite(v.z) && finite(v.w);
 }
 
-bool in_range(int index, std::size_t size) {
-    return index >= 0 && static_cast<std::size_t>(index) < size;
-}
 bool optional_in_range(int index, std::size_t size) {
     return index == -1 || in_range(index, size);
 }
@@ -166,99 +161,6 @@ bool below_radiometric_limit(const glm::vec3& color, float scale) {
     return largest * static_cast<double>(scale) <= kMaxRadiometric;
 }
 
-/// The largest distance from the origin, and the largest scale, any node may reach in any pose,
-/// in metres: far beyond a game level (1e6 m is a thousand kilometres), far below float's
-/// overflow once multiplied by a vertex and a ray's length.
-constexpr double kMaxWorldExtent = 1e6;
-constexpr double kMaxWorldScale = 1e6;
-
-/// Largest |component| over a sampler's values. A cubic spline can overshoot its keys: with
-/// Hermite basis functions in [0, 1] (and the tangents scaled by the key interval),
-/// |p(t)| <= |p0| + |p1| + dt (|m0| + |m1|).
-double sampler_reach(const AnimationSampler& sampler) {
-    double largest = 0.0;
-    for (const glm::vec4& value : sampler.values) {
-        largest = std::max({largest, std::abs(static_cast<double>(value.x)),
-                            std::abs(static_cast<double>(value.y)),
-                            std::abs(static_cast<double>(value.z))});
-    }
-    if (sampler.interpolation != Interpolation::CubicSpline) {
-        return largest;
-    }
-    double longest_interval = 0.0;
-    for (std::size_t k = 1; k < sampler.times.size(); ++k) {
-        longest_interval = std::max(longest_interval,
-                                    static_cast<double>(sampler.times[k] - sampler.times[k - 1]));
-    }
-    return largest * (2.0 + 2.0 * longest_interval);
-}
-
-/// Bounds every node's world position and scale over every pose its animations can give it,
-/// so that no transform, camera or ray built from the scene overflows to Inf (Embree asserts on
-/// non-finite rays; GL would draw black). Conservative: each node's largest scale and
-/// translation, over its rest pose and its animation values, composed down the hierarchy.
-/// Cameras must also not collapse: a zero scale up their chain has no view.
-void validate_transform_bounds(const Scene& scene) {
-    const std::size_t count = scene.nodes.size();
-    std::vector<double> scale(count, 0.0);
-    std::vector<double> reach(count, 0.0);
-    std::vector<bool> scale_animated(count, false);
-    for (std::size_t i = 0; i < count; ++i) {
-        const Node& node = scene.nodes[i];
-        scale[i] = std::max({std::abs(static_cast<double>(node.scale.x)),
-                             std::abs(static_cast<double>(node.scale.y)),
-                             std::abs(static_cast<double>(node.scale.z))});
-        reach[i] = static_cast<double>(glm::length(node.translation));
-    }
-    for (const Animation& animation : scene.animations) {
-        for (const AnimationChannel& channel : animation.channels) {
-            if (!in_range(channel.node, count) ||
-                !in_range(channel.sampler, animation.samplers.size())) {
-                continue;  // validate_animations names it
-            }
-            const auto n = static_cast<std::size_t>(channel.node);
-            const double value =
-                sampler_reach(animation.samplers[static_cast<std::size_t>(channel.sampler)]);
-            if (channel.property == AnimatedProperty::Scale) {
-                scale[n] = std::max(scale[n], value);
-                scale_animated[n] = true;
-            } else if (channel.property == AnimatedProperty::Translation) {
-                reach[n] = std::max(reach[n], std::sqrt(3.0) * value);
-            }
-        }
-    }
-    std::vector<double> world_scale(count, 1.0);
-    std::vector<double> world_reach(count, 0.0);
-    for (const std::size_t i : scene.parent_first_order()) {
-        const Node& node = scene.nodes[i];
-        const bool has_parent = in_range(node.parent, count);
-        const auto parent = static_cast<std::size_t>(has_parent ? node.parent : 0);
-        const double parent_scale = has_parent ? world_scale[parent] : 1.0;
-        world_scale[i] = parent_scale * scale[i];
-        world_reach[i] = (has_parent ? world_reach[parent] : 0.0) + parent_scale * reach[i];
-        const std::string where = "node " + std::to_string(i) + quoted_name(node.name);
-        if (!(world_scale[i] <= kMaxWorldScale) || !(world_reach[i] <= kMaxWorldExtent)) {
-            invalid(where + ": its transform, composed with its parents' and animated, can reach " +
-                    "a scale of " + std::to_string(world_scale[i]) + " or a distance of " +
-                    std::to_string(world_reach[i]) + " m (the limits are 1e6 and 1e6 m)");
-        }
-    }
-    // A camera's view needs its world matrix invertible in the rest pose; an animated scale is
-    // checked where the view is built.
-    const std::vector<glm::mat4> world = scene.world_matrices();
-    for (std::size_t i = 0; i < count; ++i) {
-        if (scene.nodes[i].camera < 0) {
-            continue;
-        }
-        const double det = std::abs(static_cast<double>(glm::determinant(glm::mat3(world[i]))));
-        if (!(det > 1e-18)) {
-            invalid("node " + std::to_string(i) + quoted_name(scene.nodes[i].name) +
-                    ": holds a camera but its world transform has no volume (a zero scale on it "
-                    "or a parent): the view is undefined");
-        }
-    }
-}
-
 void validate_materials(const Scene& scene) {
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         const Material& material = scene.materials[i];
@@ -308,6 +210,55 @@ void validate_materials(const Scene& scene) {
 constexpr float kMinYfov = 1e-4f;   ///< radians (0.006 degrees)
 constexpr float kMinZnear = 1e-6f;  ///< metres
 constexpr float kMinAspect = 1e-4f;
+/// An orthographic half-height or half-width, in metres. The projection divides by it (and by
+/// the depth range): 1e-40 passes "!= 0" and then overflows to Inf, 3e38 times an image's
+/// aspect ratio overflows itself. The bounds match the world's own (kMaxWorldExtent).
+constexpr float kMinMagnification = 1e-6f;
+constexpr float kMaxMagnification = 1e6f;
+
+bool magnification_in_range(float mag) {
+    const float size = std::abs(mag);
+    return finite(mag) && size >= kMinMagnification && size <= kMaxMagnification;
+}
+
+/// "camera 0 'name' (on node 3 'eye')": the node is what a level's author finds in an editor.
+std::vector<std::string> camera_names(const Scene& scene) {
+    std::vector<std::string> names(scene.cameras.size());
+    for (std::size_t i = 0; i < names.size(); ++i) {
+        names[i] = "camera " + std::to_string(i) + quoted_name(scene.cameras[i].name);
+    }
+    std::vector<bool> placed(scene.cameras.size(), false);
+    for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
+        const int camera = scene.nodes[n].camera;
+        if (in_range(camera, names.size()) && !placed[static_cast<std::size_t>(camera)]) {
+            placed[static_cast<std::size_t>(camera)] = true;
+            names[static_cast<std::size_t>(camera)] +=
+                " (on node " + std::to_string(n) + quoted_name(scene.nodes[n].name) + ")";
+        }
+    }
+    return names;
+}
+
+bool projection_valid(const Camera& camera) {
+    const bool far_valid = !camera.zfar || (finite(*camera.zfar) && *camera.zfar > camera.znear);
+    if (!finite(camera.znear) || !far_valid) {
+        return false;
+    }
+    if (camera.perspective) {
+        // Bounded away from 0 as well: a yfov of 1e-30 or a denormal znear passes "> 0"
+        // and then turns the projection's inverse, and every ray made from it, into Inf.
+        return finite(camera.yfov) && camera.yfov >= kMinYfov &&
+               camera.yfov < std::numbers::pi_v<float> && camera.znear >= kMinZnear &&
+               (!camera.aspect_ratio ||
+                (finite(*camera.aspect_ratio) && *camera.aspect_ratio >= kMinAspect &&
+                 *camera.aspect_ratio <= 1.0f / kMinAspect));
+    }
+    // The depth range is a divisor too: zfar - znear must not be (nearly) 0.
+    return camera.zfar.has_value() && camera.znear >= 0.0f &&
+           static_cast<double>(*camera.zfar) - static_cast<double>(camera.znear) >=
+               static_cast<double>(kMinZnear) &&
+           magnification_in_range(camera.xmag) && magnification_in_range(camera.ymag);
+}
 
 void validate_lights_and_cameras(const Scene& scene) {
     constexpr float kHalfPi = std::numbers::pi_v<float> / 2.0f;
@@ -330,30 +281,15 @@ void validate_lights_and_cameras(const Scene& scene) {
             invalid(where + ": spot cone angles must satisfy 0 <= inner < outer <= pi/2");
         }
     }
+    const std::vector<std::string> names = camera_names(scene);
     for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
-        const Camera& camera = scene.cameras[i];
-        const std::string where = "camera " + std::to_string(i) + quoted_name(camera.name);
-        const bool far_valid =
-            !camera.zfar || (finite(*camera.zfar) && *camera.zfar > camera.znear);
-        bool valid = finite(camera.znear) && far_valid;
-        if (camera.perspective) {
-            // Bounded away from 0 as well: a yfov of 1e-30 or a denormal znear passes "> 0"
-            // and then turns the projection's inverse, and every ray made from it, into Inf.
-            valid = valid && finite(camera.yfov) && camera.yfov >= kMinYfov &&
-                    camera.yfov < std::numbers::pi_v<float> && camera.znear >= kMinZnear &&
-                    (!camera.aspect_ratio ||
-                     (finite(*camera.aspect_ratio) && *camera.aspect_ratio >= kMinAspect &&
-                      *camera.aspect_ratio <= 1.0f / kMinAspect));
-        } else {
-            valid = valid && camera.zfar.has_value() && camera.znear >= 0.0f &&
-                    finite(camera.xmag) && finite(camera.ymag) && camera.xmag != 0.0f &&
-                    camera.ymag != 0.0f;
-        }
-        if (!valid) {
-            invalid(where +
-                    ": projection parameters out of range (perspective: yfov in [1e-4, pi) "
-                    "radians, znear at least 1e-6 m, zfar beyond it, aspect ratio in "
-                    "[1e-4, 1e4])");
+        if (!projection_valid(scene.cameras[i])) {
+            invalid(names[i] + ": projection parameters out of range " +
+                    (scene.cameras[i].perspective
+                         ? "(perspective: yfov in [1e-4, pi) radians, znear at least 1e-6 m, "
+                           "zfar beyond it, aspect ratio in [1e-4, 1e4])"
+                         : "(orthographic: xmag and ymag of magnitude in [1e-6, 1e6] m, znear at "
+                           "least 0, zfar at least 1e-6 m beyond it)"));
         }
     }
 }
@@ -500,7 +436,8 @@ std::size_t Scene::triangle_count() const {
 
 void Scene::validate() const {
     validate_nodes(*this);
-    validate_transform_bounds(*this);
+    detail::validate_transform_bounds(*this);
+    detail::validate_instance_scales(*this);
     validate_meshes(*this);
     validate_materials(*this);
     validate_lights_and_cameras(*this);

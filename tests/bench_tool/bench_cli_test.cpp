@@ -224,6 +224,33 @@ TEST(BenchCli, ATinyRunWritesEveryOutputAndASecondReusesTheReference) {
     EXPECT_EQ(count(second.output, "computing reference"), 0u) << second.output;
     // Each of the two runs reads both poses' light maps and frames.
     EXPECT_EQ(count(second.output, "from cache"), 8u) << second.output;
+    // The first run's results are replaced, and the run says so before and after.
+    EXPECT_NE(second.output.find("holds an earlier run's results: they will be replaced"),
+              std::string::npos)
+        << second.output;
+    EXPECT_NE(second.output.find("replaced: " + (out / "results.json").string()), std::string::npos)
+        << second.output;
+    EXPECT_EQ(count(first.output, "replaced"), 0u) << first.output;
+}
+
+TEST(BenchCli, AnOutThatIsAFileIsRefusedBeforeAnyWork) {
+    luxel::testing::TempDir dir("luxel-bench-out");
+    const std::filesystem::path file = dir / "results";
+    std::ofstream(file) << "not a folder\n";
+    const CommandResult run = luxel_bench(
+        "--level cornell --budgets 8 --frames 2 --ref-photons 100000 --ref-caustic-photons 50000 "
+        "--ref-spp 1 --no-image --threads 2 --out " +
+        quoted(file));
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    EXPECT_NE(run.output.find("--out " + file.string() + ": is a file, not a folder"),
+              std::string::npos)
+        << run.output;
+    // Refused before the reference: nothing computed, the file as it was.
+    EXPECT_EQ(count(run.output, "computing reference"), 0u) << run.output;
+    std::ifstream kept(file);
+    std::string line;
+    std::getline(kept, line);
+    EXPECT_EQ(line, "not a folder");
 }
 
 }  // namespace

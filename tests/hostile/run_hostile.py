@@ -298,7 +298,9 @@ def load_manifest(args):
         cmd = [sys.executable, os.path.join(HERE, "gen_hostile.py"), "--out", args.corpus]
         if args.no_big:
             cmd.append("--no-big")
-        subprocess.run(cmd, check=True)
+        if args.case:  # only what this run needs: the ctest subset writes 45 cases, not 370
+            cmd += ["--case", args.case]
+        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL if args.quiet else None)
     with open(path) as f:
         return json.load(f)
 
@@ -363,6 +365,9 @@ def parse_args(argv):
     for t in args.tools:
         if not os.access(os.path.join(args.bin, EXE[t]), os.X_OK):
             p.error("%s not found in %s" % (EXE[t], args.bin))
+    if args.work_dir:
+        args.work_dir = os.path.abspath(args.work_dir)
+        os.makedirs(args.work_dir, exist_ok=True)
     args.strace = None if args.no_strace else shutil.which("strace")
     if not args.no_strace and not args.strace:
         print("run_hostile.py: strace not found; escapes are not watched", file=sys.stderr)

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -160,6 +162,39 @@ TEST(GltfHostileValues, CountsPastTheLimitsAreRefusedBeforeTheyAreRead) {
     EXPECT_EQ(load_error(file.text(), options), "(loaded)");
 }
 
+TEST(GltfHostileValues, PlacedLightsAreCountedOncePerNode) {
+    // One light, placed by 300 nodes: 300 lights in the world, each with a shadow map.
+    GltfBuilder file = triangle();
+    file.document["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}}};
+    file.document["extensionsUsed"] = {"KHR_lights_punctual"};
+    for (int i = 0; i < 300; ++i) {
+        file.document["nodes"].push_back(
+            {{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+        file.document["scenes"][0]["nodes"].push_back(i + 1);
+    }
+    std::string message = load_error(file.text());
+    EXPECT_NE(message.find(kName), std::string::npos) << message;
+    EXPECT_NE(message.find("300 placed lights would each get a shadow map when drawn, more than "
+                           "the limit of 256 (shadowed-lights)"),
+              std::string::npos)
+        << message;
+
+    luxel::scene::LoadOptions options;
+    options.max_shadowed_lights = 300;
+    EXPECT_EQ(load_error(file.text(), options), "(loaded)");
+    options.max_light_instances = 299;
+    message = load_error(file.text(), options);
+    EXPECT_NE(message.find("300 nodes place a light, more than the limit of 299 "
+                           "(light-instances)"),
+              std::string::npos)
+        << message;
+    // Both are names --limit knows.
+    EXPECT_NO_THROW(luxel::scene::set_load_limit(options, "shadowed-lights=1k"));
+    EXPECT_EQ(options.max_shadowed_lights, 1024u);
+    EXPECT_NO_THROW(luxel::scene::set_load_limit(options, "light-instances=2"));
+    EXPECT_EQ(options.max_light_instances, 2u);
+}
+
 /// A PNG signature and IHDR declaring `width` x `height`: all a header read needs.
 std::vector<std::uint8_t> png_header(std::uint32_t width, std::uint32_t height) {
     std::vector<std::uint8_t> bytes = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n',
@@ -265,6 +300,19 @@ GltfBuilder triangle_with_camera() {
     return file;
 }
 
+/// One LINEAR animation of `node`'s `path` from the first three keys at t = 0 to the next three
+/// at t = 1.
+void animate(GltfBuilder& file, int node, const std::string& path, const std::vector<float>& keys) {
+    const int times = static_cast<int>(file.document["accessors"].size());
+    file.document["animations"] = {
+        {{"samplers", {{{"input", times}, {"output", times + 1}, {"interpolation", "LINEAR"}}}},
+         {"channels", {{{"sampler", 0}, {"target", {{"node", node}, {"path", path}}}}}}}};
+    file.add_accessor(file.add_view(std::vector<float>{0.0f, 1.0f}), 5126, 2, "SCALAR");
+    file.document["accessors"][static_cast<std::size_t>(times)]["min"] = {0.0};
+    file.document["accessors"][static_cast<std::size_t>(times)]["max"] = {1.0};
+    file.add_accessor(file.add_view(keys), 5126, 2, "VEC3");
+}
+
 TEST(GltfHostileValues, TransformsAndCamerasThatWouldMakeNonFiniteRays) {
     GltfBuilder file = triangle_with_camera();
     ASSERT_EQ(load_error(file.text()), "(loaded)");
@@ -295,18 +343,68 @@ TEST(GltfHostileValues, TransformsAndCamerasThatWouldMakeNonFiniteRays) {
 
     // Keys near the float maximum: finite each, but interpolating between them overflows.
     file = triangle_with_camera();
-    file.document["animations"] = {
-        {{"samplers", {{{"input", 2}, {"output", 3}, {"interpolation", "LINEAR"}}}},
-         {"channels", {{{"sampler", 0}, {"target", {{"node", 2}, {"path", "translation"}}}}}}}};
-    const std::vector<float> times = {0.0f, 1.0f};
-    const std::vector<float> keys = {3e38f, 3e38f, 3e38f, -3e38f, -3e38f, -3e38f};
-    file.add_accessor(file.add_view(times), 5126, 2, "SCALAR");
-    file.document["accessors"][2]["min"] = {0.0};
-    file.document["accessors"][2]["max"] = {1.0};
-    file.add_accessor(file.add_view(keys), 5126, 2, "VEC3");
+    animate(file, 2, "translation", {3e38f, 3e38f, 3e38f, -3e38f, -3e38f, -3e38f});
     message = load_error(file.text());
     EXPECT_NE(message.find("'eye'"), std::string::npos) << message;
     EXPECT_NE(message.find("can reach a scale of"), std::string::npos) << message;
+}
+
+TEST(GltfHostileValues, OrthographicBoundsAreCheckedLikePerspectiveOnes) {
+    const auto orthographic = [](double xmag, double ymag, double znear, double zfar) {
+        GltfBuilder file = triangle_with_camera();
+        file.document["cameras"] = {
+            {{"type", "orthographic"},
+             {"orthographic", {{"xmag", xmag}, {"ymag", ymag}, {"znear", znear}, {"zfar", zfar}}}}};
+        return file;
+    };
+    EXPECT_EQ(load_error(orthographic(2.0, 1.5, 0.0, 100.0).text()), "(loaded)");
+    EXPECT_EQ(load_error(orthographic(-2.0, 1e-6, 0.0, 1e-6).text()), "(loaded)");
+    // Each passed "finite and not 0" and still made the projection, or its inverse, Inf.
+    for (const auto& [xmag, ymag, znear, zfar] :
+         {std::tuple{1.0, 1e-40, 0.0, 100.0}, std::tuple{3e38, 3e38, 0.0, 100.0},
+          std::tuple{1.0, 1e7, 0.0, 100.0}, std::tuple{1e-7, 1.0, 0.0, 100.0},
+          std::tuple{1.0, 1.0, 5.0, 5.0}, std::tuple{1.0, 1.0, 0.0, 1e-40}}) {
+        const std::string message = load_error(orthographic(xmag, ymag, znear, zfar).text());
+        const std::string values = std::to_string(xmag) + " " + std::to_string(ymag) + " " +
+                                   std::to_string(zfar) + ": " + message;
+        EXPECT_NE(message.find(kName), std::string::npos) << values;
+        EXPECT_NE(message.find("camera 0 (on node 2 'eye')"), std::string::npos) << values;
+        EXPECT_NE(message.find("orthographic: xmag and ymag of magnitude in [1e-6, 1e6]"),
+                  std::string::npos)
+            << values;
+    }
+}
+
+TEST(GltfHostileValues, AMovingMeshMayNotShrinkBeyondWhatItsInverseHolds) {
+    // Scaled to 0 by its animation: playback keeps it at 1e-6 (world::update_animations), which
+    // the ray tracer can invert, so the file loads.
+    GltfBuilder file = triangle_with_camera();
+    animate(file, 0, "scale", {1, 1, 1, 0, 0, 0});
+    EXPECT_EQ(load_error(file.text()), "(loaded)");
+
+    // Under a parent scaled by 1e-4, that is 1e-10: no longer invertible in float.
+    file.document["nodes"][1]["scale"] = {1e-4, 1e-4, 1e-4};
+    std::string message = load_error(file.text());
+    EXPECT_NE(message.find(kName), std::string::npos) << message;
+    EXPECT_NE(message.find("node 0: a moving mesh"), std::string::npos) << message;
+    EXPECT_NE(message.find("can shrink to a scale of 1e-10"), std::string::npos) << message;
+
+    // Keys of opposite sign pass through 0 too; the parent's own animation moves the mesh.
+    file = triangle_with_camera();
+    file.document["nodes"][0]["scale"] = {1e-4, 1e-4, 1e-4};
+    animate(file, 1, "scale", {1, 1, 1, 1, -1, 1});
+    message = load_error(file.text());
+    EXPECT_NE(message.find("node 0: a moving mesh"), std::string::npos) << message;
+
+    // A mesh flagged dynamic with a zero scale at rest is placed as an instance as it is.
+    file = triangle_with_camera();
+    file.document["nodes"][0]["scale"] = {1, 0, 1};
+    file.document["nodes"][0]["extras"] = {{"luxel", {{"dynamic", true}}}};
+    message = load_error(file.text());
+    EXPECT_NE(message.find("can shrink to a scale of 0"), std::string::npos) << message;
+    // Without the flag it is baked into world space: a flat mesh, nothing to invert.
+    file.document["nodes"][0].erase("extras");
+    EXPECT_EQ(load_error(file.text()), "(loaded)");
 }
 
 TEST(GltfHostileValues, LuxelExtrasOfTheWrongTypeNameTheNodeAndTheKey) {

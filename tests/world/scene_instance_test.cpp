@@ -9,6 +9,7 @@
 #include "luxel/ecs/hierarchy.hpp"
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/components.hpp"
+#include "luxel/lighting/core/photon_world.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/scene/lightmap_layout.hpp"
 #include "luxel/world/animation_system.hpp"
@@ -180,6 +181,44 @@ TEST(AnimationSystem, NonLoopingStopsAtTheEndAndStaleTargetsAreSkipped) {
     auto& again = registry.get<world::AnimationPlayer>(instance.animations[0]);
     again.playing = true;
     EXPECT_NO_THROW(world::update_animations(registry, 0.1));
+}
+
+TEST(AnimationSystem, APoseTheRayTracerCannotInvertIsNeverApplied) {
+    // The panel is scaled through 0 (and flipped); the spot's keys are finite, but the line
+    // between them overflows float. Scene::validate refuses the second; playback must not pass
+    // either on to the instance transforms in case a scene bypasses it.
+    std::shared_ptr<scene::Scene> source = make_scene();
+    scene::Animation& animation = source->animations[0];
+    animation.samplers.push_back({{0.0f, 2.0f},
+                                  {glm::vec4(1, 1, 1, 0), glm::vec4(-1, 0, 1, 0)},
+                                  scene::Interpolation::Linear});
+    animation.channels.push_back({2, scene::AnimatedProperty::Scale, 1});
+    animation.samplers.push_back({{0.0f, 2.0f},
+                                  {glm::vec4(-3e38f, 0, 0, 0), glm::vec4(3e38f, 0, 0, 0)},
+                                  scene::Interpolation::Linear});
+    animation.channels.push_back({4, scene::AnimatedProperty::Translation, 2});
+
+    ecs::Registry registry;
+    const auto instance = world::instantiate(registry, source);
+    const ecs::Entity panel = instance.find("panel");
+    const ecs::Entity spot = instance.find("spot");
+    world::update_animations(registry, 1.0);  // half way: the panel's x scale is 0
+    EXPECT_EQ(registry.get<ecs::Transform>(panel).scale,
+              glm::vec3(scene::kMinAnimatedScale, 0.5f, 1.0f));
+    EXPECT_EQ(registry.get<ecs::Transform>(spot).translation, glm::vec3(0.0f));  // kept
+    registry.get<world::AnimationPlayer>(instance.animations[0]).loop = false;
+    world::update_animations(registry, 1.0);  // the end: y is 0, x is -1
+    EXPECT_EQ(registry.get<ecs::Transform>(panel).scale.y, scene::kMinAnimatedScale);
+    EXPECT_LT(registry.get<ecs::Transform>(panel).scale.x, -0.99f);
+
+    // The ray tracer takes the posed panel as an instance and traces through it.
+    ecs::TransformSystem transforms(registry);
+    transforms.update();
+    lighting::PhotonWorld photons(registry);
+    photons.sync();
+    const auto hit = photons.ray_scene().intersect(glm::vec3(0.2f, 0.2f, 1.0f),
+                                                   glm::vec3(0.0f, 0.0f, -1.0f), 10.0f);
+    EXPECT_FALSE(hit.has_value());  // the panel is a sliver 1e-6 high
 }
 
 TEST(LightSwitch, TurnsTheLightOnAndOffOnSchedule) {

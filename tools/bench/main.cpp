@@ -6,11 +6,14 @@
 // Writes CSV, JSON, PNG plots, frames and summary.md into DIR; references are cached in
 // DIR/cache.
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <new>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -26,6 +29,37 @@
 #include "report.hpp"
 
 namespace {
+
+/// Checks --out before any work (a reference can take minutes): it must be a folder or
+/// creatable as one. An earlier run's results there are replaced, as luxel-prep replaces its
+/// output, and said so (its cached references in OUT/cache are what a second run is for).
+/// Returns the files already in the folder.
+std::vector<std::filesystem::path> prepare_out(const std::filesystem::path& out) {
+    std::error_code error;
+    if (std::filesystem::exists(out, error) && !std::filesystem::is_directory(out, error)) {
+        throw luxel::Error(
+            "--out " + out.string() +
+            ": is a file, not a folder (results and the reference cache go in a folder)");
+    }
+    std::filesystem::create_directories(out, error);
+    if (error) {
+        throw luxel::Error("--out " + out.string() +
+                           ": cannot create the folder: " + error.message());
+    }
+    std::vector<std::filesystem::path> present;
+    for (const auto& entry : std::filesystem::directory_iterator(out, error)) {
+        if (entry.is_regular_file(error)) {
+            present.push_back(entry.path());
+        }
+    }
+    if (std::find(present.begin(), present.end(), out / "results.json") != present.end()) {
+        std::fprintf(stderr,
+                     "luxel-bench: %s holds an earlier run's results: they will be replaced "
+                     "(its cached references are reused)\n",
+                     out.string().c_str());
+    }
+    return present;
+}
 
 using namespace luxel;
 
@@ -117,6 +151,7 @@ int run(int argc, char** argv) {
     });
 
     const std::filesystem::path file = ref::resolve_level(options.level);
+    const std::vector<std::filesystem::path> previous = prepare_out(options.out);
     std::string command = "luxel-bench";
     for (int i = 1; i < argc; ++i) {
         command += std::string(" ") + argv[i];
@@ -142,6 +177,11 @@ int run(int argc, char** argv) {
     const auto files = bench::write_report(info, runs);
     std::fprintf(stderr, "luxel-bench: wrote %zu files to %s in %.1f s\n", files.size(),
                  options.out.string().c_str(), clock.elapsed_ms() / 1000.0);
+    for (const std::filesystem::path& written : files) {
+        if (std::find(previous.begin(), previous.end(), written) != previous.end()) {
+            std::fprintf(stderr, "luxel-bench:   replaced: %s\n", written.string().c_str());
+        }
+    }
     return 0;
 }
 

@@ -4,6 +4,7 @@
 
 #include "luxel/ecs/transform.hpp"
 #include "luxel/lighting/components.hpp"
+#include "luxel/scene/animation.hpp"
 
 namespace luxel::world {
 namespace {
@@ -26,6 +27,24 @@ void set_enabled_if_present(ecs::Registry& registry, ecs::Entity entity, bool on
     if (auto* light = registry.try_get<Light>(entity); light != nullptr && light->enabled != on) {
         registry.patch<Light>(entity, [on](Light& l) { l.enabled = on; });
     }
+}
+
+/// A sampled value the node can take: finite (keys near the float maximum can overflow in
+/// between, and a cubic spline can overshoot them), with no scale component closer to 0 than
+/// scene::kMinAnimatedScale. False means the pose is skipped: the node keeps its last value.
+bool usable_value(glm::vec4& value, scene::AnimatedProperty property) {
+    if (!std::isfinite(value.x) || !std::isfinite(value.y) || !std::isfinite(value.z) ||
+        !std::isfinite(value.w)) {
+        return false;
+    }
+    if (property == scene::AnimatedProperty::Scale) {
+        for (int axis = 0; axis < 3; ++axis) {
+            if (std::abs(value[axis]) < scene::kMinAnimatedScale) {
+                value[axis] = std::copysign(scene::kMinAnimatedScale, value[axis]);
+            }
+        }
+    }
+    return true;
 }
 
 }  // namespace
@@ -56,9 +75,11 @@ void update_animations(ecs::Registry& registry, double dt_seconds) {
                 static_cast<std::size_t>(channel.sampler) >= animation.samplers.size()) {
                 continue;
             }
-            const glm::vec4 value =
-                animation.samplers[static_cast<std::size_t>(channel.sampler)].sample(
-                    t, channel.property);
+            glm::vec4 value = animation.samplers[static_cast<std::size_t>(channel.sampler)].sample(
+                t, channel.property);
+            if (!usable_value(value, channel.property)) {
+                continue;
+            }
             registry.patch<ecs::Transform>(target, [&](ecs::Transform& transform) {
                 switch (channel.property) {
                     case scene::AnimatedProperty::Translation:

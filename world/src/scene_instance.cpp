@@ -82,7 +82,7 @@ void add_mesh(ecs::Registry& registry, ecs::Entity entity,
     try {
         layout = scene::read_lightmap_layout(node.flags.raw);
     } catch (const Error& e) {
-        throw Error("node '" + node.name + "': " + e.what());
+        throw Error(source->in_file("node '" + node.name + "': " + e.what()));
     }
     if (!layout) {
         return;
@@ -90,9 +90,10 @@ void add_mesh(ecs::Registry& registry, ecs::Entity entity,
     for (const auto& surface : layout->surfaces) {
         if (static_cast<std::size_t>(surface.primitive) >= mesh.primitives.size() ||
             mesh.primitives[static_cast<std::size_t>(surface.primitive)].texcoords1.empty()) {
-            throw Error("node '" + node.name + "': light-map surface " +
-                        std::to_string(surface.id) + " names primitive " +
-                        std::to_string(surface.primitive) + ", which has no TEXCOORD_1");
+            throw Error(source->in_file("node '" + node.name + "': light-map surface " +
+                                        std::to_string(surface.id) + " names primitive " +
+                                        std::to_string(surface.primitive) +
+                                        ", which has no TEXCOORD_1"));
         }
     }
     registry.emplace<lighting::LightmappedSurface>(entity, std::move(*layout));

@@ -88,43 +88,174 @@ SurfaceFootprint::SurfaceFootprint(const scene::Primitive& primitive, const Surf
                     .push_back(static_cast<std::uint32_t>(t));
             });
     }
-    // Distance from each texel's point to the nearest empty cell: a brute-force search over
-    // empty cells would be quadratic; surfaces are small rectangles, so scan rings outward and
-    // stop at the first empty cell found (its distance bounds the rest of the ring).
-    const auto empty = [&](int x, int y) {
-        return x < 0 || y < 0 || x >= width_ || y >= height_ ||
-               cells_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-                      static_cast<std::size_t>(x)]
-                   .empty();
-    };
-    border_distance_.reserve(texels.texels.size());
+    border_distance_ = border_distances(texels);
     points_.reserve(texels.texels.size());
     for (const SurfaceTexel& texel : texels.texels) {
-        const glm::dvec2 point = glm::dvec2(texel.page_point) - glm::dvec2(x0_, y0_);
         points_.push_back(texel.page_point);
+    }
+}
+
+bool SurfaceFootprint::empty_cell(int x, int y) const {
+    return x < 0 || y < 0 || x >= width_ || y >= height_ ||
+           cells_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
+                  static_cast<std::size_t>(x)]
+               .empty();
+}
+
+/// Per texel, the distance from its point to the nearest cell no triangle covers (the cells
+/// beyond the grid count as empty): the distance from the point to the nearest point of those
+/// closed unit squares. A search per texel costs the square of that distance, which on a
+/// page-sized chart is the page: this is linear in the grid instead.
+///
+/// In each column, the nearest empty cell above and below every cell (two sweeps). For a point
+/// at its cell's centre (every texel whose centre lies on the surface) the squared distance to
+/// the empty square k columns and j rows away is (|k| - 1/2)^2 + (|j| - 1/2)^2, zero terms for
+/// k or j = 0: a sum of a term per axis, so Felzenszwalb and Huttenlocher's lower envelope of
+/// parabolas (Theory of Computing 8, 2012) gives every centre's minimum in one pass per row. A
+/// border texel's point (the nearest surface point to a centre off the surface) is anywhere:
+/// its distance is found exactly by walking the columns outward from it, stopping where the
+/// column distance alone passes the best found, so it costs its distance, not its square.
+std::vector<float> SurfaceFootprint::border_distances(const SurfaceTexels& texels) const {
+    const auto w = static_cast<std::size_t>(width_);
+    const auto h = static_cast<std::size_t>(height_);
+    // Rows to the nearest empty cell at or above (y decreasing) and at or below each cell;
+    // row -1 and row height_ are empty.
+    std::vector<std::int32_t> up(w * h);
+    std::vector<std::int32_t> down(w * h);
+    for (int x = 0; x < width_; ++x) {
+        std::int32_t run = 0;  // row -1
+        for (int y = 0; y < height_; ++y) {
+            run = empty_cell(x, y) ? 0 : run + 1;
+            up[static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x)] = run;
+        }
+        run = 0;  // row height_
+        for (int y = height_ - 1; y >= 0; --y) {
+            run = empty_cell(x, y) ? 0 : run + 1;
+            down[static_cast<std::size_t>(y) * w + static_cast<std::size_t>(x)] = run;
+        }
+    }
+    const std::vector<float> centres = centre_distances(up, down);
+
+    std::vector<float> distances;
+    distances.reserve(texels.texels.size());
+    for (const SurfaceTexel& texel : texels.texels) {
+        const glm::dvec2 point = glm::dvec2(texel.page_point) - glm::dvec2(x0_, y0_);
         const int cx = static_cast<int>(std::floor(point.x));
         const int cy = static_cast<int>(std::floor(point.y));
-        double nearest = std::numeric_limits<double>::max();
-        const int limit = std::max(width_, height_) + 1;
-        for (int ring = 0; ring <= limit; ++ring) {
-            // Every cell on ring `ring` is at least ring - 1 texels away from the point.
-            if (ring - 1 >= nearest) {
+        if (empty_cell(cx, cy)) {
+            distances.push_back(0.0f);
+            continue;
+        }
+        const std::size_t cell = static_cast<std::size_t>(cy) * w + static_cast<std::size_t>(cx);
+        const glm::dvec2 offset = point - glm::dvec2(cx, cy);
+        if (offset == glm::dvec2(0.5)) {
+            distances.push_back(centres[cell]);
+            continue;
+        }
+        // Squared distance from the point to the empty square nearest it in column x.
+        const auto column = [&](int x) {
+            const double dx = std::max({x - point.x, 0.0, point.x - (x + 1)});
+            double dy = 0.0;
+            if (x >= 0 && x < width_) {
+                const std::size_t at =
+                    static_cast<std::size_t>(cy) * w + static_cast<std::size_t>(x);
+                // The empty cell `up` rows above ends at cy - up + 1; `down` below starts at
+                // cy + down.
+                const double above = point.y - (cy - up[at] + 1);
+                const double below = (cy + down[at]) - point.y;
+                dy = up[at] == 0 ? 0.0 : std::max(0.0, std::min(above, below));
+            }
+            return dx * dx + dy * dy;
+        };
+        // The centre's distance plus the way to it bounds the point's (with a margin for the
+        // float it was stored as: the bound must not fall below the true distance).
+        const double bound = static_cast<double>(centres[cell]) * (1.0 + 1e-6) + 1e-6 +
+                             glm::length(offset - glm::dvec2(0.5));
+        double best = bound * bound;
+        for (int x = cx; x >= -1; --x) {
+            const double dx = point.x - (x + 1);
+            if (x < cx && dx * dx >= best) {
                 break;
             }
-            for (int y = cy - ring; y <= cy + ring; ++y) {
-                for (int x = cx - ring; x <= cx + ring; ++x) {
-                    if (std::max(std::abs(x - cx), std::abs(y - cy)) != ring || !empty(x, y)) {
-                        continue;
-                    }
-                    // Distance from the point to the cell's square.
-                    const double dx = std::max({x - point.x, 0.0, point.x - (x + 1)});
-                    const double dy = std::max({y - point.y, 0.0, point.y - (y + 1)});
-                    nearest = std::min(nearest, std::sqrt(dx * dx + dy * dy));
-                }
-            }
+            best = std::min(best, column(x));
         }
-        border_distance_.push_back(static_cast<float>(nearest));
+        for (int x = cx + 1; x <= width_; ++x) {
+            const double dx = x - point.x;
+            if (dx * dx >= best) {
+                break;
+            }
+            best = std::min(best, column(x));
+        }
+        distances.push_back(static_cast<float>(std::sqrt(best)));
     }
+    return distances;
+}
+
+/// For every cell, the distance from its centre to the nearest empty square (see
+/// border_distances), by rows: per column the vertical term g(x) = (k - 1/2)^2 (k rows to the
+/// nearest empty cell, 0 when the cell is empty), then per row the minimum over columns x' of
+/// g(x') plus the horizontal term, which is (x - 1/2 - x')^2 for x' < x, (x + 1/2 - x')^2 for
+/// x' > x and 0 for x' = x. Each of the first two, taken over all x', is never below the true
+/// term (the wrong side's offset only adds), so the minimum of the two lower envelopes (at
+/// x - 1/2 and x + 1/2) and g(x) itself is exact. Columns -1 and width_ are empty.
+std::vector<float> SurfaceFootprint::centre_distances(const std::vector<std::int32_t>& up,
+                                                      const std::vector<std::int32_t>& down) const {
+    const auto w = static_cast<std::size_t>(width_);
+    std::vector<float> result(up.size());
+    const std::size_t n = w + 2;  // parabola i stands at column i - 1
+    std::vector<double> g(n);
+    std::vector<std::size_t> vertex(n);
+    std::vector<double> boundary(n + 1);
+    for (int y = 0; y < height_; ++y) {
+        g.front() = 0.0;
+        g.back() = 0.0;
+        for (std::size_t x = 0; x < w; ++x) {
+            const std::size_t at = static_cast<std::size_t>(y) * w + x;
+            const std::int32_t k = std::min(up[at], down[at]);
+            g[x + 1] = k == 0 ? 0.0 : (k - 0.5) * (k - 0.5);
+        }
+        // The lower envelope of the parabolas (q - i)^2 + g[i] over q.
+        std::size_t count = 0;
+        vertex[0] = 0;
+        boundary[0] = -std::numeric_limits<double>::infinity();
+        boundary[1] = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 1; i < n; ++i) {
+            const auto meet = [&](std::size_t j) {
+                const auto a = static_cast<double>(i);
+                const auto b = static_cast<double>(j);
+                return ((g[i] + a * a) - (g[j] + b * b)) / (2.0 * (a - b));
+            };
+            double s = meet(vertex[count]);
+            while (s <= boundary[count]) {
+                --count;  // boundary[0] is -inf: the loop ends at the first parabola at latest
+                s = meet(vertex[count]);
+            }
+            ++count;
+            vertex[count] = i;
+            boundary[count] = s;
+            boundary[count + 1] = std::numeric_limits<double>::infinity();
+        }
+        // Queries at x - 1/2 and x + 1/2, in increasing order, in envelope coordinates (+1).
+        std::size_t left = 0;
+        std::size_t right = 0;
+        const auto value = [&](std::size_t piece, double q) {
+            const double d = q - static_cast<double>(vertex[piece]);
+            return d * d + g[vertex[piece]];
+        };
+        for (std::size_t x = 0; x < w; ++x) {
+            const double before = static_cast<double>(x) + 0.5;  // x - 1/2, shifted by one
+            const double after = static_cast<double>(x) + 1.5;
+            while (boundary[left + 1] < before) {
+                ++left;
+            }
+            while (boundary[right + 1] < after) {
+                ++right;
+            }
+            result[static_cast<std::size_t>(y) * w + x] = static_cast<float>(
+                std::sqrt(std::min({g[x + 1], value(left, before), value(right, after)})));
+        }
+    }
+    return result;
 }
 
 bool SurfaceFootprint::covers(const glm::dvec2& point) const {

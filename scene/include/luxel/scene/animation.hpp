@@ -44,6 +44,13 @@ struct Animation {
     [[nodiscard]] float duration() const;
 };
 
+/// The smallest magnitude an animated scale component is given (world::update_animations clamps
+/// to it, keeping the sign). A mesh that its animation scales to 0 (a pop-in effect) would have
+/// no inverse transform, and the ray tracer carries rays into an instance's frame with that
+/// inverse: they become non-finite (Embree asserts). 1e-6 hides a mesh as well as 0 does (a
+/// kilometre becomes a millimetre); Scene::validate bounds what the parents multiply it by.
+inline constexpr float kMinAnimatedScale = 1e-6f;
+
 /// Helpers to turn sampled vec4s into node properties.
 [[nodiscard]] inline glm::vec3 as_vec3(const glm::vec4& v) {
     return glm::vec3(v);

@@ -39,6 +39,13 @@ struct LoadOptions {
     std::uint64_t max_array_elements = std::uint64_t{1} << 20;
     /// KHR_lights_punctual lights: each costs photons and, drawn, a shadow map.
     std::uint64_t max_lights = 16384;
+    /// Nodes that place a light: what the world holds and emits photons from, however
+    /// few lights they share (50,000 nodes naming one light are 50,000 lights).
+    std::uint64_t max_light_instances = 16384;
+    /// Placed lights the renderer gives a shadow map: every punctual light (point and wide
+    /// spot lights a cube of six 512^2 depth faces, 6 MiB; spot and directional a 1024^2 map,
+    /// 4 MiB). 256 cube maps are 1.5 GiB of GL memory.
+    std::uint64_t max_shadowed_lights = 256;
     std::uint64_t max_node_depth = 1024;
     /// JSON nesting (arrays and objects inside each other); glTF itself needs about 8.
     std::uint64_t max_json_depth = 256;

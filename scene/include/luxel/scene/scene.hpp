@@ -123,6 +123,15 @@ struct Scene {
     std::vector<Camera> cameras;
     std::vector<Animation> animations;
     LoadReport report;
+    /// The file the scene was loaded from, as the loader names it in its errors; empty for a
+    /// scene built in code. Errors found after loading (an image that does not decode, a
+    /// light-map table the instance rejects) name it through in_file().
+    std::string source;
+
+    /// "SOURCE: what" (just `what` without a source): a message naming the level file.
+    [[nodiscard]] std::string in_file(const std::string& what) const {
+        return source.empty() ? what : source + ": " + what;
+    }
 
     /// Every node index once, each after its parent. Throws luxel::Error on a cycle.
     [[nodiscard]] std::vector<std::size_t> parent_first_order() const;

@@ -20,7 +20,8 @@ namespace luxel::lighting {
 /// the estimate unbiased up to the border. Luxel-prep's charts are conformal with a known
 /// metres-per-texel scale, so that area is measured on the surface's own light-map triangles:
 /// no ray, no mesh walk. Texels farther from the chart border than the disc's radius skip the
-/// measurement (a distance transform says which), so interior texels cost nothing.
+/// measurement (a distance transform, linear in the chart's texels, says which), so interior
+/// texels cost nothing.
 class SurfaceFootprint {
   public:
     SurfaceFootprint() = default;
@@ -32,8 +33,18 @@ class SurfaceFootprint {
     [[nodiscard]] double fraction(std::size_t texel, double radius_texels,
                                   DensityKernel kernel = DensityKernel::Disc) const;
 
+    /// The distance (page texels) from texel `texel`'s point to the nearest cell of the chart's
+    /// grid no triangle covers: below it, fraction() is 1 without measuring. 0 past the end.
+    [[nodiscard]] float border_distance(std::size_t texel) const {
+        return texel < border_distance_.size() ? border_distance_[texel] : 0.0f;
+    }
+
   private:
     [[nodiscard]] bool covers(const glm::dvec2& point) const;
+    [[nodiscard]] bool empty_cell(int x, int y) const;
+    [[nodiscard]] std::vector<float> border_distances(const SurfaceTexels& texels) const;
+    [[nodiscard]] std::vector<float> centre_distances(const std::vector<std::int32_t>& up,
+                                                      const std::vector<std::int32_t>& down) const;
 
     std::vector<glm::dvec2> corners_;  ///< three per triangle, page-texel units
     int x0_ = 0;
