@@ -99,6 +99,23 @@ double sampler_floor(const AnimationSampler& sampler) {
     return std::max(floor, static_cast<double>(kMinAnimatedScale));
 }
 
+/// Calls visit(node, channel, sampler) for every animation channel whose node and sampler exist
+/// (validate_animations names the others).
+template <typename Visit>
+void for_each_channel(const Scene& scene, Visit&& visit) {
+    const std::size_t count = scene.nodes.size();
+    for (const Animation& animation : scene.animations) {
+        for (const AnimationChannel& channel : animation.channels) {
+            if (!in_range(channel.node, count) ||
+                !in_range(channel.sampler, animation.samplers.size())) {
+                continue;
+            }
+            visit(static_cast<std::size_t>(channel.node), channel,
+                  animation.samplers[static_cast<std::size_t>(channel.sampler)]);
+        }
+    }
+}
+
 }  // namespace
 
 void validate_transform_bounds(const Scene& scene) {
@@ -113,23 +130,16 @@ void validate_transform_bounds(const Scene& scene) {
                              std::abs(static_cast<double>(node.scale.z))});
         reach[i] = static_cast<double>(glm::length(node.translation));
     }
-    for (const Animation& animation : scene.animations) {
-        for (const AnimationChannel& channel : animation.channels) {
-            if (!in_range(channel.node, count) ||
-                !in_range(channel.sampler, animation.samplers.size())) {
-                continue;  // validate_animations names it
-            }
-            const auto n = static_cast<std::size_t>(channel.node);
-            const double value =
-                sampler_reach(animation.samplers[static_cast<std::size_t>(channel.sampler)]);
-            if (channel.property == AnimatedProperty::Scale) {
-                scale[n] = std::max(scale[n], value);
-                scale_animated[n] = true;
-            } else if (channel.property == AnimatedProperty::Translation) {
-                reach[n] = std::max(reach[n], std::sqrt(3.0) * value);
-            }
+    for_each_channel(scene, [&](std::size_t n, const AnimationChannel& channel,
+                                const AnimationSampler& sampler) {
+        const double value = sampler_reach(sampler);
+        if (channel.property == AnimatedProperty::Scale) {
+            scale[n] = std::max(scale[n], value);
+            scale_animated[n] = true;
+        } else if (channel.property == AnimatedProperty::Translation) {
+            reach[n] = std::max(reach[n], std::sqrt(3.0) * value);
         }
-    }
+    });
     std::vector<double> world_scale(count, 1.0);
     std::vector<double> world_reach(count, 0.0);
     for (const std::size_t i : scene.parent_first_order()) {
@@ -173,21 +183,13 @@ void validate_instance_scales(const Scene& scene) {
         smallest[i] = smallest_component(glm::vec4(scene.nodes[i].scale, 0.0f));
         moves[i] = scene.nodes[i].flags.dynamic.value_or(false);
     }
-    for (const Animation& animation : scene.animations) {
-        for (const AnimationChannel& channel : animation.channels) {
-            if (!in_range(channel.node, count) ||
-                !in_range(channel.sampler, animation.samplers.size())) {
-                continue;  // validate_animations names it
-            }
-            const auto n = static_cast<std::size_t>(channel.node);
-            moves[n] = true;
-            if (channel.property == AnimatedProperty::Scale) {
-                smallest[n] = std::min(
-                    smallest[n],
-                    sampler_floor(animation.samplers[static_cast<std::size_t>(channel.sampler)]));
-            }
+    for_each_channel(scene, [&](std::size_t n, const AnimationChannel& channel,
+                                const AnimationSampler& sampler) {
+        moves[n] = true;
+        if (channel.property == AnimatedProperty::Scale) {
+            smallest[n] = std::min(smallest[n], sampler_floor(sampler));
         }
-    }
+    });
     // As Scene::is_dynamic: a node's own flag decides; without one, whatever moves it or an
     // ancestor makes it dynamic.
     std::vector<double> world(count, 1.0);
