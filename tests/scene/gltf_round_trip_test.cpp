@@ -154,6 +154,22 @@ TEST(GltfValidator, EverythingTheWriterProducesPasses) {
     EXPECT_NE(result.output.find("room.glb: 0 errors"), std::string::npos) << result.output;
 }
 
+TEST(GltfValidator, LightMapUvsWithoutTextureCoordinatesStillValidate) {
+    // A mesh exported without TEXCOORD_0 that luxel-prep gave light-map UVs (TEXCOORD_1): the
+    // validator wants the sets numbered from 0.
+    TempDir dir;
+    Scene scene = luxel::testing::single_triangle();
+    auto& primitive = scene.meshes[0].primitives[0];
+    primitive.texcoords0.clear();
+    primitive.texcoords1 = {{0.1f, 0.1f}, {0.9f, 0.1f}, {0.1f, 0.9f}};
+    luxel::scene::save_gltf(scene, dir / "uv1-only.glb");
+    luxel::testing::expect_every_file_valid({dir / "uv1-only.glb"});
+    const Scene loaded = luxel::scene::load_gltf(dir / "uv1-only.glb");
+    const auto& back = loaded.meshes[0].primitives[0];
+    EXPECT_EQ(back.texcoords1, primitive.texcoords1);
+    EXPECT_EQ(back.texcoords0, primitive.texcoords1);  // the same accessor, set 0 too
+}
+
 TEST(GltfSave, RejectsWhatItCannotWrite) {
     TempDir dir;
     EXPECT_THROW(luxel::scene::save_gltf(luxel::testing::single_triangle(), dir / "x.obj"),
