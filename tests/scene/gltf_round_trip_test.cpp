@@ -187,6 +187,23 @@ TEST(GltfSave, RejectsWhatItCannotWrite) {
     EXPECT_THROW(
         luxel::scene::save_gltf(luxel::testing::single_triangle(), dir / "no-such-dir" / "x.glb"),
         luxel::Error);
+    // A light whose colour times intensity overflows float is refused with its name, never
+    // written as "intensity": null (issue 22).
+    Scene bright = luxel::testing::single_triangle();
+    luxel::scene::Light light;
+    light.name = "sun";
+    light.color = glm::vec3(4.0f, 1.0f, 1.0f);
+    light.intensity = 3e38f;
+    bright.lights.push_back(light);
+    try {
+        luxel::scene::save_gltf(bright, dir / "bright.glb");
+        FAIL() << "an overflowing light was written";
+    } catch (const luxel::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("sun"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("colour times intensity"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir / "bright.glb"));
 }
 
 }  // namespace
