@@ -27,6 +27,13 @@ SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const Shade
     scene_ = std::make_shared<scene::Scene>(scene::load_gltf(level_file_, settings.load_limits));
     instance_ = world::instantiate(registry_, scene_);
     const std::size_t bounces = add_bounces(registry_, instance_, *scene_);
+    // The pose the first frame shows, before anything is lit: the animations and light switches
+    // at t = 0 and the game's bounce at its start. Without it the loading screen lit the glTF
+    // rest pose (a lamp hanging straight that starts at 30 degrees) and the first frames showed
+    // its light until the budget caught up (issue 28).
+    world::update_animations(registry_, 0.0);
+    world::update_light_switches(registry_, 0.0);
+    update_bounces(registry_, 0.0);
     transforms_.update();
     path_ = camera_path_for(level_name_, *scene_);
     lighting_ = std::make_unique<lighting::LightingSystem>(registry_, jobs);
