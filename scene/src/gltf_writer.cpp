@@ -266,19 +266,21 @@ class DocumentWriter {
             attributes["NORMAL"] =
                 buffer_.add_floats(flat(normals), normals.size(), 3, false, kArrayBuffer);
         }
-        if (!primitive.texcoords1.empty()) {
-            attributes["TEXCOORD_1"] = buffer_.add_floats(
-                flat(primitive.texcoords1), primitive.texcoords1.size(), 2, false, kArrayBuffer);
-        }
         if (!primitive.texcoords0.empty()) {
             attributes["TEXCOORD_0"] = buffer_.add_floats(
                 flat(primitive.texcoords0), primitive.texcoords0.size(), 2, false, kArrayBuffer);
-        } else if (attributes.contains("TEXCOORD_1")) {
-            // glTF numbers a primitive's TEXCOORD_n sets from 0 without gaps (the validator's
-            // MESH_PRIMITIVE_INDEXED_SEMANTIC_CONTINUITY): a mesh that came without texture
-            // coordinates and got light-map UVs from luxel-prep names the same accessor as its
-            // set 0, which costs no bytes. Such a mesh had nothing to map a texture with.
-            attributes["TEXCOORD_0"] = attributes["TEXCOORD_1"];
+        }
+        if (!primitive.texcoords1.empty()) {
+            attributes["TEXCOORD_1"] = buffer_.add_floats(
+                flat(primitive.texcoords1), primitive.texcoords1.size(), 2, false, kArrayBuffer);
+            if (primitive.texcoords0.empty()) {
+                // glTF numbers a primitive's TEXCOORD_n sets from 0 without gaps (the
+                // validator's MESH_PRIMITIVE_INDEXED_SEMANTIC_CONTINUITY): a mesh that came
+                // without texture coordinates and got light-map UVs from luxel-prep names the
+                // same accessor as its set 0, which costs no bytes. Such a mesh had nothing to
+                // map a texture with.
+                attributes["TEXCOORD_0"] = attributes["TEXCOORD_1"];
+            }
         }
         json entry = {
             {"attributes", std::move(attributes)},
