@@ -55,10 +55,7 @@ void IimGatherPasses::mark_changed(std::uint32_t surface, const GeometryChange& 
     const std::vector<GatherTexel> texels = registry_.world_texels(surface);
     state.changed_texels.resize(texels.size(), 0);
     for (std::size_t i = 0; i < texels.size(); ++i) {
-        const glm::vec3& p = texels[i].position;
-        const bool inside = glm::all(glm::lessThanEqual(region.min, p)) &&
-                            glm::all(glm::lessThanEqual(p, region.max));
-        if (inside && state.changed_texels[i] == 0) {
+        if (region.contains(texels[i].position) && state.changed_texels[i] == 0) {
             state.changed_texels[i] = 1;
             ++state.changed_count;
         }

@@ -105,6 +105,12 @@ void MapRegistry::add_surface(std::uint32_t surface) {
                 static_cast<std::int32_t>(surface);
         }
     }
+    AxisBox local;
+    for (const SurfaceTexel& texel : mapped.texels.texels) {
+        local.add(texel.position);
+    }
+    local_boxes_.push_back(local);
+    surface_boxes_.emplace_back();
     surfaces_.push_back(std::move(mapped));
     surfaces_of_[info.entity].push_back(surface);
     refresh_transform(surface);
@@ -142,33 +148,19 @@ void MapRegistry::refresh_transform(std::uint32_t surface) {
     const double scale =
         std::cbrt(std::abs(static_cast<double>(glm::determinant(glm::mat3(mapped.to_world)))));
     mapped.world_metres_per_texel = mapped.texels.metres_per_texel * scale;
-    // An empty box (min > max) meets nothing.
-    const GeometryChange empty{glm::vec3(std::numeric_limits<float>::max()),
-                               glm::vec3(std::numeric_limits<float>::lowest())};
-    GeometryChange box = empty;
-    for (const GatherTexel& texel : world_texels(surface)) {
-        box.min = glm::min(box.min, texel.position);
-        box.max = glm::max(box.max, texel.position);
-    }
-    if (surface_boxes_.size() <= surface) {
-        surface_boxes_.resize(surface + 1, empty);
-    }
-    surface_boxes_[surface] = box;
+    surface_boxes_[surface] = transformed(local_boxes_[surface], mapped.to_world);
 }
 
 void MapRegistry::find_nearby_changes() {
     nearby_changes_.clear();
     for (const GeometryChange& change : world_.geometry_changes()) {
-        if (!finite_vector(change.min) || !finite_vector(change.max)) {
+        if (change.empty() || !finite_vector(change.min) || !finite_vector(change.max)) {
             continue;
         }
         const glm::vec3 margin = glm::vec3(0.5f * glm::length(change.max - change.min));
         const GeometryChange region{change.min - margin, change.max + margin};
-        for (std::uint32_t s = 0; s < surfaces_.size() && s < surface_boxes_.size(); ++s) {
-            const GeometryChange& box = surface_boxes_[s];
-            const bool meets = glm::all(glm::lessThanEqual(box.min, region.max)) &&
-                               glm::all(glm::lessThanEqual(region.min, box.max));
-            if (meets && live(s)) {
+        for (std::uint32_t s = 0; s < surfaces_.size(); ++s) {
+            if (surface_boxes_[s].meets(region) && live(s)) {
                 nearby_changes_.push_back({s, region});
             }
         }

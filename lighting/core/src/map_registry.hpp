@@ -83,8 +83,10 @@ class MapRegistry {
     /// Per page texel, the surface that owns it (-1: padding or unused).
     std::vector<std::vector<std::int32_t>> owners_;
     std::vector<MapSurface> surfaces_;
-    /// Per surface, the world box of its texel centres (min > max: none).
-    std::vector<GeometryChange> surface_boxes_;
+    /// Per surface, the box of its texel centres in object space, and where it lies in the
+    /// world (refreshed with the transform).
+    std::vector<AxisBox> local_boxes_;
+    std::vector<AxisBox> surface_boxes_;
     std::vector<NearbyChange> nearby_changes_;
     std::map<std::pair<const scene::Scene*, int>, std::int32_t> pages_;
     std::map<ecs::Entity, std::vector<std::uint32_t>> surfaces_of_;

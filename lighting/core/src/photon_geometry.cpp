@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <utility>
 
 #include "luxel/runtime/log.hpp"
@@ -154,10 +153,10 @@ void PhotonGeometry::add_mesh(ecs::Entity entity) {
     const ObjectId object =
         scene_.add_object(std::move(triangles), world_matrix(registry_, entity), dynamic);
     objects_[entity] = object;
-    const GeometryChange box = world_box(object);
-    object_boxes_[object] = box;
-    changes_.push_back(box);
-    changed_ = true;
+    ObjectBoxes& boxes = object_boxes_[object];
+    boxes.local = box_around(scene_.mesh(object).positions);
+    boxes.world = transformed(boxes.local, scene_.transform(object));
+    changes_.push_back(boxes.world);
 }
 
 void PhotonGeometry::remove_mesh(ecs::Entity entity) {
@@ -167,13 +166,12 @@ void PhotonGeometry::remove_mesh(ecs::Entity entity) {
     }
     // Photons stored on its surfaces stay until their groups' probes notice (they no longer hit
     // it) and retrace: the surfaces are not reused.
-    if (const auto box = object_boxes_.find(found->second); box != object_boxes_.end()) {
-        changes_.push_back(box->second);
-        object_boxes_.erase(box);
+    if (const auto boxes = object_boxes_.find(found->second); boxes != object_boxes_.end()) {
+        changes_.push_back(boxes->second.world);
+        object_boxes_.erase(boxes);
     }
     scene_.remove_object(found->second);
     objects_.erase(found);
-    changed_ = true;
 }
 
 bool PhotonGeometry::move(ecs::Entity entity) {
@@ -184,48 +182,17 @@ bool PhotonGeometry::move(ecs::Entity entity) {
     if (scene_.is_dynamic(found->second)) {
         const ObjectId object = found->second;
         scene_.set_transform(object, world_matrix(registry_, entity));
-        GeometryChange& box = object_boxes_[object];
-        changes_.push_back(box);  // where it was
-        box = world_box(object);
-        changes_.push_back(box);  // where it is
+        ObjectBoxes& boxes = object_boxes_[object];
+        changes_.push_back(boxes.world);  // where it was
+        boxes.world = transformed(boxes.local, scene_.transform(object));
+        changes_.push_back(boxes.world);  // where it is
     } else {
         // A static object moved after all: rebuild it in place (rare, and logged).
         log::debug("static mesh moved; rebuilding the static BVH");
         remove_mesh(entity);
         add_mesh(entity);
     }
-    changed_ = true;
     return true;
-}
-
-GeometryChange PhotonGeometry::world_box(ObjectId object) const {
-    // The transformed corners of the mesh's own box: cheap per move, and what the maps test
-    // against is a box anyway.
-    const TriangleMesh& mesh = scene_.mesh(object);
-    if (mesh.positions.empty()) {
-        return {};
-    }
-    glm::vec3 lo = mesh.positions.front();
-    glm::vec3 hi = lo;
-    for (const glm::vec3& p : mesh.positions) {
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-    }
-    const glm::mat4 transform = scene_.transform(object);
-    GeometryChange box{glm::vec3(std::numeric_limits<float>::max()),
-                       glm::vec3(std::numeric_limits<float>::lowest())};
-    for (int corner = 0; corner < 8; ++corner) {
-        const glm::vec3 local((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y,
-                              (corner & 4) ? hi.z : lo.z);
-        const glm::vec3 world = glm::vec3(transform * glm::vec4(local, 1.0f));
-        box.min = glm::min(box.min, world);
-        box.max = glm::max(box.max, world);
-    }
-    return box;
-}
-
-bool PhotonGeometry::take_changed() {
-    return std::exchange(changed_, false);
 }
 
 std::optional<ObjectId> PhotonGeometry::object(ecs::Entity entity) const {

@@ -36,10 +36,8 @@ class PhotonGeometry {
     void forget_generator(ecs::Entity entity);
     /// Makes the edits visible to ray queries (RayScene::commit).
     void commit() { scene_.commit(); }
-    /// Whether any object was added, removed or moved since the last call.
-    [[nodiscard]] bool take_changed();
     /// Where geometry changed since the last clear_changes(): each object's box where it was and
-    /// where it is now.
+    /// where it is now (empty: nothing was added, removed or moved).
     [[nodiscard]] const std::vector<GeometryChange>& changes() const { return changes_; }
     void clear_changes() { changes_.clear(); }
 
@@ -65,14 +63,17 @@ class PhotonGeometry {
     std::map<std::pair<const scene::Scene*, int>, std::uint32_t> material_ids_;
     /// (generator entity, shared material id) -> the generator's own material id.
     std::map<std::pair<ecs::Entity, std::uint32_t>, std::uint32_t> generator_materials_;
-    /// The world box of an object as last added or moved: a move records it as where the
-    /// object was.
-    [[nodiscard]] GeometryChange world_box(ObjectId object) const;
+    /// An object's box around its own vertices (object space for dynamic objects, world space
+    /// for static ones, as RayScene keeps them) and where that box lies as last added or moved:
+    /// a move records the latter as where the object was.
+    struct ObjectBoxes {
+        AxisBox local;
+        AxisBox world;
+    };
 
     std::map<ecs::Entity, ObjectId> objects_;
-    std::map<ObjectId, GeometryChange> object_boxes_;  ///< world boxes, by object
+    std::map<ObjectId, ObjectBoxes> object_boxes_;
     std::vector<GeometryChange> changes_;
-    bool changed_ = false;
 };
 
 }  // namespace luxel::lighting

@@ -48,7 +48,7 @@ void PhotonWorld::sync() {
     geometry_->commit();
 
     sync_lights(light_touched);
-    const bool objects_changed = geometry_->take_changed();
+    const bool objects_changed = !geometry_->changes().empty();
     // The scene disc of directional lights follows the scene's bounds.
     if (objects_changed) {
         lights_->refresh_directional(light_touched, geometry_->sphere());

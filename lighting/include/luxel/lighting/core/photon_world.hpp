@@ -9,6 +9,7 @@
 #include "luxel/ecs/registry.hpp"
 #include "luxel/ecs/transform.hpp"
 #include "luxel/lighting/components.hpp"
+#include "luxel/lighting/core/axis_box.hpp"
 #include "luxel/lighting/core/caustic_photons.hpp"
 #include "luxel/lighting/core/photon_map.hpp"
 #include "luxel/lighting/core/ray_scene.hpp"
@@ -55,10 +56,7 @@ struct CausticFrameStats {
 /// Where the geometry changed in one sync: the world-space box of an object where it was or
 /// where it is now (a move gives both, an object added its new box, one removed its old box).
 /// The maps re-examine what they decided from the geometry there (docs/METHOD.md §6.8).
-struct GeometryChange {
-    glm::vec3 min{0.0f};
-    glm::vec3 max{0.0f};
-};
+using GeometryChange = AxisBox;
 
 /// What the last PhotonWorld::sync() took in.
 struct PhotonSyncStats {
