@@ -51,11 +51,15 @@ void IimGatherPasses::sync() {
 }
 
 void IimGatherPasses::mark_changed(std::uint32_t surface, const GeometryChange& region) {
+    // Tested in the surface's own space, where its texels are kept: the region's box moved
+    // there (a little larger where the surface is rotated) instead of every texel moved out.
     GatherPassState& state = states_.at(surface);
-    const std::vector<GatherTexel> texels = registry_.world_texels(surface);
+    const MapSurface& mapped = registry_.surface(surface);
+    const AxisBox local = transformed(region, glm::inverse(mapped.to_world));
+    const std::vector<SurfaceTexel>& texels = mapped.texels.texels;
     state.changed_texels.resize(texels.size(), 0);
     for (std::size_t i = 0; i < texels.size(); ++i) {
-        if (region.contains(texels[i].position) && state.changed_texels[i] == 0) {
+        if (local.contains(texels[i].position) && state.changed_texels[i] == 0) {
             state.changed_texels[i] = 1;
             ++state.changed_count;
         }
