@@ -259,8 +259,6 @@ struct FrameRenderer::Impl {
         clear_colour(fbo);
         indirect_program.use();
         indirect_program.set("u_now", static_cast<float>(now_seconds));
-        indirect_program.set("u_blend",
-                             static_cast<float>(lighting.maps().settings().blend_seconds));
         glBindTextureUnit(0, targets.albedo.id());
         glBindTextureUnit(3, targets.lightmap.id());
         lightmaps.bind();
@@ -381,10 +379,8 @@ struct FrameRenderer::Impl {
             const bool changed = counters.shadow_maps_drawn > 0 ||
                                  lights.size() != previous_light_count ||
                                  lightmaps.uploads() != previous_page_uploads;
-            specular = cube_maps.render(
-                draws, lights, shadows, batches, lightmaps, targets, camera, now_seconds,
-                static_cast<float>(lighting.maps().settings().blend_seconds), changed,
-                terms.specular);
+            specular = cube_maps.render(draws, lights, shadows, batches, lightmaps, targets, camera,
+                                        now_seconds, changed, terms.specular);
             timer.end(RenderPass::Specular);
         } else {
             cube_maps.clear();

@@ -142,8 +142,7 @@ bool SpecularCubeMaps::render(const DrawList& draws, const std::vector<FrameLigh
                               const ShadowMaps& shadows, LightBatches& batches,
                               const lighting::LightmapTextures& lightmaps,
                               const FrameTargets& targets, const FrameCamera& camera,
-                              double now_seconds, float blend_seconds, bool scene_changed,
-                              bool draw_term_now) {
+                              double now_seconds, bool scene_changed, bool draw_term_now) {
     std::set<ecs::Entity> present;
     for (const DrawItem& item : draws.items) {
         if (!item.specular) {
@@ -172,7 +171,6 @@ bool SpecularCubeMaps::render(const DrawList& draws, const std::vector<FrameLigh
     face_program_.use();
     face_program_.set("u_filtered", 1);
     face_program_.set("u_now", static_cast<float>(now_seconds));
-    face_program_.set("u_blend", blend_seconds);
     batches.bind(lights, 0, shadows);
     lightmaps.bind();
     for (auto& [entity, cube_map] : cube_maps_) {

@@ -43,8 +43,7 @@ class SpecularCubeMaps {
     bool render(const DrawList& draws, const std::vector<FrameLight>& lights,
                 const ShadowMaps& shadows, LightBatches& batches,
                 const lighting::LightmapTextures& lightmaps, const FrameTargets& targets,
-                const FrameCamera& camera, double now_seconds, float blend_seconds,
-                bool scene_changed, bool draw_term);
+                const FrameCamera& camera, double now_seconds, bool scene_changed, bool draw_term);
     void clear() { cube_maps_.clear(); }
 
     [[nodiscard]] std::size_t count() const { return cube_maps_.size(); }

@@ -1,6 +1,6 @@
 // Reading the IIM pages (lighting/gpu/include/luxel/lighting/gpu/lightmap_textures.hpp): bilinear, through the
 // per-texel front/back blend
-//     shown = mix(previous, current, clamp((now - committed) / blend, 0, 1)),
+//     shown = mix(previous, current, clamp((now - committed) / fade, 0, 1)),
 // blended per texel before the bilinear weights, as IimPage::shown and RadiancePage::sample do
 // on the CPU, texel for texel. Pages holding irradiance (textured materials) are multiplied by
 // albedo / pi; pages holding radiance are already premultiplied.
@@ -9,20 +9,19 @@
 
 layout(binding = 12) uniform sampler2DArray u_iim_previous;
 layout(binding = 13) uniform sampler2DArray u_iim_current;
-layout(binding = 14) uniform sampler2DArray u_iim_committed;
+layout(binding = 14) uniform sampler2DArray u_iim_fades;  // (committed, fade seconds)
 
 layout(std430, binding = 1) readonly buffer PageSizes {
     int u_page_size[];
 };
 
 uniform float u_now;    // seconds, the clock the IIM was committed with
-uniform float u_blend;  // seconds of fade-in (0: at once)
 
 vec3 iim_shown(ivec3 texel) {
     vec3 previous = texelFetch(u_iim_previous, texel, 0).rgb;
     vec3 current = texelFetch(u_iim_current, texel, 0).rgb;
-    float committed = texelFetch(u_iim_committed, texel, 0).r;
-    float weight = u_blend > 0.0 ? clamp((u_now - committed) / u_blend, 0.0, 1.0) : 1.0;
+    vec2 fade = texelFetch(u_iim_fades, texel, 0).rg;
+    float weight = fade.y > 0.0 ? clamp((u_now - fade.x) / fade.y, 0.0, 1.0) : 1.0;
     return mix(previous, current, weight);
 }
 

@@ -1,5 +1,7 @@
-// The IIM's double buffer: an update fades in over the blend time, a texel updated mid-fade
+// The IIM's double buffer: an update fades in over its texel's fade time, a texel updated mid-fade
 // continues from what it showed, and only the touched rectangle is marked for upload.
+
+#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -9,20 +11,29 @@ namespace {
 
 using namespace luxel::lighting;
 
-TEST(IimPage, UpdatesFadeInOverTheBlendTime) {
+TEST(IimPage, UpdatesFadeInOverTheirOwnFadeTime) {
     IimPage page(16);
     page.commit(3, 4, glm::vec3(2.0f), 10.0, 0.5);
-    EXPECT_EQ(page.shown(3, 4, 10.0, 0.5), glm::vec3(0.0f));
-    EXPECT_NEAR(page.shown(3, 4, 10.25, 0.5).x, 1.0f, 1e-5f);
-    EXPECT_EQ(page.shown(3, 4, 10.5, 0.5), glm::vec3(2.0f));
-    EXPECT_EQ(page.shown(3, 4, 99.0, 0.5), glm::vec3(2.0f));
-    // Mid-fade update: starts from the 1.0 it showed, heads for 4.
-    page.commit(3, 4, glm::vec3(4.0f), 10.25, 0.5);
-    EXPECT_NEAR(page.shown(3, 4, 10.25, 0.5).x, 1.0f, 1e-5f);
-    EXPECT_NEAR(page.shown(3, 4, 10.5, 0.5).x, 2.5f, 1e-5f);
-    // Blend time 0: at once.
+    EXPECT_EQ(page.shown(3, 4, 10.0), glm::vec3(0.0f));
+    EXPECT_NEAR(page.shown(3, 4, 10.25).x, 1.0f, 1e-5f);
+    EXPECT_EQ(page.shown(3, 4, 10.5), glm::vec3(2.0f));
+    EXPECT_EQ(page.shown(3, 4, 99.0), glm::vec3(2.0f));
+    // Mid-fade update with a shorter fade (a texel re-gathered after a change): starts from
+    // the 1.0 it showed and reaches 4 in 0.1 s, not 0.5 s.
+    page.commit(3, 4, glm::vec3(4.0f), 10.25, 0.1);
+    EXPECT_NEAR(page.shown(3, 4, 10.25).x, 1.0f, 1e-5f);
+    EXPECT_NEAR(page.shown(3, 4, 10.30).x, 2.5f, 1e-4f);
+    EXPECT_EQ(page.shown(3, 4, 10.35), glm::vec3(4.0f));
+    // A neighbour keeps its own fade.
+    page.commit(4, 4, glm::vec3(2.0f), 10.25, 0.5);
+    EXPECT_NEAR(page.shown(4, 4, 10.35).x, 0.4f, 1e-4f);
+    // Fade time 0, negative or not finite: at once.
     page.commit(5, 5, glm::vec3(7.0f), 11.0, 0.0);
-    EXPECT_EQ(page.shown(5, 5, 11.0, 0.0), glm::vec3(7.0f));
+    EXPECT_EQ(page.shown(5, 5, 11.0), glm::vec3(7.0f));
+    page.commit(6, 5, glm::vec3(7.0f), 11.0, -1.0);
+    EXPECT_EQ(page.shown(6, 5, 11.0), glm::vec3(7.0f));
+    page.commit(7, 5, glm::vec3(7.0f), 11.0, std::numeric_limits<double>::quiet_NaN());
+    EXPECT_EQ(page.shown(7, 5, 11.0), glm::vec3(7.0f));
 }
 
 TEST(RadiancePage, ChangedRectanglesGrowAndEachReaderSeesThemOnce) {

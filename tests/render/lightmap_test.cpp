@@ -21,6 +21,7 @@ using namespace luxel::lighting;
 constexpr int kSize = 128;
 constexpr int kPage = 8;
 constexpr float kCommitted = 10.0f;
+constexpr float kFadeSeconds = 0.5f;
 const glm::vec3 kAlbedoA(0.5f, 0.6f, 0.7f);  // untextured: the IIM holds radiance
 const glm::vec3 kAlbedoB(0.8f, 0.4f, 0.2f);  // textured: the IIM holds irradiance
 const glm::vec3 kCentreA(-1.1f, 0.0f, 0.0f);
@@ -66,10 +67,10 @@ class Lightmaps : public ::testing::Test {
         return maps.iim_pages()[0];
     }
 
-    void fill(IimPage& page, const glm::vec3& current) {
+    void fill(IimPage& page, const glm::vec3& current, float fade_seconds = kFadeSeconds) {
         std::fill(page.current.texels.begin(), page.current.texels.end(), current);
         std::fill(page.previous.texels.begin(), page.previous.texels.end(), kPrevious);
-        std::fill(page.committed_seconds.begin(), page.committed_seconds.end(), kCommitted);
+        std::fill(page.fades.begin(), page.fades.end(), IimFade{kCommitted, fade_seconds});
         page.current.mark_changed({0, 0, kPage, kPage});
     }
 
@@ -129,8 +130,7 @@ void expect_close(const glm::vec3& got, const glm::vec3& expected, float toleran
 TEST_F(Lightmaps, ConstantIimRendersItsRadiance) {
     fill(page_of(a_), kCurrentA);
     fill(page_of(b_), kCurrentB);
-    const double blend = world_.lighting->maps().settings().blend_seconds;
-    ASSERT_GT(blend, 0.0);
+    const double blend = kFadeSeconds;
     const glm::vec3 expected_b = kAlbedoB * kCurrentB / glm::pi<float>();
     int on_a = 0;
     int on_b = 0;
@@ -151,14 +151,19 @@ TEST_F(Lightmaps, ConstantIimRendersItsRadiance) {
     }
 }
 
-TEST_F(Lightmaps, BlendMixesPreviousAndCurrentByTheClock) {
-    fill(page_of(a_), kCurrentA);
-    fill(page_of(b_), kCurrentB);
-    const auto blend = static_cast<float>(world_.lighting->maps().settings().blend_seconds);
-    for (const float fraction : {0.0f, 0.25f, 0.5f, 0.9f, 1.0f}) {
-        const double now = kCommitted + fraction * blend;
+TEST_F(Lightmaps, BlendMixesPreviousAndCurrentByTheClockOverEachTexelsOwnFade) {
+    // Page B's texels fade four times faster than page A's (a local pass's texels after a
+    // change against a refinement's): each follows its own fade.
+    const float fade_a = kFadeSeconds;
+    const float fade_b = 0.25f * kFadeSeconds;
+    fill(page_of(a_), kCurrentA, fade_a);
+    fill(page_of(b_), kCurrentB, fade_b);
+    for (const float fraction : {0.0f, 0.1f, 0.25f, 0.5f, 0.9f, 1.0f}) {
+        const double now = kCommitted + fraction * fade_a;
+        const float fraction_b = std::min(fraction * fade_a / fade_b, 1.0f);
         const glm::vec3 a = glm::mix(kPrevious, kCurrentA, fraction);
-        const glm::vec3 b = kAlbedoB * glm::mix(kPrevious, kCurrentB, fraction) / glm::pi<float>();
+        const glm::vec3 b =
+            kAlbedoB * glm::mix(kPrevious, kCurrentB, fraction_b) / glm::pi<float>();
         render_and_check(now, [&](const glm::vec3& l, const glm::vec2&, bool is_b) {
             expect_close(l, is_b ? b : a, 0.01f, "blend");
         });

@@ -104,8 +104,8 @@ std::vector<glm::dvec3> shown_indirect(const lighting::IlluminationMaps& maps,
                 scale[c] = albedo > 0.0 ? glm::pi<double>() / albedo : 0.0;
             }
         }
-        const glm::vec3 shown = maps.iim_pages()[static_cast<std::size_t>(page)].shown(
-            texel.x, texel.y, now, maps.settings().blend_seconds);
+        const glm::vec3 shown =
+            maps.iim_pages()[static_cast<std::size_t>(page)].shown(texel.x, texel.y, now);
         out[i] = glm::dvec3(shown) * scale;
     }
     return out;

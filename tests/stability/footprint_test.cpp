@@ -3,7 +3,8 @@
 // now covers dark, as in a solution converged from scratch with the cube already slid; without
 // local passes (the paper's behaviour) the footprint is still dark then. Deterministic: a
 // ManualClock that never advances makes every unit free, so each frame does all the work queued
-// (stability_support.hpp).
+// (stability_support.hpp). What a player sees fades in per texel: the second test checks that
+// the texels a local pass re-gathered show their new light within frames, not half a second.
 
 #include <cmath>
 #include <string>
@@ -23,10 +24,11 @@ constexpr float kHalf = 0.25f;   ///< the cube's half size
 constexpr float kInset = 0.06f;  ///< texels this far inside a footprint's edge count
 constexpr std::uint32_t kRefinePasses = 4;
 
-lighting::LightingConfig footprint_config(bool local_passes) {
+lighting::LightingConfig footprint_config(bool local_passes, double change_blend_seconds) {
     lighting::LightingConfig config = luxel::testing::stability_config(77, 40);
     config.maps.refine_passes = kRefinePasses;
     config.maps.local_passes = local_passes;
+    config.maps.change_blend_seconds = change_blend_seconds;
     return config;
 }
 
@@ -46,9 +48,11 @@ struct Box {
     glm::mat4 rest{1.0f};
     glm::mat4 slid{1.0f};
 
-    explicit Box(bool local_passes, bool slide_first = false)
-        : level(luxel::testing::load_prepared("cornell"), footprint_config(local_passes), false,
-                clock),
+    explicit Box(
+        bool local_passes, bool slide_first = false,
+        double change_blend_seconds = lighting::IlluminationSettings{}.change_blend_seconds)
+        : level(luxel::testing::load_prepared("cornell"),
+                footprint_config(local_passes, change_blend_seconds), false, clock),
           cube(level.instance.find("moving cube")) {
         rest = level.registry.get<ecs::WorldTransform>(cube).matrix;
         if (slide_first) {
@@ -90,12 +94,28 @@ struct Box {
     /// The mean committed IIM over floor texels.
     [[nodiscard]] double mean_iim(
         const std::vector<std::pair<std::uint32_t, std::size_t>>& texels) const {
+        return mean_over(texels, [](const lighting::IimPage& page, int x, int y) {
+            return page.current.at(x, y);
+        });
+    }
+
+    /// The mean IIM a player sees now (the fade-in included) over floor texels.
+    [[nodiscard]] double mean_shown(
+        const std::vector<std::pair<std::uint32_t, std::size_t>>& texels) const {
+        return mean_over(texels, [this](const lighting::IimPage& page, int x, int y) {
+            return page.shown(x, y, level.time);
+        });
+    }
+
+    template <typename Read>
+    [[nodiscard]] double mean_over(const std::vector<std::pair<std::uint32_t, std::size_t>>& texels,
+                                   Read read) const {
         const auto& maps = level.lighting->maps();
         double sum = 0.0;
         for (const auto& [s, i] : texels) {
             const auto page = static_cast<std::size_t>(maps.aim().surface_page[s]);
             const auto& texel = maps.surfaces()[s].texels.texels[i];
-            const glm::vec3 v = maps.iim_pages()[page].current.at(texel.x, texel.y);
+            const glm::vec3 v = read(maps.iim_pages()[page], texel.x, texel.y);
             sum += static_cast<double>(v.x + v.y + v.z) / 3.0;
         }
         return texels.empty() ? 0.0 : sum / static_cast<double>(texels.size());
@@ -134,6 +154,39 @@ TEST(Footprint, TheFloorACubeLeavesIsLitAndTheFloorItCoversDarkWithinTwoFrames) 
     paper.level.frame(1e9);
     EXPECT_LT(paper.mean_iim(left), 0.5 * lit);
     EXPECT_GT(paper.mean_iim(covered), 0.5 * lit);
+}
+
+TEST(Footprint, WhatThePlayerSeesFollowsWithinSixFramesAt30Hz) {
+    Box truth(true, true);
+    const auto left = truth.floor_between(truth.rest, truth.slid);
+    const auto covered = truth.floor_between(truth.slid, truth.rest);
+    ASSERT_GT(left.size(), 20u);
+    const double lit = truth.mean_iim(left);
+    ASSERT_GT(lit, 0.0);
+
+    // Local passes fade in over change_blend_seconds (0.1 s, three frames at 30 Hz): two frames
+    // for the local pass and its re-gather once the AIM is current (the first test), three of
+    // fade, one to spare.
+    constexpr int kFrames = 6;
+    Box local(true);
+    ASSERT_GT(local.level.lighting->maps().settings().blend_seconds,
+              3.0 * local.level.lighting->maps().settings().change_blend_seconds);
+    local.slide();
+    for (int f = 0; f < kFrames; ++f) {
+        local.level.frame(1e9);
+    }
+    EXPECT_GT(local.mean_shown(left), 0.75 * lit);
+    EXPECT_LT(local.mean_shown(covered), 0.25 * lit);
+
+    // The same light maps faded in over the refinement's half second: the committed IIM is
+    // right, but what the player sees is still mostly the footprint.
+    Box slow(true, false, lighting::IlluminationSettings{}.blend_seconds);
+    slow.slide();
+    for (int f = 0; f < kFrames; ++f) {
+        slow.level.frame(1e9);
+    }
+    EXPECT_GT(slow.mean_iim(left), 0.75 * lit);
+    EXPECT_LT(slow.mean_shown(left), 0.5 * lit);
 }
 
 }  // namespace

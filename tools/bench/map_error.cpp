@@ -36,7 +36,6 @@ RealTimeMaps read_real_time(const lighting::LightingSystem& lighting, const Refe
     RealTimeMaps out;
     out.indirect.assign(scene.texel_count(), glm::dvec3(0.0));
     out.caustic.assign(scene.texel_count(), glm::dvec3(0.0));
-    const double blend = maps.settings().blend_seconds;
     for (const auto& surface : scene.surfaces()) {
         const lighting::MapSurface& map = maps.surfaces()[surface.surface];
         const std::int32_t page = maps.aim().surface_page[surface.surface];
@@ -53,7 +52,7 @@ RealTimeMaps read_real_time(const lighting::LightingSystem& lighting, const Refe
         }
         for (std::size_t i = 0; i < surface.texels.size(); ++i) {
             const auto& texel = surface.texels[i];
-            const glm::vec3 shown = iim.shown(texel.x, texel.y, now_seconds, blend);
+            const glm::vec3 shown = iim.shown(texel.x, texel.y, now_seconds);
             out.indirect[surface.first_texel + i] = glm::dvec3(shown) * scale;
         }
     }

@@ -406,16 +406,28 @@ void IimGatherPasses::finish_pass(std::uint32_t surface, double now_seconds) {
     IimPage& page = registry_.iim_pages()[static_cast<std::size_t>(page_id)];
     const auto& texels = mapped.texels.texels;
     const std::vector<glm::vec3>& filtered = filter.filtered();
+    // Texels a local pass re-gathered because geometry moved next to them fade in over the
+    // short change blend: their old value is wrong (a crate's dark footprint), and a player
+    // should see the floor lit within frames, not half a second later.
+    std::vector<float> fades(texels.size(), static_cast<float>(settings_.blend_seconds));
+    if (state.local) {
+        for (const std::uint32_t i : state.subset) {
+            if (i < fades.size()) {
+                fades[i] = static_cast<float>(settings_.change_blend_seconds);
+            }
+        }
+    }
     for (std::size_t i = 0; i < texels.size() && i < filtered.size(); ++i) {
         const glm::vec3 e = filtered[i];
         const glm::vec3 value = mapped.content == IimContent::Irradiance
                                     ? e
                                     : mapped.albedo * e * glm::one_over_pi<float>();
-        page.commit(texels[i].x, texels[i].y, value, now_seconds, settings_.blend_seconds);
+        page.commit(texels[i].x, texels[i].y, value, now_seconds, fades[i]);
     }
     // Fill the padding so bilinear lookups at the border hold.
     const int size = page.current.size;
-    for (const SurfaceTexel& texel : texels) {
+    for (std::size_t i = 0; i < texels.size(); ++i) {
+        const SurfaceTexel& texel = texels[i];
         for (int dy = -1; dy <= 1; ++dy) {
             for (int dx = -1; dx <= 1; ++dx) {
                 const int x = texel.x + dx;
@@ -424,8 +436,7 @@ void IimGatherPasses::finish_pass(std::uint32_t surface, double now_seconds) {
                     registry_.owner(page_id, x, y) >= 0) {
                     continue;
                 }
-                page.commit(x, y, page.current.at(texel.x, texel.y), now_seconds,
-                            settings_.blend_seconds);
+                page.commit(x, y, page.current.at(texel.x, texel.y), now_seconds, fades[i]);
             }
         }
     }

@@ -5,25 +5,31 @@
 
 namespace luxel::lighting {
 
-IimPage::IimPage(int page_size)
-    : previous(page_size), current(page_size), committed_seconds(previous.texels.size(), -1e30f) {}
+static_assert(sizeof(IimFade) == 2 * sizeof(float),
+              "the renderer uploads the fades as a two-channel float texture");
 
-glm::vec3 IimPage::shown(int x, int y, double now_seconds, double blend_seconds) const {
+IimPage::IimPage(int page_size)
+    : previous(page_size), current(page_size), fades(previous.texels.size()) {}
+
+glm::vec3 IimPage::shown(int x, int y, double now_seconds) const {
     const std::size_t index = static_cast<std::size_t>(y) * static_cast<std::size_t>(current.size) +
                               static_cast<std::size_t>(x);
-    const double elapsed = now_seconds - static_cast<double>(committed_seconds[index]);
-    // A blend time of zero (or a clock that went backwards) shows the new value at once.
-    const double weight = blend_seconds > 0.0 ? std::clamp(elapsed / blend_seconds, 0.0, 1.0) : 1.0;
+    const IimFade& fade = fades[index];
+    const double elapsed = now_seconds - static_cast<double>(fade.committed_seconds);
+    const double seconds = static_cast<double>(fade.fade_seconds);
+    // A fade of zero (or a clock that went backwards) shows the new value at once.
+    const double weight = seconds > 0.0 ? std::clamp(elapsed / seconds, 0.0, 1.0) : 1.0;
     return glm::mix(previous.texels[index], current.texels[index], static_cast<float>(weight));
 }
 
 void IimPage::commit(int x, int y, const glm::vec3& value, double now_seconds,
-                     double blend_seconds) {
+                     double fade_seconds) {
     const std::size_t index = static_cast<std::size_t>(y) * static_cast<std::size_t>(current.size) +
                               static_cast<std::size_t>(x);
-    previous.texels[index] = shown(x, y, now_seconds, blend_seconds);
+    previous.texels[index] = shown(x, y, now_seconds);
     current.texels[index] = value;
-    committed_seconds[index] = static_cast<float>(now_seconds);
+    const double seconds = std::isfinite(fade_seconds) ? std::max(fade_seconds, 0.0) : 0.0;
+    fades[index] = {static_cast<float>(now_seconds), static_cast<float>(seconds)};
 }
 
 }  // namespace luxel::lighting

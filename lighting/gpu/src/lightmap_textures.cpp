@@ -46,13 +46,13 @@ void LightmapTextures::allocate(std::span<const IimPage> pages) {
     if (layers_ == 0) {
         previous_.reset();
         current_.reset();
-        committed_.reset();
+        fades_.reset();
         page_sizes_.reset();
         return;
     }
     previous_ = make_array(GL_RGB32F, layer_size_, layers_);
     current_ = make_array(GL_RGB32F, layer_size_, layers_);
-    committed_ = make_array(GL_R32F, layer_size_, layers_);
+    fades_ = make_array(GL_RG32F, layer_size_, layers_);
     page_sizes_ = gl::Buffer::create(sizes.size() * sizeof(std::int32_t), sizes.data(), 0);
     gl::check_error("LightmapTextures allocate");
 }
@@ -68,8 +68,8 @@ void LightmapTextures::upload_rect(const IimPage& page, int layer, int x, int y,
                         page.previous.texels.data() + first);
     glTextureSubImage3D(current_.id(), 0, x, y, layer, width, height, 1, GL_RGB, GL_FLOAT,
                         page.current.texels.data() + first);
-    glTextureSubImage3D(committed_.id(), 0, x, y, layer, width, height, 1, GL_RED, GL_FLOAT,
-                        page.committed_seconds.data() + first);
+    glTextureSubImage3D(fades_.id(), 0, x, y, layer, width, height, 1, GL_RG, GL_FLOAT,
+                        page.fades.data() + first);
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
     gl::check_error("LightmapTextures upload");
     ++uploads_;
@@ -80,7 +80,7 @@ bool LightmapTextures::upload_changed(const IimPage& page, int layer) {
     PageState& state = uploaded_[static_cast<std::size_t>(layer)];
     const int size = page.current.size;
     if (size <= 0 || page.previous.size != size ||
-        page.committed_seconds.size() != page.current.texels.size()) {
+        page.fades.size() != page.current.texels.size()) {
         return false;  // a malformed page: nothing sensible to upload
     }
     const void* storage = page.current.texels.data();
@@ -110,7 +110,7 @@ bool LightmapTextures::upload_changed(const IimPage& page, int layer) {
 void LightmapTextures::bind() const {
     glBindTextureUnit(12, previous_.id());
     glBindTextureUnit(13, current_.id());
-    glBindTextureUnit(14, committed_.id());
+    glBindTextureUnit(14, fades_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, empty() ? no_pages_.id() : page_sizes_.id());
 }
 

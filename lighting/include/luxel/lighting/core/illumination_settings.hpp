@@ -22,8 +22,14 @@ struct IlluminationSettings {
     /// A surface's texels are gathered again when delta_i exceeds this fraction of its stored
     /// energy.
     double iim_threshold = 0.05;
-    /// Seconds over which an updated IIM texel fades in (0: at once).
+    /// Seconds over which an updated IIM texel fades in (0: at once): a refinement's or a
+    /// photon change's small correction blends in without flicker.
     double blend_seconds = 0.5;
+    /// Seconds over which the texels of a local pass (below: re-gathered because geometry
+    /// moved next to them) fade in. Shorter than blend_seconds because what they showed is
+    /// wrong, not noisy: a crate's dark footprint should light up within a few frames
+    /// (docs/RESULTS.md measures it), not over half a second.
+    double change_blend_seconds = 0.1;
     /// A completed gather pass is filtered over the surface's own texels with a tent of this
     /// radius (texels; 0: none) before it fades in: docs/RESULTS.md measures the trade.
     int iim_filter_radius = 2;

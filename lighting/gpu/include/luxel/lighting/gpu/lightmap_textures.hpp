@@ -11,8 +11,8 @@ namespace luxel::lighting {
 
 /// The IIM pages on the GPU, for shaders/render/indirect.frag: three 2D array textures with
 /// one layer per page, sized for the largest page (smaller pages sit in their layer's corner):
-/// `previous` and `current` (RGB32F) and `committed` (R32F, the second each texel's fade
-/// began). The shader blends per texel and filters bilinearly itself, so nothing here is
+/// `previous` and `current` (RGB32F) and `fades` (RG32F: the second each texel's fade
+/// began and how many seconds it lasts, IimFade). The shader blends per texel and filters bilinearly itself, so nothing here is
 /// filtered. A buffer of page sizes lets it clamp lookups to each page.
 ///
 /// Uploads: every page once, then, for a page whose `current.version` changed, the rectangle
@@ -34,7 +34,7 @@ class LightmapTextures {
     void bind() const;
     [[nodiscard]] GLuint previous() const { return previous_.id(); }
     [[nodiscard]] GLuint current() const { return current_.id(); }
-    [[nodiscard]] GLuint committed() const { return committed_.id(); }
+    [[nodiscard]] GLuint fades() const { return fades_.id(); }
     [[nodiscard]] GLuint page_sizes() const { return page_sizes_.id(); }
     [[nodiscard]] std::uint64_t uploads() const { return uploads_; }
     [[nodiscard]] std::uint64_t texels_uploaded() const { return texels_uploaded_; }
@@ -55,7 +55,7 @@ class LightmapTextures {
 
     gl::Texture previous_;
     gl::Texture current_;
-    gl::Texture committed_;
+    gl::Texture fades_;
     gl::Buffer page_sizes_;
     static constexpr std::int32_t kNoPageSize = 0;
     gl::Buffer no_pages_ = gl::Buffer::create(sizeof(std::int32_t), &kNoPageSize, 0);
