@@ -24,6 +24,16 @@ TEST(IimPage, UpdatesFadeInOverTheirOwnFadeTime) {
     EXPECT_NEAR(page.shown(3, 4, 10.25).x, 1.0f, 1e-5f);
     EXPECT_NEAR(page.shown(3, 4, 10.30).x, 2.5f, 1e-4f);
     EXPECT_EQ(page.shown(3, 4, 10.35), glm::vec3(4.0f));
+    // Committed again mid-way through that short fade with the long one (a photon-driven pass
+    // a frame after a local pass): it still arrives when the short fade would have ended.
+    page.commit(3, 4, glm::vec3(6.0f), 10.30, 0.5);
+    EXPECT_NEAR(page.shown(3, 4, 10.30).x, 2.5f, 1e-4f);
+    EXPECT_NEAR(page.shown(3, 4, 10.325).x, 4.25f, 1e-3f);
+    // (Times are kept as float seconds, as the GPU reads them: equal to about 1e-6 s.)
+    EXPECT_NEAR(page.shown(3, 4, 10.35).x, 6.0f, 1e-3f);
+    // Once it has ended, the long fade is the long fade again.
+    page.commit(3, 4, glm::vec3(8.0f), 11.0, 0.5);
+    EXPECT_NEAR(page.shown(3, 4, 11.25).x, 7.0f, 1e-4f);
     // A neighbour keeps its own fade.
     page.commit(4, 4, glm::vec3(2.0f), 10.25, 0.5);
     EXPECT_NEAR(page.shown(4, 4, 10.35).x, 0.4f, 1e-4f);

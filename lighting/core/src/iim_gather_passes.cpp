@@ -309,6 +309,9 @@ std::vector<glm::vec3> IimGatherPasses::fold_pass(std::uint32_t surface) {
         refinement.m2.assign(count, glm::vec3(0.0f));
         refinement.texel_passes.assign(count, 0);
     }
+    if (refinement.relative_pass_variance.size() != count) {
+        refinement.relative_pass_variance.assign(count, -1.0f);
+    }
     const auto fold = [&](std::size_t i) {
         const glm::dvec3 x(sanitized(state.irradiance[i]));
         std::uint32_t& n = refinement.texel_passes[i];
@@ -322,7 +325,14 @@ std::vector<glm::vec3> IimGatherPasses::fold_pass(std::uint32_t surface) {
         const glm::dvec3 old_mean(refinement.mean[i]);
         const glm::dvec3 mean = old_mean + (x - old_mean) / static_cast<double>(n);
         refinement.mean[i] = glm::vec3(mean);
-        refinement.m2[i] = glm::vec3(glm::dvec3(refinement.m2[i]) + (x - old_mean) * (x - mean));
+        const glm::dvec3 m2 = glm::dvec3(refinement.m2[i]) + (x - old_mean) * (x - mean);
+        refinement.m2[i] = glm::vec3(m2);
+        const double mean_squared = glm::dot(mean, mean);
+        if (n >= 3 && mean_squared > 0.0) {
+            const double pass_variance = (m2.x + m2.y + m2.z) / static_cast<double>(n - 1);
+            refinement.relative_pass_variance[i] =
+                static_cast<float>(std::min(pass_variance / mean_squared, 1e30));
+        }
     };
     if (state.subset.empty() || restart_all) {
         for (std::size_t i = 0; i < count; ++i) {
@@ -342,10 +352,28 @@ std::vector<glm::vec3> IimGatherPasses::fold_pass(std::uint32_t surface) {
     return values;
 }
 
+/// The variance of texel i's mean, summed over the channels; infinity where it is unknown. With
+/// three passes or more it is measured (m2 / ((n - 1) n)); with fewer, the relative variance of
+/// one pass measured before the texel last restarted, scaled by its new mean and divided by
+/// its passes; a texel never measured, or one dark then, has none.
+double IimGatherPasses::texel_noise(const RefinementStats& refinement, std::size_t i) {
+    const std::uint32_t n = refinement.texel_passes[i];
+    if (n >= 3) {
+        const glm::dvec3 m2(refinement.m2[i]);
+        return (m2.x + m2.y + m2.z) / (static_cast<double>(n - 1) * static_cast<double>(n));
+    }
+    const double relative = refinement.relative_pass_variance[i];
+    if (n == 0 || !(relative >= 0.0)) {
+        return std::numeric_limits<double>::infinity();
+    }
+    const glm::dvec3 mean(refinement.mean[i]);
+    return relative * glm::dot(mean, mean) / static_cast<double>(n);
+}
+
 /// A completed pass's values go into the texels' means (refinement) and a filter starts over
 /// them: a tent of radius iim_filter_radius texels over the surface's own texels (final
 /// gathering's noise is per texel while indirect light varies slowly, so a small filter removes
-/// most of the noise for little bias), noise-aware where texels have three passes or more. The
+/// most of the noise for little bias), noise-aware where a texel knows its noise. The
 /// filter runs in slices (gather() gives it the budget its call has left), then finish_pass()
 /// fades it in.
 void IimGatherPasses::begin_filter(std::uint32_t surface) {
@@ -360,23 +388,21 @@ void IimGatherPasses::begin_filter(std::uint32_t surface) {
     // smoothed, while a real feature such as the focus of light under a glass sphere (one
     // texel, several times its neighbours) keeps its value. A texel with fewer passes (all of
     // them early on; after a local pass, the ones it restarted) has no estimate: an infinite
-    // variance, so its pairs weigh as in the plain tent. No texel with three: the plain tent.
+    // variance, so its pairs weigh as in the plain tent, unless it measured its noise before
+    // it restarted (texel_noise). No texel with a known noise: the plain tent.
     const double sigmas = static_cast<double>(settings_.iim_filter_noise_sigmas);
     std::vector<double> noise;
-    const bool any_known =
-        keeps_mean() && std::any_of(refinement.texel_passes.begin(), refinement.texel_passes.end(),
-                                    [](std::uint32_t n) { return n >= 3; });
-    if (sigmas > 0.0 && any_known && refinement.texel_passes.size() == count) {
+    const bool stats_whole = refinement.texel_passes.size() == count &&
+                             refinement.relative_pass_variance.size() == count;
+    if (sigmas > 0.0 && keeps_mean() && stats_whole) {
         noise.resize(count);
+        bool any_known = false;
         for (std::size_t i = 0; i < count; ++i) {
-            const std::uint32_t n = refinement.texel_passes[i];
-            if (n < 3) {
-                noise[i] = std::numeric_limits<double>::infinity();
-                continue;
-            }
-            const glm::dvec3 m2(refinement.m2[i]);
-            const double scale = 1.0 / (static_cast<double>(n - 1) * static_cast<double>(n));
-            noise[i] = (m2.x + m2.y + m2.z) * scale;
+            noise[i] = texel_noise(refinement, i);
+            any_known = any_known || std::isfinite(noise[i]);
+        }
+        if (!any_known) {
+            noise.clear();
         }
     }
     filters_[surface] =

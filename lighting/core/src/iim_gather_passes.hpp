@@ -78,6 +78,7 @@ class IimGatherPasses {
     /// Folds a completed pass into the per-texel means (Welford) and returns what the filter
     /// reads: the means, or without them the pass's own values.
     std::vector<glm::vec3> fold_pass(std::uint32_t surface);
+    [[nodiscard]] static double texel_noise(const RefinementStats& refinement, std::size_t i);
     /// A pass's last texel is gathered: updates the mean and starts its filter.
     void begin_filter(std::uint32_t surface);
     /// The filter is done: fades the pass into the IIM.

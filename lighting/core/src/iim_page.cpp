@@ -28,7 +28,17 @@ void IimPage::commit(int x, int y, const glm::vec3& value, double now_seconds,
                               static_cast<std::size_t>(x);
     previous.texels[index] = shown(x, y, now_seconds);
     current.texels[index] = value;
-    const double seconds = std::isfinite(fade_seconds) ? std::max(fade_seconds, 0.0) : 0.0;
+    double seconds = std::isfinite(fade_seconds) ? std::max(fade_seconds, 0.0) : 0.0;
+    // A texel still in a shorter fade keeps that fade's end: a local pass's texel (fading in
+    // over the change blend) that a photon-driven pass commits again a frame later heads for
+    // the new value by the same moment, instead of restarting the slow fade from the old
+    // light it has barely left.
+    const IimFade& old = fades[index];
+    const double old_end =
+        static_cast<double>(old.committed_seconds) + static_cast<double>(old.fade_seconds);
+    if (static_cast<double>(old.fade_seconds) < seconds && old_end > now_seconds) {
+        seconds = old_end - now_seconds;
+    }
     fades[index] = {static_cast<float>(now_seconds), static_cast<float>(seconds)};
 }
 

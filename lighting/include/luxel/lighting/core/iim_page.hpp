@@ -34,7 +34,8 @@ struct IimPage {
     /// What texel (x, y) shows at `now_seconds`.
     [[nodiscard]] glm::vec3 shown(int x, int y, double now_seconds) const;
     /// Starts the fade of texel (x, y) to `value` at `now_seconds`, over `fade_seconds` (0 or
-    /// less: at once); does not mark it dirty.
+    /// less: at once), or by the end of a shorter fade still in progress; does not mark it
+    /// dirty.
     void commit(int x, int y, const glm::vec3& value, double now_seconds, double fade_seconds);
 };
 

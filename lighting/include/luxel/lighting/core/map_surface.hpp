@@ -95,6 +95,13 @@ struct RefinementStats {
     std::vector<glm::vec3> m2;
     /// Per texel, the passes averaged in its mean.
     std::vector<std::uint32_t> texel_passes;
+    /// Per texel, the relative variance of one pass's value (summed over the channels, over the
+    /// squared mean's) as last measured with three passes or more; < 0: never measured. Kept
+    /// when the texel's passes restart: a gather's noise relative to its value is a property
+    /// of the texel's surroundings, which a change elsewhere barely moves, so the filter can
+    /// still tell a real feature (the focus under a glass sphere) from noise right after a
+    /// restart instead of blurring it for the three passes it takes to measure again.
+    std::vector<float> relative_pass_variance;
 };
 
 /// Counters since construction.
