@@ -30,6 +30,7 @@ lighting::LightingConfig BenchConfig::lighting() const {
     config.maps.iim_filter_radius = static_cast<int>(filter);
     config.maps.refine_passes = refine;
     config.maps.local_passes = local != 0;
+    config.maps.change_blend_seconds = change_blend;
     return config;
 }
 
@@ -37,8 +38,8 @@ std::string BenchConfig::knobs() const {
     std::ostringstream out;
     out << "photons=" << groups << "x" << per_group << " aim_n=" << aim_n << " rays=" << rays
         << " texels_per_unit=" << texels_per_unit << " filter=" << filter << " refine=" << refine
-        << " local=" << local << " caustics=" << caustic_photons << "x" << caustic_slices
-        << " backend=" << backend << " kernel=" << kernel;
+        << " local=" << local << " change_blend=" << change_blend << " caustics=" << caustic_photons
+        << "x" << caustic_slices << " backend=" << backend << " kernel=" << kernel;
     return out.str();
 }
 
@@ -74,6 +75,8 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.refine = whole(value);
             } else if (sweep.knob == "local") {
                 c.local = whole(value);
+            } else if (sweep.knob == "change_blend") {
+                c.change_blend = std::stod(value);
             } else if (sweep.knob == "backend") {
                 c.backend = value;
             } else if (sweep.knob == "kernel") {

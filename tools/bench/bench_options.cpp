@@ -94,10 +94,15 @@ Sweep parse_sweep(const std::string& text) {
             if (value != "0" && value != "1") {
                 throw Error(what + ": '" + value + "' is not 0 (off) or 1 (on)");
             }
+        } else if (sweep.knob == "change_blend") {
+            const double v = number(value, what);
+            if (!(v >= 0.0 && v <= 60.0)) {
+                throw Error(what + ": '" + value + "' is not a number of seconds in 0..60");
+            }
         } else {
             throw Error("--sweep " + sweep.knob +
                         ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, filter, "
-                        "refine, local, caustics, backend, kernel)");
+                        "refine, local, change_blend, caustics, backend, kernel)");
         }
     }
     return sweep;

@@ -93,7 +93,7 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--sweep", sweeps,
                    "KNOB=V1,V2,... (budget, photons GxM, aim_n, rays, texels_per_unit, filter, "
-                   "refine, local 0|1, caustics NxK, backend cpu|gpu, kernel "
+                   "refine, local 0|1, change_blend SECONDS, caustics NxK, backend cpu|gpu, kernel "
                    "larsen|box|cone|world); repeatable, "
                    "each varies one knob from the paper's configuration");
     app.add_option("--image", image_size,
