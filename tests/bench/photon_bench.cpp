@@ -15,6 +15,9 @@
 //        frames. Each iteration is one 1/30 s frame; the time is PhotonWorld's work only (sync,
 //        probes, group retraces, one caustic slice), with median and 95th percentile counters of
 //        wall time and of process CPU time (summed over the job threads).
+//   ExactInvalidation  the whole level traced and stored with exact invalidation's path index
+//        against without, alternately; counters `ratio` (on / off, median), `index_bytes_per_hit`,
+//        `segments_per_hit`, `query_us` (one query for a 0.5 m box) and `groups_found`.
 
 #include <benchmark/benchmark.h>
 
@@ -30,6 +33,7 @@
 
 #include <embree3/rtcore.h>
 
+#include "luxel/ecs/transform.hpp"
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
 #include "luxel/runtime/clock.hpp"
@@ -307,6 +311,59 @@ double percentile(std::vector<double> values, double fraction) {
     const auto rank = static_cast<std::size_t>(fraction * static_cast<double>(values.size() - 1));
     return values[rank];
 }
+
+/// Exact invalidation's price: the whole level traced and stored with the path index kept
+/// (exact_invalidation on) against without it, alternately in each iteration; counters: the
+/// median time ratio (`ratio`, on / off), the index's bytes per stored hit, and the time of
+/// one query for the moving cube's box (what a move costs on top of the retraces it causes).
+void ExactInvalidation(benchmark::State& state) {
+    JobSystem jobs(2);
+    lighting::PhotonWorldSettings off;
+    off.selective.exact_invalidation = false;
+    lighting::PhotonWorldSettings on;
+    on.selective.exact_invalidation = true;
+    Level without(false, off);
+    Level with(false, on);
+    const auto trace = [&](Level& level, const lighting::PhotonWorldSettings& settings) {
+        level.photons = std::make_unique<lighting::PhotonWorld>(level.registry, settings);
+        const auto start = std::chrono::steady_clock::now();
+        level.photons->sync();
+        level.photons->probe(0, jobs);
+        level.photons->retrace_pending(jobs);
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    std::vector<double> ratios;
+    for (auto _ : state) {
+        const double base = trace(without, off);
+        const double exact = trace(with, on);
+        ratios.push_back(base > 0.0 ? exact / base : 0.0);
+    }
+    const lighting::PathSegmentIndex& paths = with.photons->paths();
+    const std::size_t hits = with.photons->photon_map().stored_hit_count();
+    // A 0.5 m box where the level's moving cube stands.
+    const glm::mat4 cube =
+        with.registry.get<ecs::WorldTransform>(with.instance.find("moving cube")).matrix;
+    const glm::vec3 centre(cube[3]);
+    lighting::AxisBox box;
+    box.add(centre - glm::vec3(0.25f));
+    box.add(centre + glm::vec3(0.25f));
+    constexpr int kQueries = 1000;
+    std::size_t found = 0;
+    const auto start = std::chrono::steady_clock::now();
+    for (int q = 0; q < kQueries; ++q) {
+        found += paths.groups_meeting(box).size();
+    }
+    const double query_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    state.counters["ratio"] = percentile(ratios, 0.5);
+    state.counters["index_bytes_per_hit"] = static_cast<double>(paths.bytes_used()) /
+                                            static_cast<double>(std::max<std::size_t>(hits, 1));
+    state.counters["segments_per_hit"] = static_cast<double>(paths.segment_count()) /
+                                         static_cast<double>(std::max<std::size_t>(hits, 1));
+    state.counters["query_us"] = query_s / kQueries * 1e6;
+    state.counters["groups_found"] = static_cast<double>(found) / kQueries;
+}
+BENCHMARK(ExactInvalidation)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void PaperFrame(benchmark::State& state) {
     lighting::PhotonWorldSettings settings;  // 77 x 40; 10,000 caustic photons, K = 8

@@ -88,6 +88,7 @@ void LightGroups::refresh(ecs::Entity entity, const BoundingSphere& scene) {
             add_pending(global);
         } else {
             map_.clear_group(global);
+            paths_.clear_group(global);
         }
     }
     if (!enabled) {
@@ -103,6 +104,7 @@ void LightGroups::remove(ecs::Entity entity) {
     const LightPhotons& photons = *found->second.photons;
     for (std::uint32_t g = 0; g < photons.group_count(); ++g) {
         map_.clear_group(photons.first_group() + g);
+        paths_.clear_group(photons.first_group() + g);
     }
     drop_pending(photons);
     lights_.erase(found);
@@ -125,6 +127,29 @@ void LightGroups::add_pending(std::uint32_t group) {
     if (std::find(pending_.begin(), pending_.end(), group) == pending_.end()) {
         pending_.push_back(group);
     }
+}
+
+std::size_t LightGroups::invalidate_crossing(std::span<const AxisBox> boxes) {
+    std::vector<std::uint32_t> crossing;
+    for (const AxisBox& box : boxes) {
+        const std::vector<std::uint32_t> found = paths_.groups_meeting(box);
+        crossing.insert(crossing.end(), found.begin(), found.end());
+    }
+    std::sort(crossing.begin(), crossing.end());
+    crossing.erase(std::unique(crossing.begin(), crossing.end()), crossing.end());
+    // First in the queue, in group order (the retrace takes the oldest first); a group already
+    // pending moves to the front with them.
+    std::size_t added = 0;
+    for (const std::uint32_t group : crossing) {
+        const auto found = std::find(pending_.begin(), pending_.end(), group);
+        if (found == pending_.end()) {
+            ++added;
+        } else {
+            pending_.erase(found);
+        }
+    }
+    pending_.insert(pending_.begin(), crossing.begin(), crossing.end());
+    return added;
 }
 
 void LightGroups::drop_pending(const LightPhotons& photons) {
@@ -191,7 +216,9 @@ EmissionStats LightGroups::retrace_pending(const RayScene& scene,
                                            pending_.begin() + static_cast<std::ptrdiff_t>(count));
     pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(count));
     const auto lights = active();
-    return retrace_groups(scene, materials, lights, map_, batch, jobs);
+    // Without exact invalidation no index is kept: it is never asked.
+    return retrace_groups(scene, materials, lights, map_, batch, jobs,
+                          settings_.exact_invalidation ? &paths_ : nullptr);
 }
 
 }  // namespace luxel::lighting

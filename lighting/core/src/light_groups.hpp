@@ -9,7 +9,9 @@
 
 #include "luxel/ecs/registry.hpp"
 #include "luxel/lighting/components.hpp"
+#include "luxel/lighting/core/axis_box.hpp"
 #include "luxel/lighting/core/light_source.hpp"
+#include "luxel/lighting/core/path_segment_index.hpp"
 #include "luxel/lighting/core/photon_map.hpp"
 #include "luxel/lighting/core/ray_scene.hpp"
 #include "luxel/lighting/core/selective_emitter.hpp"
@@ -50,6 +52,11 @@ class LightGroups {
     /// The probes of `frame`: adds the groups whose paths diverge to pending().
     EmissionStats probe(std::uint64_t frame, const RayScene& scene,
                         std::span<const TraceMaterial> materials, JobSystem& jobs);
+    /// Exact invalidation (docs/METHOD.md §4.5): the groups whose stored paths cross any of
+    /// `boxes` (where geometry was or is now) go to the front of pending(), to be retraced
+    /// before any other. Returns how many were not pending yet.
+    std::size_t invalidate_crossing(std::span<const AxisBox> boxes);
+    [[nodiscard]] const PathSegmentIndex& paths() const { return paths_; }
     /// Retraces up to `max_groups` pending groups (all when 0), oldest first.
     EmissionStats retrace_pending(const RayScene& scene, std::span<const TraceMaterial> materials,
                                   JobSystem& jobs, std::size_t max_groups);
@@ -68,6 +75,7 @@ class LightGroups {
     SelectiveSettings settings_;
     std::map<ecs::Entity, Record> lights_;
     std::vector<std::uint32_t> pending_;
+    PathSegmentIndex paths_;
     std::uint32_t next_seed_ = 1;
 };
 

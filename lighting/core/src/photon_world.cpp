@@ -49,6 +49,10 @@ void PhotonWorld::sync() {
 
     sync_lights(light_touched);
     const bool objects_changed = !geometry_->changes().empty();
+    if (objects_changed && settings_.selective.exact_invalidation) {
+        last_sync_.groups_invalidated =
+            static_cast<std::uint32_t>(lights_->invalidate_crossing(geometry_->changes()));
+    }
     // The scene disc of directional lights follows the scene's bounds.
     if (objects_changed) {
         lights_->refresh_directional(light_touched, geometry_->sphere());
@@ -156,6 +160,10 @@ void PhotonWorld::sync_lights(std::vector<ecs::Entity>& light_touched) {
 
 CausticFrameStats PhotonWorld::update_caustics(std::uint64_t frame, JobSystem& jobs) {
     return caustics_->update(frame, *geometry_, jobs);
+}
+
+const PathSegmentIndex& PhotonWorld::paths() const {
+    return lights_->paths();
 }
 
 const std::vector<GeometryChange>& PhotonWorld::geometry_changes() const {

@@ -101,15 +101,16 @@ void LightPhotons::set_emitter(PhotonEmitter emitter) {
     emitter_ = std::move(emitter);
 }
 
-void LightPhotons::trace(const RayScene& scene, std::span<const TraceMaterial> materials,
-                         std::uint32_t group, std::uint32_t photon, std::vector<TracedHop>& hops,
-                         TraceCounters& counters) const {
+glm::vec3 LightPhotons::trace(const RayScene& scene, std::span<const TraceMaterial> materials,
+                              std::uint32_t group, std::uint32_t photon,
+                              std::vector<TracedHop>& hops, TraceCounters& counters) const {
     const std::uint64_t index = indices_.at(group).at(photon);
     const std::uint64_t total = static_cast<std::uint64_t>(indices_.size()) * per_group_;
     const EmittedPhoton emitted =
         emitter_.emit({photon_sample(index, 0, seed_), photon_sample(index, 1, seed_)},
                       {photon_sample(index, 2, seed_), photon_sample(index, 3, seed_)}, total);
     trace_photon(scene, materials, emitted, index, seed_, limits_, hops, counters);
+    return emitted.origin;
 }
 
 TracedGroup LightPhotons::trace_group(const RayScene& scene,
@@ -117,9 +118,10 @@ TracedGroup LightPhotons::trace_group(const RayScene& scene,
                                       TraceCounters& counters) const {
     TracedGroup traced;
     traced.starts.reserve(per_group_ + 1);
+    traced.origins.reserve(per_group_);
     for (std::uint32_t photon = 0; photon < per_group_; ++photon) {
         traced.starts.push_back(static_cast<std::uint32_t>(traced.hops.size()));
-        trace(scene, materials, group, photon, traced.hops, counters);
+        traced.origins.push_back(trace(scene, materials, group, photon, traced.hops, counters));
     }
     traced.starts.push_back(static_cast<std::uint32_t>(traced.hops.size()));
     return traced;
@@ -156,7 +158,8 @@ EmissionStats run_probes(const RayScene& scene, std::span<const TraceMaterial> m
 
 EmissionStats retrace_groups(const RayScene& scene, std::span<const TraceMaterial> materials,
                              std::span<const LightPhotons* const> lights, PhotonMap& map,
-                             std::span<const std::uint32_t> groups, JobSystem& jobs) {
+                             std::span<const std::uint32_t> groups, JobSystem& jobs,
+                             PathSegmentIndex* index) {
     auto owner = [&](std::uint32_t global) -> std::pair<const LightPhotons*, std::uint32_t> {
         for (const LightPhotons* light : lights) {
             if (global >= light->first_group() &&
@@ -168,13 +171,20 @@ EmissionStats retrace_groups(const RayScene& scene, std::span<const TraceMateria
     };
     std::vector<TracedGroup> traced(groups.size());
     std::vector<TraceCounters> counters(groups.size());
+    std::vector<std::vector<PathSegment>> segments(index != nullptr ? groups.size() : 0);
     jobs.parallel_for(0, groups.size(), [&](std::size_t i) {
         const auto [light, local] = owner(groups[i]);
         traced[i] = light->trace_group(scene, materials, local, counters[i]);
+        if (index != nullptr) {
+            segments[i] = path_segments(traced[i]);
+        }
     });
     EmissionStats stats;
     for (std::size_t i = 0; i < groups.size(); ++i) {
         map.replace_group(groups[i], traced[i]);
+        if (index != nullptr) {
+            index->set_group(groups[i], std::move(segments[i]));
+        }
         stats.trace += counters[i];
         ++stats.groups_retraced;
     }

@@ -38,6 +38,9 @@ struct TracedHop {
 struct TracedGroup {
     std::vector<TracedHop> hops;
     std::vector<std::uint32_t> starts;  ///< photon_count + 1 entries
+    /// Where each photon left its light (photon_count entries; empty: not known), the first
+    /// point of its path for the PathSegmentIndex.
+    std::vector<glm::vec3> origins;
 };
 
 /// What a surface holds and how much has changed on it.

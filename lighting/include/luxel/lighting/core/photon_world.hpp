@@ -63,6 +63,9 @@ struct PhotonSyncStats {
     std::uint32_t objects_moved = 0;     ///< mesh entities whose transform changed
     std::uint32_t meshes_changed = 0;    ///< mesh entities added, removed or replaced
     std::uint32_t lights_refreshed = 0;  ///< lights added, changed, moved or removed
+    /// Groups whose stored paths cross where geometry changed, newly queued for a retrace
+    /// (exact invalidation; SelectiveSettings::exact_invalidation).
+    std::uint32_t groups_invalidated = 0;
 };
 
 /// What the caustic lists hold now (for the scheduler and the HUD).
@@ -128,6 +131,8 @@ class PhotonWorld {
     /// The photon world is the map's writer; readers keep their own positions in its change
     /// counts (SurfaceDeltas). The mutable overload is for tests that play the tracer.
     [[nodiscard]] const PhotonMap& photon_map() const { return *map_; }
+    /// The stored paths' segments, for exact invalidation (empty when it is off).
+    [[nodiscard]] const PathSegmentIndex& paths() const;
     [[nodiscard]] PhotonMap& photon_map() { return *map_; }
     [[nodiscard]] const std::vector<SurfaceInfo>& surfaces() const;
     [[nodiscard]] const std::vector<TraceMaterial>& materials() const;

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "luxel/lighting/core/light_source.hpp"
+#include "luxel/lighting/core/path_segment_index.hpp"
 #include "luxel/lighting/core/photon_map.hpp"
 #include "luxel/lighting/core/photon_tracer.hpp"
 #include "luxel/runtime/jobs.hpp"
@@ -25,6 +26,11 @@ struct SelectiveSettings {
     std::uint32_t per_group = 40;  ///< M
     DivergenceTolerance tolerance;
     TraceLimits limits;
+    /// When an object moves, appears or goes away, the groups whose stored paths cross where it
+    /// was or where it is are retraced first, in the frame of the change (PathSegmentIndex);
+    /// the round-robin probes stay for what the index cannot see (a photon that left the scene
+    /// through where an object now stands, tolerance drift). Off: the paper's probes alone.
+    bool exact_invalidation = true;
 };
 
 /// Counters of one call.
@@ -50,9 +56,11 @@ class LightPhotons {
     /// Replaces the light (it moved or changed): every group must be retraced.
     void set_emitter(PhotonEmitter emitter);
 
-    /// Traces photon `photon` of group `group` (local index) into `hops`.
-    void trace(const RayScene& scene, std::span<const TraceMaterial> materials, std::uint32_t group,
-               std::uint32_t photon, std::vector<TracedHop>& hops, TraceCounters& counters) const;
+    /// Traces photon `photon` of group `group` (local index) into `hops`; returns where it left
+    /// the light.
+    glm::vec3 trace(const RayScene& scene, std::span<const TraceMaterial> materials,
+                    std::uint32_t group, std::uint32_t photon, std::vector<TracedHop>& hops,
+                    TraceCounters& counters) const;
     /// Traces a whole group.
     [[nodiscard]] TracedGroup trace_group(const RayScene& scene,
                                           std::span<const TraceMaterial> materials,
@@ -79,6 +87,7 @@ EmissionStats run_probes(const RayScene& scene, std::span<const TraceMaterial> m
 /// order, so the result is the same for any thread count.
 EmissionStats retrace_groups(const RayScene& scene, std::span<const TraceMaterial> materials,
                              std::span<const LightPhotons* const> lights, PhotonMap& map,
-                             std::span<const std::uint32_t> groups, JobSystem& jobs);
+                             std::span<const std::uint32_t> groups, JobSystem& jobs,
+                             PathSegmentIndex* index = nullptr);
 
 }  // namespace luxel::lighting
