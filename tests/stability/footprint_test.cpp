@@ -1,10 +1,11 @@
-// Light follows geometry (issue 19, docs/METHOD.md §6.8): the Cornell box's cube rests on the
-// floor and slides 0.3 m. Within two frames the floor where it stood must be lit and the floor it
-// now covers dark, as in a solution converged from scratch with the cube already slid; without
-// local passes (the paper's behaviour) the footprint is still dark then. Deterministic: a
-// ManualClock that never advances makes every unit free, so each frame does all the work queued
-// (stability_support.hpp). What a player sees fades in per texel: the second test checks that
-// the texels a local pass re-gathered show their new light within frames, not half a second.
+// Light follows geometry (issue 19, docs/METHOD.md §4.5, §6.8): the Cornell box's cube rests on
+// the floor and slides 0.3 m. Within two frames the floor where it stood must be lit and the
+// floor it now covers dark, as in a solution converged from scratch with the cube already slid;
+// without local passes and exact invalidation (the paper's behaviour) the footprint is still dark
+// then, and either one alone fixes it. Deterministic: a ManualClock that never advances makes
+// every unit free, so each frame does all the work queued (stability_support.hpp). What a player
+// sees fades in per texel: the second test checks that the texels a local pass re-gathered show
+// their new light within frames, not half a second.
 
 #include <cmath>
 #include <string>
@@ -24,11 +25,22 @@ constexpr float kHalf = 0.25f;   ///< the cube's half size
 constexpr float kInset = 0.06f;  ///< texels this far inside a footprint's edge count
 constexpr std::uint32_t kRefinePasses = 4;
 
-lighting::LightingConfig footprint_config(bool local_passes, double change_blend_seconds) {
+/// How the lighting answers a move: luxel's defaults, or with parts off (the paper: neither
+/// local passes nor exact invalidation).
+struct Response {
+    bool local_passes = true;
+    bool exact_invalidation = true;
+    double change_blend_seconds = lighting::IlluminationSettings{}.change_blend_seconds;
+};
+constexpr Response kLuxel{};
+constexpr Response kPaper{false, false};
+
+lighting::LightingConfig footprint_config(const Response& response) {
     lighting::LightingConfig config = luxel::testing::stability_config(77, 40);
     config.maps.refine_passes = kRefinePasses;
-    config.maps.local_passes = local_passes;
-    config.maps.change_blend_seconds = change_blend_seconds;
+    config.maps.local_passes = response.local_passes;
+    config.photons.selective.exact_invalidation = response.exact_invalidation;
+    config.maps.change_blend_seconds = response.change_blend_seconds;
     return config;
 }
 
@@ -48,11 +60,8 @@ struct Box {
     glm::mat4 rest{1.0f};
     glm::mat4 slid{1.0f};
 
-    explicit Box(
-        bool local_passes, bool slide_first = false,
-        double change_blend_seconds = lighting::IlluminationSettings{}.change_blend_seconds)
-        : level(luxel::testing::load_prepared("cornell"),
-                footprint_config(local_passes, change_blend_seconds), false, clock),
+    explicit Box(const Response& response, bool slide_first = false)
+        : level(luxel::testing::load_prepared("cornell"), footprint_config(response), false, clock),
           cube(level.instance.find("moving cube")) {
         rest = level.registry.get<ecs::WorldTransform>(cube).matrix;
         if (slide_first) {
@@ -124,7 +133,7 @@ struct Box {
 
 TEST(Footprint, TheFloorACubeLeavesIsLitAndTheFloorItCoversDarkWithinTwoFrames) {
     // What the method converges to with the cube already where it slides to.
-    Box truth(true, true);
+    Box truth(kLuxel, true);
     const auto left = truth.floor_between(truth.rest, truth.slid);
     const auto covered = truth.floor_between(truth.slid, truth.rest);
     ASSERT_GT(left.size(), 20u);
@@ -133,7 +142,7 @@ TEST(Footprint, TheFloorACubeLeavesIsLitAndTheFloorItCoversDarkWithinTwoFrames) 
     ASSERT_GT(lit, 0.0);
     EXPECT_LT(truth.mean_iim(covered), 0.1 * lit);
 
-    Box local(true);
+    Box local({true, false});  // local passes alone
     EXPECT_LT(local.mean_iim(left), 0.25 * lit);  // converged with the cube on it: dark
     local.slide();
     local.level.frame(1e9);
@@ -147,17 +156,28 @@ TEST(Footprint, TheFloorACubeLeavesIsLitAndTheFloorItCoversDarkWithinTwoFrames) 
     EXPECT_GT(local.mean_iim(left), 0.75 * lit);
     EXPECT_LT(local.mean_iim(covered), 0.25 * lit);
 
-    // The paper's behaviour: the floor waits for its photons' change, which is not in yet.
-    Box paper(false);
+    // The paper's behaviour: the floor waits for its photons' change, which the probes have
+    // not found yet.
+    Box paper(kPaper);
     paper.slide();
     paper.level.frame(1e9);
     paper.level.frame(1e9);
     EXPECT_LT(paper.mean_iim(left), 0.5 * lit);
     EXPECT_GT(paper.mean_iim(covered), 0.5 * lit);
+
+    // Exact invalidation alone (no local passes): the groups whose paths cross the cube's old
+    // or new place are retraced in the frame of the move, so the floor's photons change at
+    // once and its full pass follows.
+    Box exact({false, true});
+    exact.slide();
+    exact.level.frame(1e9);
+    exact.level.frame(1e9);
+    EXPECT_GT(exact.mean_iim(left), 0.75 * lit);
+    EXPECT_LT(exact.mean_iim(covered), 0.25 * lit);
 }
 
 TEST(Footprint, WhatThePlayerSeesFollowsWithinSixFramesAt30Hz) {
-    Box truth(true, true);
+    Box truth(kLuxel, true);
     const auto left = truth.floor_between(truth.rest, truth.slid);
     const auto covered = truth.floor_between(truth.slid, truth.rest);
     ASSERT_GT(left.size(), 20u);
@@ -168,7 +188,7 @@ TEST(Footprint, WhatThePlayerSeesFollowsWithinSixFramesAt30Hz) {
     // for the local pass and its re-gather once the AIM is current (the first test), three of
     // fade, one to spare.
     constexpr int kFrames = 6;
-    Box local(true);
+    Box local(kLuxel);
     ASSERT_GT(local.level.lighting->maps().settings().blend_seconds,
               3.0 * local.level.lighting->maps().settings().change_blend_seconds);
     local.slide();
@@ -180,7 +200,7 @@ TEST(Footprint, WhatThePlayerSeesFollowsWithinSixFramesAt30Hz) {
 
     // The same light maps faded in over the refinement's half second: the committed IIM is
     // right, but what the player sees is still mostly the footprint.
-    Box slow(true, false, lighting::IlluminationSettings{}.blend_seconds);
+    Box slow({true, true, lighting::IlluminationSettings{}.blend_seconds});
     slow.slide();
     for (int f = 0; f < kFrames; ++f) {
         slow.level.frame(1e9);

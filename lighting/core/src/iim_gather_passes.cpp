@@ -126,7 +126,7 @@ double IimGatherPasses::priority(std::uint32_t s, bool current) const {
         rank = std::numeric_limits<double>::max() / 2.0 * (1.0 + done);
     } else if (!state.completed_once) {
         rank = std::numeric_limits<double>::max() / 4.0;
-    } else if (!changed && state.changed_count > 0) {
+    } else if (state.changed_count > 0) {
         rank = std::numeric_limits<double>::max() / 8.0;
     } else if (!changed && state.in_progress) {
         rank = -0.5 + 0.25 * done;
@@ -181,7 +181,10 @@ void IimGatherPasses::start_pass(std::uint32_t surface) {
     state.irradiance.assign(total, glm::vec3(0.0f));
     state.subset.clear();
     state.changed_texels.resize(total, 0);
-    state.local = state.completed_once && !changed && state.changed_count > 0 && keeps_mean() &&
+    // A local pass even when the surface's light changed too (the photons of the groups the
+    // moved object's paths crossed, retraced at once): the texels next to the object first,
+    // then the full pass that the photons' change asks for.
+    state.local = state.completed_once && state.changed_count > 0 && keeps_mean() &&
                   refinement.texel_passes.size() == total;
     state.refines =
         !state.local && state.completed_once && !changed && current && wants_refinement(surface);
