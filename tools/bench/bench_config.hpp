@@ -24,6 +24,8 @@ struct BenchConfig {
     std::uint32_t filter = 2;            ///< IIM filter radius in texels (luxel's default)
     std::uint32_t local = 1;    ///< local gather passes after a geometry change (1: on, default)
     std::uint32_t refine = 16;  ///< gather passes averaged while lighting is unchanged (default)
+    /// Exact invalidation of photon groups whose paths cross moved geometry (1: on, default).
+    std::uint32_t exact = 1;
     /// Seconds a local pass's texels fade in over (IlluminationSettings::change_blend_seconds).
     double change_blend = lighting::IlluminationSettings{}.change_blend_seconds;
     std::uint32_t caustic_photons = 10'000;  ///< per (generator, light) pair; the paper's
