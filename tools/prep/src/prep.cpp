@@ -57,7 +57,8 @@ std::string node_label(const scene::Scene& scene, int node) {
     throw Error(what + " need about " + std::to_string(static_cast<long long>(texels)) +
                 " light-map texels at --texel-size " + std::to_string(options.texel_size) +
                 " m, more than the lightmap-texels limit of " +
-                std::to_string(options.max_total_texels) + "; use a larger --texel-size");
+                std::to_string(options.max_total_texels) +
+                "; use a larger --texel-size (or --limit lightmap-texels=N)");
 }
 
 /// The triangles stage 1 copies (each mesh node's, once per node), checked before any copy is
@@ -90,8 +91,8 @@ void check_accessors(std::uint64_t surfaces, const PrepOptions& options) {
                     std::to_string(kAccessorsPerSurface) +
                     " or more accessors, are more than the elements limit of " +
                     std::to_string(options.max_accessors) +
-                    " accessors a level may hold (--limit elements=N); join the mesh's "
-                    "separate pieces, or use a larger --crease-deg");
+                    " accessors a level may hold (--limit elements=N); every separate piece of "
+                    "a mesh is a surface of its own");
     }
 }
 
