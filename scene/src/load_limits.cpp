@@ -29,8 +29,12 @@ constexpr std::array kLimits = {
               "triangles of every mesh, each mesh once"},
     LoadLimit{"instanced-triangles", &LoadOptions::max_instanced_triangles,
               "triangles counted once per node that draws them"},
+    LoadLimit{"prep-triangles", &LoadOptions::max_prep_triangles,
+              "triangles luxel-prep copies, once per node that draws them"},
     LoadLimit{"lightmap-texels", &LoadOptions::max_lightmap_texels,
               "light-map texels over every page the layouts name"},
+    LoadLimit{"reference-bytes", &LoadOptions::max_reference_bytes,
+              "bytes of the reference integrator's per-texel state over every light-mapped texel"},
     LoadLimit{"image-pixels", &LoadOptions::max_image_pixels,
               "pixels of every image together, read from their headers"},
 };

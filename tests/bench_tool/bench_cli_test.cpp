@@ -233,6 +233,20 @@ TEST(BenchCli, ATinyRunWritesEveryOutputAndASecondReusesTheReference) {
     EXPECT_EQ(count(first.output, "replaced"), 0u) << first.output;
 }
 
+// luxel-ref's reference-bytes check holds for luxel-bench's reference too: refused, naming
+// the level and the limit, before the reference allocates its per-texel state.
+TEST(BenchCli, LightMapsBeyondTheReferenceMemoryLimitAreRefused) {
+    luxel::testing::TempDir dir("luxel-bench-cli");
+    const CommandResult run = luxel_bench(
+        "--level cornell --budgets 8 --frames 2 --ref-photons 100000 --ref-caustic-photons 50000 "
+        "--ref-spp 1 --no-image --threads 2 --limit reference-bytes=1k --out " +
+        quoted(dir / "out"));
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    EXPECT_NE(run.output.find("cornell.glb: "), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("reference-bytes"), std::string::npos) << run.output;
+    EXPECT_EQ(count(run.output, "computing reference"), 0u) << run.output;
+}
+
 TEST(BenchCli, AnOutThatIsAFileIsRefusedBeforeAnyWork) {
     luxel::testing::TempDir dir("luxel-bench-out");
     const std::filesystem::path file = dir / "results";

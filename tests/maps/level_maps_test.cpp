@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "luxel/lighting/core/cpu_gather.hpp"
+#include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/jobs.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/scene_instance.hpp"
@@ -116,6 +117,31 @@ TEST(IlluminationMaps, GatherPassesRunInSlicesAndFadeIn) {
     const auto dirty = world.maps->iim_pages()[0].current.changes_since(0).rect;
     EXPECT_GT(dirty.width, 0);
     EXPECT_LE(dirty.width, 12);  // the chart and its one-texel ring, not the page
+}
+
+// Every mesh a level places is a photon-world surface and each one added is a geometry change;
+// finding the light-mapped surfaces near each change once compared every change with every
+// surface, light-mapped or not, so 300,000 plain meshes took minutes to load (the hostile
+// corpus' nodes-300k-one-mesh). Only surfaces with texels are compared now.
+TEST(IlluminationMaps, ManyMeshesWithoutLightMapsSyncInLinearTime) {
+    constexpr int kMeshes = 100'000;
+    ecs::Registry registry;
+    const auto plane = luxel::testing::lightmapped_plane(1.0f, 1, 0.1f, 64, glm::vec3(0.5f));
+    for (int i = 0; i < kMeshes; ++i) {
+        const ecs::Entity entity = registry.create();
+        registry.emplace<scene::MeshInstance>(entity, plane, 0);  // no LightmappedSurface
+        registry.emplace<ecs::Transform>(entity, ecs::Transform{});
+    }
+    ecs::TransformSystem transforms(registry);
+    transforms.update();
+    lighting::PhotonWorld photons(registry);
+    photons.sync();
+    ASSERT_GE(photons.geometry_changes().size(), static_cast<std::size_t>(kMeshes));
+    Stopwatch clock;
+    lighting::IlluminationMaps maps(registry, photons);
+    // 10^10 box tests before; a pass over the surfaces now (about 0.1 s).
+    EXPECT_LT(clock.elapsed_ms(), 5000.0);
+    EXPECT_EQ(maps.surfaces().size(), static_cast<std::size_t>(kMeshes));
 }
 
 }  // namespace

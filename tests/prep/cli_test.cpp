@@ -95,6 +95,22 @@ TEST(PrepCli, BadInputIsAClearErrorNamingTheFile) {
     EXPECT_FALSE(std::filesystem::exists(dir / "out.glb"));
 }
 
+// --limit reaches luxel-prep's own checks: the triangles it copies, and the light-map texels
+// of the level it writes (what the loaders would refuse); the file is named, nothing written.
+TEST(PrepCli, LoadLimitsBoundWhatLuxelPrepCopiesAndWrites) {
+    luxel::testing::TempDir dir("luxel-prep-cli");
+    const auto output = dir / "cornell.glb";
+    const std::string input = quoted(luxel::testing::level_file("cornell"));
+    for (const char* limit : {"prep-triangles", "lightmap-texels"}) {
+        const CommandResult run =
+            luxel_prep(input + " -o " + quoted(output) + " --limit " + std::string(limit) + "=1k");
+        EXPECT_EQ(run.exit_code, 1) << run.output;
+        EXPECT_NE(run.output.find("cornell.glb: "), std::string::npos) << run.output;
+        EXPECT_NE(run.output.find(limit), std::string::npos) << run.output;
+        EXPECT_FALSE(std::filesystem::exists(output));
+    }
+}
+
 TEST(PrepCli, BadFlagsAreClearErrorsNamingTheFlag) {
     luxel::testing::TempDir dir("luxel-prep-cli");
     const std::string files =

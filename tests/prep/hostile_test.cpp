@@ -3,6 +3,7 @@
 // a repaired, valid output or a clear error, never a crash.
 
 #include <cmath>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
@@ -207,6 +208,76 @@ TEST(Hostile, ImpossibleRequestsAreClearErrors) {
     bad = {};
     bad.page_size = 2;
     expect_error(bad, "--page-size");
+}
+
+/// What prepare() threw, or "" when it succeeded.
+std::string prep_error(const scene::Scene& input, const prep::PrepOptions& options) {
+    try {
+        (void)luxel::testing::run_prep(input, options);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+/// `pieces` separate triangles 1 m apart along x: each is a surface of its own.
+scene::Primitive separate_triangles(int pieces) {
+    scene::Primitive p;
+    for (int i = 0; i < pieces; ++i) {
+        const auto x = static_cast<float>(2 * i);
+        const auto base = static_cast<std::uint32_t>(p.positions.size());
+        p.positions.insert(p.positions.end(), {{x, 0, 0}, {x + 1, 0, 0}, {x, 1, 0}});
+        p.indices.insert(p.indices.end(), {base, base + 1, base + 2});
+    }
+    return p;
+}
+
+// luxel-prep copies every node's mesh: a few thousand nodes sharing one large mesh are
+// counted, node by node, against prep-triangles before the first copy is made.
+TEST(Hostile, TrianglesCopiedPerNodeAreCheckedBeforeCopying) {
+    scene::Scene input = luxel::testing::single_mesh_scene(separate_triangles(10));
+    for (int i = 1; i < 3; ++i) {  // three nodes draw the mesh: 30 triangles to copy
+        scene::Node& node = input.nodes.emplace_back(input.nodes.front());
+        node.name = "copy " + std::to_string(i);
+        node.translation.z = static_cast<float>(i);
+        input.roots.push_back(static_cast<int>(input.nodes.size()) - 1);
+    }
+    prep::PrepOptions options;
+    options.max_triangles = 29;
+    const std::string error = prep_error(input, options);
+    EXPECT_NE(error.find("prep-triangles"), std::string::npos) << error;
+    EXPECT_NE(error.find("30 triangles"), std::string::npos) << error;
+    options.max_triangles = 30;
+    EXPECT_EQ(prep_error(input, options), "");
+}
+
+// Every surface is a primitive of four or more accessors; a file with more than the loaders'
+// `elements` limit would be refused by every tool, so luxel-prep refuses to write it.
+TEST(Hostile, SurfacesBeyondTheAccessorLimitAreRefused) {
+    const scene::Scene input = luxel::testing::single_mesh_scene(separate_triangles(10));
+    prep::PrepOptions options;
+    options.max_accessors = 10 * prep::kAccessorsPerSurface - 1;
+    const std::string error = prep_error(input, options);
+    EXPECT_NE(error.find("elements"), std::string::npos) << error;
+    EXPECT_NE(error.find("10 light-mapped surfaces"), std::string::npos) << error;
+    options.max_accessors = 10 * prep::kAccessorsPerSurface;
+    EXPECT_EQ(prep_error(input, options), "");
+}
+
+// The loaders count light-map texels over whole pages: charts within the limit can need pages
+// beyond it once packed, and luxel-prep must not write such a level.
+TEST(Hostile, PagesBeyondTheTexelLimitAreRefused) {
+    // A 0.5 m square at 0.05 m texels: 10 x 10 texels, 12 x 12 padded, on a 64^2 page.
+    const scene::Scene input = luxel::testing::single_mesh_scene(
+        levels::make_quad({0, 0, 0}, {0.5f, 0, 0}, {0, 0.5f, 0}, 1, 1));
+    prep::PrepOptions options;
+    options.page_size = 64;
+    options.max_total_texels = 64 * 64 - 1;
+    const std::string error = prep_error(input, options);
+    EXPECT_NE(error.find("pages (1 of 64^2)"), std::string::npos) << error;
+    EXPECT_NE(error.find("lightmap-texels"), std::string::npos) << error;
+    options.max_total_texels = 64 * 64;
+    EXPECT_EQ(prep_error(input, options), "");
 }
 
 }  // namespace

@@ -52,6 +52,33 @@ TEST(RefCli, BadValuesAreExplained) {
     EXPECT_NE(run.output.find("--spp"), std::string::npos) << run.output;
 }
 
+// A level within the loaders' lightmap-texels limit can still need more memory for the
+// reference's per-texel state than the machine has: luxel-ref counts it once the maps are laid
+// out and refuses before allocating it, naming the file and the limit, writing nothing.
+TEST(RefCli, LightMapsBeyondTheReferenceMemoryLimitAreRefused) {
+    luxel::testing::TempDir dir("luxel-ref-cli");
+    const auto frame = dir / "furnace.exr";
+    const auto maps = dir / "furnace.json";
+    const std::string outputs = " -o " + quoted(frame) + " --lightmaps " + quoted(maps);
+    CommandResult run = luxel_ref(
+        "--level furnace --spp 1 --passes 1 --width 8 --height 8 "
+        "--limit reference-bytes=1k" +
+        outputs);
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    EXPECT_NE(run.output.find("luxel-ref: error: "), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("furnace.glb"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("reference-bytes"), std::string::npos) << run.output;
+    EXPECT_FALSE(std::filesystem::exists(frame));
+    EXPECT_FALSE(std::filesystem::exists(maps));
+    // The same run within a limit that holds the furnace's texels succeeds.
+    run = luxel_ref(
+        "--level furnace --spp 1 --passes 1 --width 8 --height 8 "
+        "--photons 1000 --indirect-photons 1000 --limit reference-bytes=1G" +
+        outputs);
+    EXPECT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_TRUE(std::filesystem::exists(maps));
+}
+
 TEST(RefCli, ATinyRunWritesAFrameAndLightMaps) {
     luxel::testing::TempDir dir("luxel-ref-cli");
     const auto frame = dir / "furnace.exr";

@@ -163,6 +163,10 @@ bool ConfigRun::frame(double budget) {
 }
 
 void ConfigRun::capture_reference_scene() {
+    // luxel-ref's check, before the reference allocates anything per texel.
+    ref::check_reference_memory(
+        context_.file, lighting::reference::ReferenceScene::count_texels(lighting_->maps()),
+        options_.load_limits);
     scene_ = std::make_unique<lighting::reference::ReferenceScene>(
         lighting::reference::ReferenceScene::from_world(lighting_->photons(), lighting_->maps()));
     regions_ = texel_regions(*scene_);

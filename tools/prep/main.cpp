@@ -100,6 +100,10 @@ int run(int argc, char** argv) {
         return 0;
     }
 
+    // What the loaders allow is what luxel-prep may write, and bounds the copies it makes.
+    options.max_total_texels = load_limits.max_lightmap_texels;
+    options.max_triangles = load_limits.max_prep_triangles;
+    options.max_accessors = load_limits.max_array_elements;
     luxel::cli::check_usage([&] { luxel::prep::validate(options); });
     const std::vector<std::filesystem::path> outputs = outputs_of(output, report_file);
     check_outputs(outputs, {input});

@@ -1,5 +1,6 @@
 #include "level.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <vector>
 
@@ -8,6 +9,7 @@
 #include "luxel/ecs/transform.hpp"
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/components.hpp"
+#include "luxel/lighting/reference/reference_integrator.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/animation_system.hpp"
@@ -42,6 +44,22 @@ std::filesystem::path resolve_level(const std::string& level) {
     throw Error("no level named '" + level + "' (looked for " + list + ")");
 }
 
+void check_reference_memory(const std::filesystem::path& file, std::uint64_t texels,
+                            const scene::LoadOptions& limits) {
+    const std::uint64_t per_texel = lighting::reference::ReferenceIntegrator::bytes_per_texel();
+    // Compared as texels, so the product cannot overflow.
+    if (texels <= limits.max_reference_bytes / per_texel) {
+        return;
+    }
+    const double mib = static_cast<double>(texels) * static_cast<double>(per_texel) / 1048576.0;
+    throw Error(file.string() + ": the light maps hold " + std::to_string(texels) +
+                " texels; the reference keeps " + std::to_string(per_texel) +
+                " bytes for each, about " + std::to_string(static_cast<long long>(std::ceil(mib))) +
+                " MiB, more than the reference-bytes limit of " +
+                std::to_string(limits.max_reference_bytes) +
+                " (--limit reference-bytes=N raises it)");
+}
+
 std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file, double time,
                                         const scene::LoadOptions& limits) {
     auto level = std::make_unique<LoadedLevel>();
@@ -62,6 +80,8 @@ std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file, doubl
     level->world->sync();
     level->maps = std::make_unique<lighting::IlluminationMaps>(level->registry, *level->world);
     level->maps->sync();
+    check_reference_memory(file, lighting::reference::ReferenceScene::count_texels(*level->maps),
+                           limits);
     level->scene = std::make_unique<lighting::reference::ReferenceScene>(
         lighting::reference::ReferenceScene::from_world(*level->world, *level->maps));
     return level;

@@ -31,6 +31,13 @@ struct LoadedLevel {
     std::unique_ptr<lighting::reference::ReferenceScene> scene;
 };
 
+/// Throws luxel::Error naming `file` and the reference-bytes limit when the reference's
+/// per-texel state for `texels` texels (ReferenceIntegrator::bytes_per_texel() each) is more
+/// than `limits` allows. load_level checks it once the maps are laid out, before the
+/// reference scene allocates anything per texel.
+void check_reference_memory(const std::filesystem::path& file, std::uint64_t texels,
+                            const scene::LoadOptions& limits);
+
 /// Loads `file` within `limits` and poses it at `time` seconds (animations and light switches
 /// advanced).
 [[nodiscard]] std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file,

@@ -87,6 +87,9 @@ class MapRegistry {
     /// world (refreshed with the transform).
     std::vector<AxisBox> local_boxes_;
     std::vector<AxisBox> surface_boxes_;
+    /// The surfaces with texels, ascending: the only ones a change can be near (live()), so
+    /// a level of many meshes without light maps costs find_nearby_changes nothing per pair.
+    std::vector<std::uint32_t> mapped_surfaces_;
     std::vector<NearbyChange> nearby_changes_;
     std::map<std::pair<const scene::Scene*, int>, std::int32_t> pages_;
     std::map<ecs::Entity, std::vector<std::uint32_t>> surfaces_of_;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "luxel/lighting/core/gather.hpp"
+
 namespace luxel::lighting::reference {
 namespace {
 
@@ -30,6 +32,19 @@ ReferenceIntegrator::ReferenceIntegrator(const ReferenceScene& scene, ReferenceS
     if (settings_.indirect == IndirectMethod::Photons) {
         settings_.paths.indirect = false;
     }
+}
+
+std::uint64_t ReferenceIntegrator::bytes_per_texel() {
+    // One node of the scene's std::unordered_map<int64_t, uint32_t> page lookup as malloc
+    // rounds it (next pointer, key, value: 24 bytes to 32) and its bucket pointer.
+    constexpr std::uint64_t kLookupEntry = 32 + sizeof(void*);
+    // ReferenceScene::from_world reads each surface's texels from GatherTexels.
+    constexpr std::uint64_t kScene = sizeof(ReferenceTexel) + sizeof(GatherTexel) + kLookupEntry;
+    // CausticReference and IndirectPhotons: a sum and a sum of squares each.
+    constexpr std::uint64_t kPhotons = 2 * 2 * sizeof(glm::dvec3);
+    // A pass's copy of the caustic field, and the irradiance (or areas) the output reads.
+    constexpr std::uint64_t kTemporaries = 2 * sizeof(glm::dvec3);
+    return kScene + kComponentCount * sizeof(Moments) + kPhotons + kTemporaries;
 }
 
 void ReferenceIntegrator::run_pass(JobSystem& jobs) {

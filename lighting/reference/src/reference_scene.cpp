@@ -136,6 +136,16 @@ ReferenceScene::ReferenceScene(const RayScene& rays, std::vector<TraceMaterial> 
     measure_texels();
 }
 
+std::size_t ReferenceScene::count_texels(const IlluminationMaps& maps) {
+    std::size_t count = 0;
+    for (const MapSurface& surface : maps.surfaces()) {
+        if (surface.texels.page_size > 0) {
+            count += surface.texels.texels.size();
+        }
+    }
+    return count;
+}
+
 ReferenceScene ReferenceScene::from_world(const PhotonWorld& world, const IlluminationMaps& maps) {
     std::vector<LightSource> lights;
     for (const LightPhotons* light : world.active_lights()) {
@@ -154,6 +164,9 @@ ReferenceScene ReferenceScene::from_world(const PhotonWorld& world, const Illumi
         surface.surface = s;
         surface.page = texels.page;
         surface.page_size = texels.page_size;
+        // Exactly the texels: growth by doubling would take up to twice what
+        // ReferenceIntegrator::bytes_per_texel() allows for.
+        surface.texels.reserve(centres.size());
         for (std::size_t i = 0; i < centres.size(); ++i) {
             ReferenceTexel texel;
             texel.position = centres[i].position;

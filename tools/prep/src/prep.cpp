@@ -56,8 +56,44 @@ std::string node_label(const scene::Scene& scene, int node) {
                                   const PrepOptions& options) {
     throw Error(what + " need about " + std::to_string(static_cast<long long>(texels)) +
                 " light-map texels at --texel-size " + std::to_string(options.texel_size) +
-                " m, more than the limit of " + std::to_string(options.max_total_texels) +
-                "; use a larger --texel-size");
+                " m, more than the lightmap-texels limit of " +
+                std::to_string(options.max_total_texels) +
+                "; use a larger --texel-size (or --limit lightmap-texels=N)");
+}
+
+/// The triangles stage 1 copies (each mesh node's, once per node), checked before any copy is
+/// made: a few thousand nodes sharing one large mesh would otherwise take gigabytes of
+/// half-edge meshes before the texel limit could be checked on their area.
+void check_triangles(const scene::Scene& input, const std::vector<NodeWork>& work,
+                     const PrepOptions& options) {
+    std::uint64_t triangles = 0;
+    for (const NodeWork& w : work) {
+        const int mesh = input.nodes[static_cast<std::size_t>(w.node)].mesh;
+        for (const scene::Primitive& primitive :
+             input.meshes[static_cast<std::size_t>(mesh)].primitives) {
+            triangles += primitive.triangle_count();
+        }
+    }
+    if (triangles > options.max_triangles) {
+        throw Error(std::to_string(work.size()) + " mesh nodes draw " + std::to_string(triangles) +
+                    " triangles, each node's copied by luxel-prep, more than the prep-triangles "
+                    "limit of " +
+                    std::to_string(options.max_triangles) + " (--limit prep-triangles=N)");
+    }
+}
+
+/// Every surface becomes a primitive of at least kAccessorsPerSurface accessors: a file of
+/// more than the loaders' `elements` limit would be refused by every tool that reads it, and
+/// on the way would cost luxel-prep kilobytes of JSON a surface. Checked before packing.
+void check_accessors(std::uint64_t surfaces, const PrepOptions& options) {
+    if (surfaces * kAccessorsPerSurface > options.max_accessors) {
+        throw Error(std::to_string(surfaces) + " light-mapped surfaces, each a primitive of " +
+                    std::to_string(kAccessorsPerSurface) +
+                    " or more accessors, are more than the elements limit of " +
+                    std::to_string(options.max_accessors) +
+                    " accessors a level may hold (--limit elements=N); every separate piece of "
+                    "a mesh is a surface of its own");
+    }
 }
 
 /// What the packer gets: every chart's rectangle, grouped by surface, and where each node's
@@ -203,6 +239,7 @@ PackInput assemble_surfaces(const PrepOptions& options, const ChartLimits& limit
     if (padded_texels > static_cast<double>(options.max_total_texels)) {
         too_many_texels("the charts with their padding", padded_texels, options);
     }
+    check_accessors(pack.groups.size(), options);
     return pack;
 }
 
@@ -316,6 +353,7 @@ PrepResult prepare(const scene::Scene& input, const PrepOptions& options, JobSys
     }
     result.report.mesh_nodes = work.size();
 
+    check_triangles(input, work, options);
     Stopwatch stage;
     build_all_geometry(input, options, work, jobs, progress);
     result.report.add_stage("geometry", stage.elapsed_ms());
@@ -344,6 +382,14 @@ PrepResult prepare(const scene::Scene& input, const PrepOptions& options, JobSys
             ? pack_fixed(pack.charts, pack.groups, options.padding, options.page_size)
             : pack_automatic(pack.charts, pack.groups, options.padding, options.auto_page_limit,
                              &jobs);
+    // The pages are what the loaders count (and what the page pictures allocate): charts
+    // within the limit can still need more pages than it allows once packed.
+    const auto page_texels = static_cast<double>(layout.page_texels());
+    if (page_texels > static_cast<double>(options.max_total_texels)) {
+        too_many_texels("the packed pages (" + std::to_string(layout.page_count) + " of " +
+                            std::to_string(layout.page_size) + "^2)",
+                        page_texels, options);
+    }
     result.page_size = layout.page_size;
     result.page_count = layout.page_count;
     result.report.add_stage("packing", stage.elapsed_ms());

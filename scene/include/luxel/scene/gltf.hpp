@@ -29,8 +29,17 @@ struct LoadOptions {
     /// Triangles counted once per node that draws them: what the ray scene and luxel-prep's
     /// per-node copies hold.
     std::uint64_t max_instanced_triangles = std::uint64_t{1} << 24;
+    /// The same count for luxel-prep, which welds, charts and writes a copy of every
+    /// triangle per node in half-edge form (about 500 bytes a triangle at its peak): checked
+    /// before the copies are made.
+    std::uint64_t max_prep_triangles = std::uint64_t{1} << 22;
     /// Light-map texels over every page the layouts name (the maps keep several values each).
     std::uint64_t max_lightmap_texels = std::uint64_t{1} << 26;
+    /// Bytes the reference integrator (luxel-ref, luxel-bench's reference) keeps for every
+    /// light-map texel together: its per-texel state is several times the real-time maps', so
+    /// a level within lightmap-texels can still need more memory than the machine has. Checked
+    /// after the maps are laid out, before the reference allocates anything per texel.
+    std::uint64_t max_reference_bytes = std::uint64_t{2} << 30;
     /// Pixels of every image together, read from their headers (each decodes to 4 bytes).
     std::uint64_t max_image_pixels = std::uint64_t{1} << 28;
     std::uint64_t max_nodes = std::uint64_t{1} << 20;

@@ -1,12 +1,17 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 /// luxel-prep: the offline asset-preparation step. It splits every mesh into surfaces (the unit
 /// that owns a photon map, an AIM and an IIM), gives each surface a light-map parameterization
 /// at a uniform texel size, packs the charts into light-map pages and writes the result back as
 /// glTF with TEXCOORD_1 and the surface table of scene/lightmap_layout.hpp.
 namespace luxel::prep {
+
+/// Accessors every written surface primitive has at least: POSITION, NORMAL, TEXCOORD_1 and
+/// its indices (TEXCOORD_0 where the source has one), each in a bufferView of its own.
+inline constexpr std::uint64_t kAccessorsPerSurface = 4;
 
 struct PrepOptions {
     /// World size of one texel edge, in metres.
@@ -34,9 +39,17 @@ struct PrepOptions {
     bool lightmap_specular = false;
     /// Worker threads (0: every hardware thread). The output does not depend on it.
     int threads = 0;
-    /// Upper bound on the texels a scene may ask for (about 1 GiB of page memory at 4 bytes a
-    /// texel); beyond it luxel-prep stops with an error naming --texel-size.
-    std::size_t max_total_texels = std::size_t{1} << 28;
+    /// Upper bound on the texels a scene may ask for, checked on the surfaces' area, on the
+    /// padded charts and on the packed pages: the loaders' lightmap-texels limit (luxel-prep
+    /// sets it from `--limit lightmap-texels`), so luxel-prep never writes a level they refuse;
+    /// beyond it luxel-prep stops with an error naming --texel-size.
+    std::size_t max_total_texels = std::size_t{1} << 26;
+    /// Triangles luxel-prep copies, every mesh node's triangles once per node (`--limit
+    /// prep-triangles`), checked before any copy is made.
+    std::uint64_t max_triangles = std::uint64_t{1} << 22;
+    /// Accessors the written level may hold: the loaders' `elements` limit. Every surface is a
+    /// primitive of at least kAccessorsPerSurface, checked before the charts are packed.
+    std::uint64_t max_accessors = std::uint64_t{1} << 20;
 };
 
 /// Throws luxel::Error naming the command-line flag of the first invalid option.

@@ -45,6 +45,11 @@ struct ReferenceSettings {
 class ReferenceIntegrator {
   public:
     ReferenceIntegrator(const ReferenceScene& scene, ReferenceSettings settings);
+    /// Bytes the reference keeps per light-map texel, at its peak: the scene's texel and its
+    /// lookup entry, this integrator's moments, the caustic and indirect photon sums, and the
+    /// per-texel arrays a pass and the output make. Times ReferenceScene::count_texels(), what
+    /// a tool checks against its limit before it builds the scene.
+    [[nodiscard]] static std::uint64_t bytes_per_texel();
 
     void run_pass(JobSystem& jobs);
     /// Changes the size of the passes to come (a tool spreading a total over passes); 0

@@ -70,6 +70,9 @@ class ReferenceScene {
     /// of `maps` that has a light map. Both must be synced.
     [[nodiscard]] static ReferenceScene from_world(const PhotonWorld& world,
                                                    const IlluminationMaps& maps);
+    /// The texels from_world would take from `maps`, counted without allocating anything: a
+    /// tool checks its memory limit with it before building the scene.
+    [[nodiscard]] static std::size_t count_texels(const IlluminationMaps& maps);
 
     [[nodiscard]] const RayScene& rays() const { return *rays_; }
     [[nodiscard]] std::span<const TraceMaterial> materials() const { return materials_; }
