@@ -142,7 +142,7 @@ TEST(Footprint, TheFloorACubeLeavesIsLitAndTheFloorItCoversDarkWithinTwoFrames) 
     ASSERT_GT(lit, 0.0);
     EXPECT_LT(truth.mean_iim(covered), 0.1 * lit);
 
-    Box local({true, false});  // local passes alone
+    Box local({true, false});                     // local passes alone
     EXPECT_LT(local.mean_iim(left), 0.25 * lit);  // converged with the cube on it: dark
     local.slide();
     local.level.frame(1e9);

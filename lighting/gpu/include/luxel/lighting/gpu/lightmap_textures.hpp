@@ -12,8 +12,9 @@ namespace luxel::lighting {
 /// The IIM pages on the GPU, for shaders/render/indirect.frag: three 2D array textures with
 /// one layer per page, sized for the largest page (smaller pages sit in their layer's corner):
 /// `previous` and `current` (RGB32F) and `fades` (RG32F: the second each texel's fade
-/// began and how many seconds it lasts, IimFade). The shader blends per texel and filters bilinearly itself, so nothing here is
-/// filtered. A buffer of page sizes lets it clamp lookups to each page.
+/// began and how many seconds it lasts, IimFade). The shader blends per texel and filters
+/// bilinearly itself, so nothing here is filtered. A buffer of page sizes lets it clamp lookups to
+/// each page.
 ///
 /// Uploads: every page once, then, for a page whose `current.version` changed, the rectangle
 /// that changed since the version this copy last uploaded (RadiancePage::changes_since) in
