@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Regenerates the prepared built-in levels, assets/levels/prepared/<name>.glb, from
-# assets/levels/<name>.glb with luxel-prep's default settings, and the page pictures in
+# Regenerates the prepared levels, assets/levels/prepared/<name>.glb, from
+# assets/levels/<name>.glb and tests/levels/blender/<name>.glb with luxel-prep's default settings, and the page pictures in
 # docs/images/prep/. A test (tests/prep/levels_test.cpp) checks the committed files against a
 # fresh run, so run this after changing luxel-prep or a level.
 #
@@ -22,7 +22,8 @@ reports="$build/prep-reports"
 images="$root/docs/images/prep"
 mkdir -p "$prepared" "$reports" "$images"
 
-for level in "$root"/assets/levels/*.glb; do
+# The built-in levels, and the levels Blender's exporter made (tests/levels/blender/).
+for level in "$root"/assets/levels/*.glb "$root"/tests/levels/blender/*.glb; do
     name="$(basename "$level" .glb)"
     "$prep" "$level" -o "$prepared/$name.glb" --report "$reports/$name.json"
 done

@@ -27,6 +27,12 @@ std::vector<std::uint8_t> read_bytes(const std::filesystem::path& file) {
 
 class PreparedLevel : public ::testing::TestWithParam<std::string> {};
 
+std::string test_name(const ::testing::TestParamInfo<std::string>& level) {
+    std::string name = level.param;
+    std::replace(name.begin(), name.end(), '-', '_');
+    return name;
+}
+
 TEST_P(PreparedLevel, MeetsTheQualityGoalsAndMatchesTheCommittedFile) {
     const std::string name = GetParam();
     const scene::Scene level = scene::load_gltf(luxel::testing::level_file(name));
@@ -34,8 +40,13 @@ TEST_P(PreparedLevel, MeetsTheQualityGoalsAndMatchesTheCommittedFile) {
     const prep::PrepResult result = luxel::testing::run_prep(level, defaults);
     const prep::PrepReport& report = result.report;
 
-    // Issue 5's goals: packing efficiency at least 70%, stretch within 1.5.
-    EXPECT_GE(report.efficiency, 0.70) << name;
+    // Issue 5's goals: packing efficiency at least 70%, stretch within 1.5. Files from other
+    // tools (Blender's exporter writes every quad as two triangles) are not there yet: issue
+    // 22's corpus test holds their packing goal; here they must prepare, validate and load.
+    const std::vector<std::string> blender = luxel::testing::blender_level_names();
+    if (std::find(blender.begin(), blender.end(), name) == blender.end()) {
+        EXPECT_GE(report.efficiency, 0.70) << name;
+    }
     EXPECT_LE(report.stretch_max, 1.5) << name;
     EXPECT_GE(report.stretch_min, 1.0 / 1.5) << name;
     EXPECT_GT(report.surfaces, 0u);
@@ -94,16 +105,18 @@ TEST_P(PreparedLevel, MeetsTheQualityGoalsAndMatchesTheCommittedFile) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BuiltIn, PreparedLevel,
-                         ::testing::ValuesIn(luxel::testing::built_in_level_names()),
-                         [](const ::testing::TestParamInfo<std::string>& level) {
-                             std::string name = level.param;
-                             std::replace(name.begin(), name.end(), '-', '_');
-                             return name;
-                         });
+                         ::testing::ValuesIn(luxel::testing::built_in_level_names()), test_name);
+
+INSTANTIATE_TEST_SUITE_P(Blender, PreparedLevel,
+                         ::testing::ValuesIn(luxel::testing::blender_level_names()), test_name);
 
 TEST(PreparedLevels, PassTheKhronosValidator) {
     std::vector<std::filesystem::path> files;
-    for (const auto& name : luxel::testing::built_in_level_names()) {
+    std::vector<std::string> names = luxel::testing::built_in_level_names();
+    for (const auto& name : luxel::testing::blender_level_names()) {
+        names.push_back(name);
+    }
+    for (const auto& name : names) {
         files.push_back(luxel::testing::prepared_level_file(name));
     }
     luxel::testing::expect_every_file_valid(files);

@@ -110,7 +110,16 @@ std::vector<std::string> built_in_level_names() {
             "caustics", "sandbox",     "furnace"};
 }
 
+std::vector<std::string> blender_level_names() {
+    return {"crate-footprint"};
+}
+
 std::filesystem::path level_file(const std::string& name) {
+    const std::vector<std::string> blender = blender_level_names();
+    if (std::find(blender.begin(), blender.end(), name) != blender.end()) {
+        return std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "tests" / "levels" / "blender" /
+               (name + ".glb");
+    }
     return std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" / "levels" / (name + ".glb");
 }
 

@@ -14,8 +14,11 @@
 
 namespace luxel::testing {
 
-/// The repository's built-in levels (assets/levels/<name>.glb).
+/// The repository's built-in levels (assets/levels/<name>.glb, written by luxel-make-levels).
 [[nodiscard]] std::vector<std::string> built_in_level_names();
+/// The levels made by Blender (tests/levels/blender/<name>.glb, from <name>.py beside it). Both
+/// kinds are prepared into assets/levels/prepared/ by scripts/prepare-levels.sh.
+[[nodiscard]] std::vector<std::string> blender_level_names();
 [[nodiscard]] std::filesystem::path level_file(const std::string& name);
 [[nodiscard]] std::filesystem::path prepared_level_file(const std::string& name);
 

@@ -7,127 +7,46 @@
 // sees fades in per texel: the second test checks that the texels a local pass re-gathered show
 // their new light within frames, not half a second.
 
-#include <cmath>
-#include <string>
-#include <utility>
 #include <vector>
 
-#include "luxel/ecs/transform.hpp"
-#include "luxel/scene/components.hpp"
-#include "stability_support.hpp"
+#include "footprint_support.hpp"
 
 namespace {
 
 using namespace luxel;
+using luxel::testing::kLuxel;
+using luxel::testing::kPaper;
+using luxel::testing::Response;
 
-constexpr float kSlide = 0.3f;   ///< metres along +x, as luxel-bench's --change auto
-constexpr float kHalf = 0.25f;   ///< the cube's half size
-constexpr float kInset = 0.06f;  ///< texels this far inside a footprint's edge count
-constexpr std::uint32_t kRefinePasses = 4;
+constexpr float kSlide = 0.3f;  ///< metres along +x, as luxel-bench's --change auto
+constexpr std::uint32_t kRefinePasses = luxel::testing::kFootprintRefinePasses;
 
-/// How the lighting answers a move: luxel's defaults, or with parts off (the paper: neither
-/// local passes nor exact invalidation).
-struct Response {
-    bool local_passes = true;
-    bool exact_invalidation = true;
-    double change_blend_seconds = lighting::IlluminationSettings{}.change_blend_seconds;
-};
-constexpr Response kLuxel{};
-constexpr Response kPaper{false, false};
-
-lighting::LightingConfig footprint_config(const Response& response) {
-    lighting::LightingConfig config = luxel::testing::stability_config(77, 40);
-    config.maps.refine_passes = kRefinePasses;
-    config.maps.local_passes = response.local_passes;
-    config.photons.selective.exact_invalidation = response.exact_invalidation;
-    config.maps.change_blend_seconds = response.change_blend_seconds;
-    return config;
-}
-
-/// Whether a world point lies under the cube placed by `world` (its footprint, inset).
-bool under(const glm::mat4& world, const glm::vec3& point) {
-    const glm::vec3 local = glm::vec3(glm::inverse(world) * glm::vec4(point, 1.0f));
-    const float edge = kHalf - kInset;
-    return std::abs(local.x) < edge && std::abs(local.z) < edge && local.y < -0.15f;
-}
-
-/// The Cornell box on a clock that never advances, converged with the cube where it rests.
-struct Box {
-    const ManualClock clock;
-    luxel::testing::LitLevel level;
-    ecs::Entity cube;
-    std::vector<std::uint32_t> floor;  ///< the floor's light-mapped surfaces (luxel-prep's charts)
-    glm::mat4 rest{1.0f};
+/// The Cornell box converged with its cube where it rests (or, for the truth, where it slides
+/// to).
+struct Box : luxel::testing::FootprintLevel {
     glm::mat4 slid{1.0f};
 
     explicit Box(const Response& response, bool slide_first = false)
-        : level(luxel::testing::load_prepared("cornell"), footprint_config(response), false, clock),
-          cube(level.instance.find("moving cube")) {
-        rest = level.registry.get<ecs::WorldTransform>(cube).matrix;
+        : FootprintLevel({"cornell", "moving cube", "floor"}, response,
+                         [slide_first](FootprintLevel& box) {
+                             if (slide_first) {
+                                 move(box);
+                             }
+                         }) {
         if (slide_first) {
-            slide();
+            slid = world_matrix();
         }
-        EXPECT_LE(level.converge(600), 600) << level.pending();
-        const auto& maps = level.lighting->maps();
-        for (std::uint32_t s = 0; s < maps.surfaces().size(); ++s) {
-            const auto* name = level.registry.try_get<scene::Name>(maps.surfaces()[s].entity);
-            if (name != nullptr && name->value == "floor" &&
-                !maps.surfaces()[s].texels.texels.empty()) {
-                floor.push_back(s);
-            }
-        }
+    }
+
+    static void move(FootprintLevel& box) {
+        box.level.registry.patch<ecs::Transform>(
+            box.object, [](ecs::Transform& t) { t.translation.x += kSlide; });
+        box.level.transforms.update();
     }
 
     void slide() {
-        level.registry.patch<ecs::Transform>(cube,
-                                             [](ecs::Transform& t) { t.translation.x += kSlide; });
-        level.transforms.update();
-        slid = level.registry.get<ecs::WorldTransform>(cube).matrix;
-    }
-
-    /// The floor texels (surface, index) under the cube placed by `in` and not by `out`.
-    [[nodiscard]] std::vector<std::pair<std::uint32_t, std::size_t>> floor_between(
-        const glm::mat4& in, const glm::mat4& out) const {
-        std::vector<std::pair<std::uint32_t, std::size_t>> found;
-        for (const std::uint32_t s : floor) {
-            const auto world = level.lighting->maps().world_texels(s);
-            for (std::size_t i = 0; i < world.size(); ++i) {
-                if (under(in, world[i].position) && !under(out, world[i].position)) {
-                    found.emplace_back(s, i);
-                }
-            }
-        }
-        return found;
-    }
-
-    /// The mean committed IIM over floor texels.
-    [[nodiscard]] double mean_iim(
-        const std::vector<std::pair<std::uint32_t, std::size_t>>& texels) const {
-        return mean_over(texels, [](const lighting::IimPage& page, int x, int y) {
-            return page.current.at(x, y);
-        });
-    }
-
-    /// The mean IIM a player sees now (the fade-in included) over floor texels.
-    [[nodiscard]] double mean_shown(
-        const std::vector<std::pair<std::uint32_t, std::size_t>>& texels) const {
-        return mean_over(texels, [this](const lighting::IimPage& page, int x, int y) {
-            return page.shown(x, y, level.time);
-        });
-    }
-
-    template <typename Read>
-    [[nodiscard]] double mean_over(const std::vector<std::pair<std::uint32_t, std::size_t>>& texels,
-                                   Read read) const {
-        const auto& maps = level.lighting->maps();
-        double sum = 0.0;
-        for (const auto& [s, i] : texels) {
-            const auto page = static_cast<std::size_t>(maps.aim().surface_page[s]);
-            const auto& texel = maps.surfaces()[s].texels.texels[i];
-            const glm::vec3 v = read(maps.iim_pages()[page], texel.x, texel.y);
-            sum += static_cast<double>(v.x + v.y + v.z) / 3.0;
-        }
-        return texels.empty() ? 0.0 : sum / static_cast<double>(texels.size());
+        move(*this);
+        slid = world_matrix();
     }
 };
 

@@ -1,0 +1,98 @@
+# Builds the crate-footprint level in Blender and writes it with Blender's own glTF exporter:
+# a level luxel did not write, made as a level designer would make it (issue 19's reproduction).
+#
+#   blender --background --factory-startup --python tests/levels/blender/crate-footprint.py \
+#       -- OUT.glb
+#
+# A room of 4 x 4 m, 2.6 m high, open on the camera's side, lit by one point light under the
+# ceiling. A 0.5 m crate rests on the floor when the level loads; its animation keeps it there
+# for one second and then slides it 1.2 m along x over half a second. Where it stood, the floor
+# must be lit in the indirect light within frames (tests/stability/footprint_test.cpp).
+#
+# Blender is Z up; its exporter turns the level into glTF's Y up (+Y up, +Z towards the
+# camera's side of the room), so the crate slides along glTF +x.
+import sys
+
+import bpy
+
+argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+if len(argv) != 1:
+    sys.stderr.write("usage: blender --background --python crate-footprint.py -- OUT.glb\n")
+    sys.exit(2)
+out_path = argv[0]
+
+bpy.ops.wm.read_factory_settings(use_empty=True)
+scene = bpy.context.scene
+scene.render.fps = 30
+scene.frame_start = 1
+scene.frame_end = 46
+
+
+def material(name, rgb):
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    bsdf = mat.node_tree.nodes["Principled BSDF"]
+    bsdf.inputs["Base Color"].default_value = (rgb[0], rgb[1], rgb[2], 1.0)
+    bsdf.inputs["Roughness"].default_value = 1.0
+    bsdf.inputs["Specular"].default_value = 0.0
+    return mat
+
+
+def plane(name, size, location, rotation, mat):
+    bpy.ops.mesh.primitive_plane_add(size=1.0, location=location, rotation=rotation)
+    obj = bpy.context.active_object
+    obj.name = name
+    obj.data.name = name
+    obj.scale = (size[0], size[1], 1.0)
+    bpy.ops.object.transform_apply(location=False, rotation=True, scale=True)
+    obj.data.materials.append(mat)
+    return obj
+
+
+grey = material("grey plaster", (0.6, 0.6, 0.6))
+red = material("red paint", (0.7, 0.12, 0.1))
+green = material("green paint", (0.12, 0.6, 0.15))
+wood = material("crate wood", (0.55, 0.4, 0.22))
+
+half_pi = 1.5707963267948966
+# Normals face into the room (the renderer draws single-sided faces from the front only).
+plane("Floor", (4.0, 4.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), grey)
+plane("Ceiling", (4.0, 4.0), (0.0, 0.0, 2.6), (2 * half_pi, 0.0, 0.0), grey)
+plane("Back wall", (4.0, 2.6), (0.0, 2.0, 1.3), (half_pi, 0.0, 0.0), grey)
+plane("Left wall", (2.6, 4.0), (-2.0, 0.0, 1.3), (0.0, half_pi, 0.0), red)
+plane("Right wall", (2.6, 4.0), (2.0, 0.0, 1.3), (0.0, -half_pi, 0.0), green)
+
+bpy.ops.mesh.primitive_cube_add(size=0.5, location=(-0.6, 0.4, 0.25))
+crate = bpy.context.active_object
+crate.name = "Crate"
+crate.data.name = "Crate"
+crate.data.materials.append(wood)
+# Rests for one second, then slides 1.2 m along x over half a second (ease-in-out, as Blender's
+# default Bezier keys give).
+for frame, x in ((1, -0.6), (31, -0.6), (46, 0.6)):
+    crate.location.x = x
+    crate.keyframe_insert(data_path="location", frame=frame)
+
+# 60 W of light; Blender's exporter writes the point light's intensity in candela.
+bpy.ops.object.light_add(type="POINT", location=(0.3, -0.2, 2.3))
+lamp = bpy.context.active_object
+lamp.name = "Ceiling lamp"
+lamp.data.energy = 60.0
+lamp.data.shadow_soft_size = 0.0
+
+# From the open side, looking at the floor where the crate stands.
+bpy.ops.object.camera_add(location=(0.0, -5.2, 2.1), rotation=(1.26, 0.0, 0.0))
+camera = bpy.context.active_object
+camera.name = "Camera"
+camera.data.lens = 24.0
+scene.camera = camera
+
+bpy.ops.export_scene.gltf(
+    filepath=out_path,
+    export_format="GLB",
+    export_apply=True,
+    export_animations=True,
+    export_cameras=True,
+    export_lights=True,
+    export_yup=True,
+)
