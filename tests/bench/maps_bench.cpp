@@ -21,6 +21,11 @@
 //   AimRebuild        IlluminationMaps::rebuild_aim of every light-mapped surface of
 //        prepared/cornell, each timed; counters: ms_per_surface (mean), max_surface_ms,
 //        ms_per_texel, texels and photons per pass.
+//   GatherUnit        IlluminationMaps::gather of one unit of 20 texels (the paper's unit) on
+//        prepared/two-rooms' largest surface, 50 units per iteration, against
+//        CpuGatherer::gather of the same 20 texels placed in the world beforehand (one thread,
+//        64 rays). Counters: unit_ms, gather_ms, ratio = unit / gather (what a unit costs
+//        beyond its rays), surface_texels.
 
 #include <benchmark/benchmark.h>
 
@@ -35,6 +40,7 @@
 #include <map>
 #include <memory>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -568,6 +574,53 @@ void AimRebuild(benchmark::State& state) {
     state.counters["ms_per_texel"] = 1e3 * total / (passes * static_cast<double>(texels));
 }
 BENCHMARK(AimRebuild)->UseManualTime()->Unit(benchmark::kMillisecond);
+
+// --- a gather unit's cost beyond its rays
+// ----------------------------------------------------------------------------------
+
+void GatherUnit(benchmark::State& state) {
+    static const std::unique_ptr<Level> level = std::make_unique<Level>("two-rooms");
+    IlluminationMaps& maps = *level->maps;
+    std::uint32_t largest = 0;
+    for (std::uint32_t s = 0; s < maps.surfaces().size(); ++s) {
+        if (maps.surfaces()[s].texels.texels.size() >
+            maps.surfaces()[largest].texels.texels.size()) {
+            largest = s;
+        }
+    }
+    constexpr std::size_t kUnitTexels = 20;
+    constexpr int kUnits = 50;
+    CpuGatherer gatherer(level->photons->ray_scene(), maps.aim(), {64, 1e6f});
+    const std::vector<GatherTexel> world = maps.world_texels(largest);
+    std::vector<glm::vec3> out(kUnitTexels);
+    double unit_seconds = 0.0;
+    double gather_seconds = 0.0;
+    std::size_t at = 0;
+    for (auto _ : state) {
+        const Clock::time_point unit_start = Clock::now();
+        for (int u = 0; u < kUnits; ++u) {
+            benchmark::DoNotOptimize(maps.gather(largest, kUnitTexels, gatherer, 0.0));
+        }
+        const double units = seconds_since(unit_start);
+        unit_seconds += units;
+        const Clock::time_point gather_start = Clock::now();
+        for (int u = 0; u < kUnits; ++u) {
+            at = at + kUnitTexels > world.size() ? 0 : at;
+            gatherer.gather(std::span<const GatherTexel>(world.data() + at, kUnitTexels), out);
+            benchmark::DoNotOptimize(out.data());
+            at += kUnitTexels;
+        }
+        gather_seconds += seconds_since(gather_start);
+        state.SetIterationTime(units);
+    }
+    const double count = static_cast<double>(state.iterations()) * kUnits;
+    state.counters["unit_ms"] = 1e3 * unit_seconds / count;
+    state.counters["gather_ms"] = 1e3 * gather_seconds / count;
+    state.counters["ratio"] = unit_seconds / std::max(gather_seconds, 1e-12);
+    state.counters["surface_texels"] =
+        static_cast<double>(maps.surfaces()[largest].texels.texels.size());
+}
+BENCHMARK(GatherUnit)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
