@@ -67,8 +67,10 @@ SandboxApp::FrameResult SandboxApp::frame(double time, double dt,
     }
     transforms_.update();
 
-    // 2-4. Lighting: sync through the ECS change lists, scheduled work within the budget.
+    // 2-4. Lighting: sync through the ECS change lists, scheduled work within the budget; what
+    // the camera sees gathers first.
     const Stopwatch lighting_watch;
+    lighting_->set_view(lighting::ViewHint{camera.projection * camera.view});
     const lighting::LightingStats& stats = lighting_->update(budget_ms_, time);
     result.lighting_ms = lighting_watch.elapsed_ms();
 

@@ -21,6 +21,7 @@ struct Response {
     bool local_passes = true;
     bool exact_invalidation = true;
     double change_blend_seconds = lighting::IlluminationSettings{}.change_blend_seconds;
+    double change_test_sigmas = lighting::IlluminationSettings{}.change_test_sigmas;
 };
 inline constexpr Response kLuxel{};
 inline constexpr Response kPaper{false, false};
@@ -33,6 +34,7 @@ inline lighting::LightingConfig footprint_config(const Response& response) {
     config.maps.local_passes = response.local_passes;
     config.photons.selective.exact_invalidation = response.exact_invalidation;
     config.maps.change_blend_seconds = response.change_blend_seconds;
+    config.maps.change_test_sigmas = response.change_test_sigmas;
     return config;
 }
 

@@ -7,6 +7,10 @@
 // sees fades in per texel: the second test checks that the texels a local pass re-gathered show
 // their new light within frames, not half a second.
 
+#include <algorithm>
+#include <set>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "footprint_support.hpp"
@@ -126,6 +130,86 @@ TEST(Footprint, WhatThePlayerSeesFollowsWithinSixFramesAt30Hz) {
     }
     EXPECT_GT(slow.mean_iim(left), 0.75 * lit);
     EXPECT_LT(slow.mean_shown(left), 0.5 * lit);
+}
+
+/// The texels of the named node's light-mapped surfaces, as (surface, index).
+std::vector<std::pair<std::uint32_t, std::size_t>> texels_of(const Box& box,
+                                                             const std::string& node) {
+    std::vector<std::pair<std::uint32_t, std::size_t>> found;
+    const auto& maps = box.level.lighting->maps();
+    for (std::uint32_t s = 0; s < maps.surfaces().size(); ++s) {
+        const auto* name = box.level.registry.try_get<scene::Name>(maps.surfaces()[s].entity);
+        if (name != nullptr && name->value == node) {
+            for (std::size_t i = 0; i < maps.surfaces()[s].texels.texels.size(); ++i) {
+                found.emplace_back(s, i);
+            }
+        }
+    }
+    return found;
+}
+
+/// Slides the cube and runs until converged again; returns the share of `texels` whose passes
+/// restarted (fell below what they had) at some frame, and how many full passes their surfaces
+/// started meanwhile.
+std::pair<double, std::uint32_t> restarted_after_slide(
+    Box& box, const std::vector<std::pair<std::uint32_t, std::size_t>>& texels) {
+    const auto& maps = box.level.lighting->maps();
+    std::vector<std::uint32_t> passes;
+    std::set<std::uint32_t> surfaces;
+    for (const auto& [s, i] : texels) {
+        passes.push_back(maps.refinement(s).texel_passes.at(i));
+        surfaces.insert(s);
+    }
+    const auto started = [&] {
+        std::uint32_t sum = 0;
+        for (const std::uint32_t s : surfaces) {
+            sum += maps.gather_state(s).started;
+        }
+        return sum;
+    };
+    const std::uint32_t started_before = started();
+    std::vector<bool> restarted(texels.size(), false);
+    box.slide();
+    for (int f = 0; f < 600 && (f < 2 || !box.level.lighting->plan().census().converged); ++f) {
+        box.level.frame(1e9);
+        for (std::size_t k = 0; k < texels.size(); ++k) {
+            const auto& [s, i] = texels[k];
+            const std::uint32_t now = maps.refinement(s).texel_passes.at(i);
+            restarted[k] = restarted[k] || now < passes[k];
+            passes[k] = now;
+        }
+    }
+    const std::uint32_t started_after = started();
+    const auto count = static_cast<double>(std::count(restarted.begin(), restarted.end(), true));
+    return {count / static_cast<double>(std::max<std::size_t>(texels.size(), 1)),
+            started_after - started_before};
+}
+
+TEST(Footprint, TexelsTheMoveDidNotReachKeepTheirRefinement) {
+    // The cube's move retraces most photon groups (their paths cross its old or new place),
+    // so the ceiling's photons change and its surfaces gather full passes again; the light
+    // there barely changes. luxel keeps the ceiling texels' averaged passes; restarting every
+    // texel of a surface whose photons changed (change_test_sigmas 0, before issue 19) throws
+    // them away.
+    Box luxel(kLuxel);
+    const auto ceiling = texels_of(luxel, "ceiling");
+    ASSERT_GT(ceiling.size(), 100u);
+    const auto [kept_restarted, kept_passes] = restarted_after_slide(luxel, ceiling);
+    EXPECT_GT(kept_passes, 0u) << "the ceiling should gather again after the move";
+    EXPECT_LT(kept_restarted, 0.2);
+
+    Box restart({true, true, kLuxel.change_blend_seconds, 0.0});
+    const auto [all_restarted, all_passes] = restarted_after_slide(restart, ceiling);
+    EXPECT_GT(all_passes, 0u);
+    EXPECT_GT(all_restarted, 0.8);
+
+    // Where the move did change the light, the texels restart: the floor the cube left.
+    Box truth(kLuxel, true);
+    const auto left = truth.floor_between(truth.rest, truth.slid);
+    Box moved(kLuxel);
+    const auto [left_restarted, left_passes] = restarted_after_slide(moved, left);
+    EXPECT_GT(left_passes, 0u);
+    EXPECT_GT(left_restarted, 0.9);
 }
 
 }  // namespace

@@ -31,6 +31,7 @@ lighting::LightingConfig BenchConfig::lighting() const {
     config.maps.refine_passes = refine;
     config.maps.local_passes = local != 0;
     config.maps.change_blend_seconds = change_blend;
+    config.maps.change_test_sigmas = keep;
     config.photons.selective.exact_invalidation = exact != 0;
     return config;
 }
@@ -40,8 +41,8 @@ std::string BenchConfig::knobs() const {
     out << "photons=" << groups << "x" << per_group << " aim_n=" << aim_n << " rays=" << rays
         << " texels_per_unit=" << texels_per_unit << " filter=" << filter << " refine=" << refine
         << " local=" << local << " change_blend=" << change_blend << " exact=" << exact
-        << " caustics=" << caustic_photons << "x" << caustic_slices << " backend=" << backend
-        << " kernel=" << kernel;
+        << " keep=" << keep << " caustics=" << caustic_photons << "x" << caustic_slices
+        << " backend=" << backend << " kernel=" << kernel;
     return out.str();
 }
 
@@ -81,6 +82,8 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.exact = whole(value);
             } else if (sweep.knob == "change_blend") {
                 c.change_blend = std::stod(value);
+            } else if (sweep.knob == "keep") {
+                c.keep = std::stod(value);
             } else if (sweep.knob == "backend") {
                 c.backend = value;
             } else if (sweep.knob == "kernel") {

@@ -28,6 +28,9 @@ struct BenchConfig {
     std::uint32_t exact = 1;
     /// Seconds a local pass's texels fade in over (IlluminationSettings::change_blend_seconds).
     double change_blend = lighting::IlluminationSettings{}.change_blend_seconds;
+    /// Standard deviations by which a full pass must show a texel's light changed before the
+    /// texel restarts (IlluminationSettings::change_test_sigmas; 0: every texel restarts).
+    double keep = lighting::IlluminationSettings{}.change_test_sigmas;
     std::uint32_t caustic_photons = 10'000;  ///< per (generator, light) pair; the paper's
     std::uint32_t caustic_slices = 8;        ///< ... over 8 frames
     /// The final-gather backend: "cpu" (Embree rays, `rays` per texel) or "gpu" (the

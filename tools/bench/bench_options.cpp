@@ -99,10 +99,16 @@ Sweep parse_sweep(const std::string& text) {
             if (!(v >= 0.0 && v <= 60.0)) {
                 throw Error(what + ": '" + value + "' is not a number of seconds in 0..60");
             }
+        } else if (sweep.knob == "keep") {
+            const double v = number(value, what);
+            if (!(v >= 0.0 && v <= 100.0)) {
+                throw Error(what + ": '" + value +
+                            "' is not a number of standard deviations in 0..100");
+            }
         } else {
             throw Error("--sweep " + sweep.knob +
                         ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, filter, "
-                        "refine, local, change_blend, exact, caustics, backend, kernel)");
+                        "refine, local, change_blend, exact, keep, caustics, backend, kernel)");
         }
     }
     return sweep;

@@ -8,6 +8,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "iim_pass_filter.hpp"
+#include "luxel/lighting/core/texel_change_test.hpp"
 #include "map_support.hpp"
 
 namespace luxel::lighting {
@@ -28,7 +29,13 @@ void IimGatherPasses::sync() {
         state.cursor = surfaces[s].texels.texels.size();  // no pass in progress
         states_.push_back(std::move(state));
         refinements_.emplace_back();
+        AxisBox box;
+        for (const SurfaceTexel& texel : surfaces[s].texels.texels) {
+            box.add(texel.position);
+        }
+        local_boxes_.push_back(box);
     }
+    update_seen();
     if (settings_.local_passes) {
         for (const MapRegistry::NearbyChange& change : registry_.nearby_changes()) {
             mark_changed(change.surface, change.region);
@@ -47,6 +54,24 @@ void IimGatherPasses::sync() {
             }
             state.stale_local_texels.clear();
         }
+    }
+}
+
+void IimGatherPasses::set_view(std::optional<ViewHint> view) {
+    view_ = view;
+    update_seen();
+}
+
+void IimGatherPasses::update_seen() {
+    const std::span<const MapSurface> surfaces = registry_.surfaces();
+    const std::size_t count = std::min(local_boxes_.size(), surfaces.size());
+    seen_.assign(count, 1);
+    if (!view_) {
+        return;
+    }
+    for (std::size_t s = 0; s < count; ++s) {
+        const AxisBox box = transformed(local_boxes_[s], surfaces[s].to_world);
+        seen_[s] = in_view(box, view_->view_projection) ? 1 : 0;
     }
 }
 
@@ -105,6 +130,10 @@ bool IimGatherPasses::wants_gather(std::uint32_t s, bool ready, bool current) co
     return state.in_progress || (ready && (!state.completed_once || changed || local || refine));
 }
 
+/// How far refinement of a surface out of view sorts below refinement of one in view (more
+/// passes than a surface ever averages).
+constexpr double kUnseenRefinement = 1e6;
+
 double IimGatherPasses::priority(std::uint32_t s, bool current) const {
     const PhotonMap& map = world_.photon_map();
     const MapSurface& mapped = registry_.surface(s);
@@ -116,9 +145,10 @@ double IimGatherPasses::priority(std::uint32_t s, bool current) const {
     // another instead of all crawling together (a pass shows only when complete); then
     // surfaces never gathered; then texels near a geometry change (a local pass: small, and
     // what a player sees go wrong, such as the dark footprint of a crate that slid away); then
-    // the largest delta_i / area; refinement last: a refinement pass in progress, then the
-    // surfaces with the fewest passes averaged. A change never waits for refinement (a
-    // refinement pass of a surface whose light or geometry changed is dropped by gather()).
+    // the largest delta_i / area, the surfaces in the player's view first (set_view); refinement
+    // last: a refinement pass in progress, then the surfaces with the fewest passes averaged,
+    // again those in view first. A change never waits for refinement (a refinement pass of a
+    // surface whose light or geometry changed is dropped by gather()).
     const double done = static_cast<double>(state.cursor) /
                         static_cast<double>(std::max<std::size_t>(pass_size(s), 1));
     double rank = delta / safe_area(mapped.texels.area);
@@ -129,9 +159,15 @@ double IimGatherPasses::priority(std::uint32_t s, bool current) const {
     } else if (state.changed_count > 0) {
         rank = std::numeric_limits<double>::max() / 8.0;
     } else if (!changed && state.in_progress) {
-        rank = -0.5 + 0.25 * done;
+        rank = -0.5 + 0.25 * done - (seen(s) ? 0.0 : kUnseenRefinement);
     } else if (!changed) {
-        rank = -static_cast<double>(refinement.passes_averaged);
+        rank =
+            -static_cast<double>(refinement.passes_averaged) - (seen(s) ? 0.0 : kUnseenRefinement);
+    } else if (view_ && seen(s)) {
+        // Above every unseen change, below the local passes: [max/16, max/8), in the order of
+        // delta_i / area.
+        const double r = std::max(rank, 0.0);
+        rank = std::numeric_limits<double>::max() / 16.0 * (1.0 + r / (1.0 + r));
     }
     return rank;
 }
@@ -250,23 +286,21 @@ std::size_t IimGatherPasses::gather(std::uint32_t surface, std::size_t max_texel
     const std::size_t first = state.cursor;
     const std::size_t count = std::min(max_texels, size - first);
     if (count > 0) {
-        std::vector<GatherTexel> all = registry_.world_texels(surface);
-        for (GatherTexel& texel : all) {
+        // Only this call's texels are placed in the world (a unit is a few texels of a surface
+        // that may hold thousands).
+        std::vector<std::uint32_t> indices(count);
+        for (std::size_t k = 0; k < count; ++k) {
+            indices[k] = state.subset.empty() ? static_cast<std::uint32_t>(first + k)
+                                              : state.subset[first + k];
+        }
+        std::vector<GatherTexel> batch = registry_.world_texels(surface, indices);
+        for (GatherTexel& texel : batch) {
             texel.pass = state.started;
         }
-        if (state.subset.empty()) {
-            const std::span<const GatherTexel> batch(all.data() + first, count);
-            gatherer.gather(batch, std::span<glm::vec3>(state.irradiance.data() + first, count));
-        } else {
-            std::vector<GatherTexel> batch(count);
-            std::vector<glm::vec3> out(count);
-            for (std::size_t k = 0; k < count; ++k) {
-                batch[k] = all[state.subset[first + k]];
-            }
-            gatherer.gather(batch, out);
-            for (std::size_t k = 0; k < count; ++k) {
-                state.irradiance[state.subset[first + k]] = out[k];
-            }
+        std::vector<glm::vec3> out(count);
+        gatherer.gather(batch, out);
+        for (std::size_t k = 0; k < count; ++k) {
+            state.irradiance[indices[k]] = out[k];
         }
         state.cursor = first + count;
         texels_gathered_ += count;
@@ -306,7 +340,19 @@ std::vector<glm::vec3> IimGatherPasses::fold_pass(std::uint32_t surface) {
     // (two vec3 and a count per texel), since a local pass needs the other texels' means.
     const bool have_means = refinement.mean.size() == count && refinement.m2.size() == count &&
                             refinement.texel_passes.size() == count;
-    const bool restart_all = !have_means || (!state.refines && !state.local);
+    const bool full_pass = !state.refines && !state.local;
+    // A full pass (the photons' change, a stale AIM) keeps the texels it shows unchanged
+    // (texel_change_test.hpp): empty, every texel restarts.
+    std::vector<std::uint8_t> changed;
+    if (have_means && full_pass && settings_.change_test_sigmas > 0.0) {
+        std::vector<glm::vec3> pass(count);
+        for (std::size_t i = 0; i < count; ++i) {
+            pass[i] = sanitized(state.irradiance[i]);
+        }
+        changed = texels_changed(registry_.surface(surface).texels.texels, pass, refinement,
+                                 settings_.change_test_radius, settings_.change_test_sigmas);
+    }
+    const bool restart_all = !have_means || (full_pass && changed.empty());
     if (restart_all) {
         refinement.mean.assign(count, glm::vec3(0.0f));
         refinement.m2.assign(count, glm::vec3(0.0f));
@@ -318,12 +364,14 @@ std::vector<glm::vec3> IimGatherPasses::fold_pass(std::uint32_t surface) {
     const auto fold = [&](std::size_t i) {
         const glm::dvec3 x(sanitized(state.irradiance[i]));
         std::uint32_t& n = refinement.texel_passes[i];
-        if (!state.refines || n == 0) {
+        const bool keep = state.refines || (!changed.empty() && changed[i] == 0);
+        if (!keep || n == 0) {
             n = 1;
             refinement.mean[i] = glm::vec3(x);
             refinement.m2[i] = glm::vec3(0.0f);
             return;
         }
+        texels_kept_ += state.refines ? 0 : 1;
         n += 1;
         const glm::dvec3 old_mean(refinement.mean[i]);
         const glm::dvec3 mean = old_mean + (x - old_mean) / static_cast<double>(n);

@@ -13,6 +13,7 @@
 #include "luxel/lighting/core/map_surface.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
 #include "luxel/lighting/core/surface_deltas.hpp"
+#include "luxel/lighting/core/view_hint.hpp"
 #include "map_registry.hpp"
 
 namespace luxel::lighting {
@@ -45,12 +46,18 @@ class IimGatherPasses {
                        double now_seconds);
 
     void set_refinement(bool refine) { refine_ = refine; }
+    /// Where the player looks, or nothing (every surface counts as seen); sync() follows the
+    /// surfaces as they move.
+    void set_view(std::optional<ViewHint> view);
+    /// Whether surface `s` was in the view at the last sync() (true without a view).
+    [[nodiscard]] bool seen(std::uint32_t s) const { return s >= seen_.size() || seen_[s] != 0; }
     [[nodiscard]] const GatherPassState& state(std::uint32_t s) const { return states_.at(s); }
     [[nodiscard]] const RefinementStats& refinement(std::uint32_t s) const {
         return refinements_.at(s);
     }
     [[nodiscard]] std::uint64_t passes() const { return passes_; }
     [[nodiscard]] std::uint64_t texels_gathered() const { return texels_gathered_; }
+    [[nodiscard]] std::uint64_t texels_kept() const { return texels_kept_; }
 
   private:
     /// Filtering a texel costs about a fortieth of gathering it with 64 rays: a gather call's
@@ -68,6 +75,8 @@ class IimGatherPasses {
     [[nodiscard]] bool wants_refinement(std::uint32_t s) const;
     /// Starts a pass over `surface`: what changed until now is what it sees.
     void start_pass(std::uint32_t surface);
+    /// Which surfaces the view holds, where they are now.
+    void update_seen();
     /// Marks the surface's texels inside `region` as changed (MapRegistry::nearby_changes).
     void mark_changed(std::uint32_t surface, const GeometryChange& region);
     /// Whether the per-texel means are kept (refinement on), which local passes need: without
@@ -96,6 +105,10 @@ class IimGatherPasses {
     bool refine_ = false;
     std::uint64_t passes_ = 0;
     std::uint64_t texels_gathered_ = 0;
+    std::uint64_t texels_kept_ = 0;
+    std::optional<ViewHint> view_;
+    std::vector<AxisBox> local_boxes_;  ///< by surface: its texels' box in its own space
+    std::vector<std::uint8_t> seen_;    ///< by surface, from view_ at the last sync()
 };
 
 }  // namespace luxel::lighting

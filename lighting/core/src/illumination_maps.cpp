@@ -62,6 +62,10 @@ void IlluminationMaps::set_refinement(bool refine) {
     gathers_->set_refinement(refine);
 }
 
+void IlluminationMaps::set_view(std::optional<ViewHint> view) {
+    gathers_->set_view(view);
+}
+
 const RadianceAtlas& IlluminationMaps::aim() const {
     return registry_->aim();
 }
@@ -92,6 +96,7 @@ MapCounters IlluminationMaps::counters() const {
     counters.aim_texels = aims_->texels();
     counters.enclosed_texels = aims_->enclosed_texels();
     counters.gather_passes = gathers_->passes();
+    counters.texels_kept = gathers_->texels_kept();
     counters.texels_gathered = gathers_->texels_gathered();
     return counters;
 }

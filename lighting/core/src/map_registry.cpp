@@ -202,18 +202,39 @@ void MapRegistry::sync() {
     find_nearby_changes();
 }
 
+namespace {
+
+GatherTexel to_world(const MapSurface& mapped, const glm::mat3& normal_matrix,
+                     const SurfaceTexel& texel) {
+    GatherTexel world;
+    world.position = glm::vec3(mapped.to_world * glm::vec4(texel.position, 1.0f));
+    const glm::vec3 n = normal_matrix * texel.normal;
+    const float length = glm::length(n);
+    world.normal = length > 0.0f && std::isfinite(length) ? n / length : texel.normal;
+    return world;
+}
+
+}  // namespace
+
 std::vector<GatherTexel> MapRegistry::world_texels(std::uint32_t surface) const {
     const MapSurface& mapped = surfaces_.at(surface);
     const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(mapped.to_world)));
     std::vector<GatherTexel> texels;
     texels.reserve(mapped.texels.texels.size());
     for (const SurfaceTexel& texel : mapped.texels.texels) {
-        GatherTexel world;
-        world.position = glm::vec3(mapped.to_world * glm::vec4(texel.position, 1.0f));
-        const glm::vec3 n = normal_matrix * texel.normal;
-        const float length = glm::length(n);
-        world.normal = length > 0.0f && std::isfinite(length) ? n / length : texel.normal;
-        texels.push_back(world);
+        texels.push_back(to_world(mapped, normal_matrix, texel));
+    }
+    return texels;
+}
+
+std::vector<GatherTexel> MapRegistry::world_texels(std::uint32_t surface,
+                                                   std::span<const std::uint32_t> indices) const {
+    const MapSurface& mapped = surfaces_.at(surface);
+    const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(mapped.to_world)));
+    std::vector<GatherTexel> texels;
+    texels.reserve(indices.size());
+    for (const std::uint32_t i : indices) {
+        texels.push_back(to_world(mapped, normal_matrix, mapped.texels.texels.at(i)));
     }
     return texels;
 }

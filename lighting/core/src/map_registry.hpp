@@ -53,6 +53,10 @@ class MapRegistry {
     [[nodiscard]] std::uint64_t emission_version() const { return emission_version_; }
     /// The world-space texel centres of a surface (what its AIM rebuild and gathers start from).
     [[nodiscard]] std::vector<GatherTexel> world_texels(std::uint32_t surface) const;
+    /// The world-space centres of some of a surface's texels (by index), in that order: a
+    /// gather unit of 20 texels transforms its 20, not the surface's thousands.
+    [[nodiscard]] std::vector<GatherTexel> world_texels(
+        std::uint32_t surface, std::span<const std::uint32_t> indices) const;
 
     /// Where the geometry changed near a surface in the last sync(): the photon world's change
     /// box grown by its own half-diagonal (an object changes the indirect light within about its

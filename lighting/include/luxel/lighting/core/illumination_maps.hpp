@@ -16,6 +16,7 @@
 #include "luxel/lighting/core/photon_world.hpp"
 #include "luxel/lighting/core/radiance_atlas.hpp"
 #include "luxel/lighting/core/surface_deltas.hpp"
+#include "luxel/lighting/core/view_hint.hpp"
 
 /// Photons into light maps (docs/METHOD.md §5-6): the AIM of each light-mapped
 /// surface from its photons, and the IIM from final gathering over the AIM-lit scene.
@@ -86,6 +87,9 @@ class IlluminationMaps {
     /// Whether passes over unchanged lighting are averaged (set from the gatherer in use:
     /// IrradianceGatherer::refines(); LightingSystem does it).
     void set_refinement(bool refine);
+    /// Where the player looks (nullopt: nowhere in particular): gathers of surfaces in view go
+    /// first among changes and among refinements.
+    void set_view(std::optional<ViewHint> view);
 
     /// The AIM pages both gather backends read.
     [[nodiscard]] const RadianceAtlas& aim() const;

@@ -57,6 +57,13 @@ struct IlluminationSettings {
     /// there passes iim_threshold, which a small object's may never do. Off: the paper's
     /// behaviour, for measuring the difference.
     bool local_passes = true;
+    /// A full pass keeps the refinement of the texels whose light it shows unchanged: a texel
+    /// restarts at one pass only where the pass's mean difference from the texels' means over
+    /// the neighbourhood within change_test_radius texels exceeds this many standard deviations
+    /// of the noise (texel_change_test.hpp, docs/METHOD.md §6.9). 0: every texel of the
+    /// surface restarts (before issue 19).
+    double change_test_sigmas = 3.0;
+    int change_test_radius = 4;
 };
 
 }  // namespace luxel::lighting

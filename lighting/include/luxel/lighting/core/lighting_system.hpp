@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "luxel/ecs/registry.hpp"
@@ -89,6 +90,10 @@ class LightingSystem {
     /// Replaces the gather backend (e.g. lighting/gpu's HemiPlaneGatherer); null restores the
     /// CPU one. The gatherer must outlive its use here.
     void set_gatherer(IrradianceGatherer* gatherer);
+    /// Where the player looks, for the next update()s (nullopt: nowhere in particular): the
+    /// gather passes of surfaces in view go first, among changes and among refinements
+    /// (ViewHint). The renderer's camera, each frame.
+    void set_view(std::optional<ViewHint> view) { maps_->set_view(view); }
 
     [[nodiscard]] const FeaturePlan& plan() const { return plan_; }
     [[nodiscard]] const LightingStats& stats() const { return stats_; }
