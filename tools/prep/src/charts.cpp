@@ -20,6 +20,14 @@ using detail::Piece;
 constexpr double kWideConeCos = 0.5;  // 60 degrees
 /// A planar projection this close to uniform is kept without trying the conformal map.
 constexpr double kGoodEnoughDistortion = 1.1;
+/// Over-budget pieces with at most this many faces are checked before a cut for whether the
+/// cut wastes page texels (ChartBuilder::cut_wastes_texels).
+constexpr std::size_t kCutCheckMaxFaces = 256;
+/// ... when all their normals are within this cone of their mean (about 8 degrees): the check
+/// compares planar charts.
+constexpr double kFlatCos = 0.99;
+/// A cut whose parts need this many times the whole chart's page texels is not made.
+constexpr double kCutWasteRatio = 1.25;
 
 struct PieceShape {
     double area = 0.0;
@@ -77,7 +85,11 @@ class ChartBuilder {
                 }
             }
             // Halves: pieces of a rectangle stay rectangles of equal size, which pack well.
-            return split_longest_axis(faces, 2);
+            auto halves = split_longest_axis(faces, 2);
+            if (!cut_wastes_texels(faces, shape, halves)) {
+                return halves;
+            }
+            // Kept whole, over the budget: see cut_wastes_texels.
         }
         Piece piece = detail::make_piece(patch_, faces, vertex_scratch_);
         FittedChart best;
@@ -127,6 +139,47 @@ class ChartBuilder {
             }
         }
         return split_longest_axis(faces, 2);
+    }
+
+    /// Whether cutting a flat piece over the area budget into `parts` would cost far more page
+    /// texels than keeping it whole. A coarse mesh (a wall or floor that a modelling tool
+    /// writes as one quad of two triangles) can only be cut along its diagonal: two triangle
+    /// charts, each in a rectangle as large as the whole quad's, so that half of every page
+    /// rectangle is empty and the padding doubles. Such a piece stays one chart, over the
+    /// budget, as a single triangle over it does; finely meshed walls (luxel's own levels) are
+    /// still cut, because their halves are rectangles too.
+    bool cut_wastes_texels(const std::vector<int>& faces, const PieceShape& shape,
+                           const std::vector<std::vector<int>>& parts) {
+        // Fine meshes cut along straight rows of vertices, so the check is only worth its
+        // cost (a planar fit of every part) on coarse pieces.
+        if (faces.size() > kCutCheckMaxFaces || shape.min_cos < kFlatCos) {
+            return false;
+        }
+        const double whole = padded_planar_area(faces, shape.normal_sum);
+        if (!(whole > 0.0)) {
+            return false;
+        }
+        double cut = 0.0;
+        for (const auto& part : parts) {
+            const double area = padded_planar_area(part, measure(part).normal_sum);
+            if (!(area > 0.0)) {
+                return false;
+            }
+            cut += area;
+        }
+        return cut > kCutWasteRatio * whole;
+    }
+
+    /// The page texels (padding included) of a piece's planar chart; 0 when it does not fit.
+    double padded_planar_area(const std::vector<int>& faces, const glm::dvec3& normal_sum) {
+        const Piece piece = detail::make_piece(patch_, faces, vertex_scratch_);
+        const FittedChart fitted = detail::fit_chart(
+            patch_, piece, detail::planar_projection(patch_, piece, normal_sum), limits_);
+        if (!fitted.ok) {
+            return 0.0;
+        }
+        const double pad = 2.0 * limits_.padding;
+        return (fitted.width + pad) * (fitted.height + pad);
     }
 
     PieceShape measure(const std::vector<int>& faces) {
