@@ -59,7 +59,7 @@ std::vector<CorpusFile> corpus() {
 std::filesystem::path export_generated(const std::string& name, const std::filesystem::path& dir) {
     const auto out = dir / (name + ".glb");
     const luxel::testing::CommandResult run = luxel::testing::run_command(
-        "blender", "--background --factory-startup --python-exit-code 1 --python " +
+        "blender", "--background --factory-startup -t 1 --python-exit-code 1 --python " +
                        luxel::testing::quoted(corpus_dir() / (name + ".py")) + " -- " +
                        luxel::testing::quoted(out));
     EXPECT_EQ(run.exit_code, 0) << run.output;
