@@ -143,6 +143,17 @@ class ChartMerger {
             return false;
         }
         const std::size_t union_faces = first.piece.faces.size() + second.piece.faces.size();
+        // Padding and the empty corners of the two rectangles are all a merge can save: pairs
+        // that could not save enough even with a union of no waste at all (and the fewest
+        // texels the stretch bound allows) are not flattened.
+        const double fewest_texels =
+            (first.area + second.area) /
+            (limits_.texel_size * limits_.texel_size * limits_.max_stretch);
+        const double apart = padded_texels(first.fitted, limits_.padding) +
+                             padded_texels(second.fitted, limits_.padding);
+        if (fewest_texels > (1.0 - kMinSaving) * apart) {
+            return false;
+        }
         if (union_faces > work_left_) {
             return false;
         }
@@ -172,8 +183,6 @@ class ChartMerger {
         Piece piece = make_piece(patch_, std::move(faces), vertex_scratch_);
         Flattening flat =
             flatten_piece(patch_, piece, normal_sum, min_cos, has_boundary, limits_, nullptr);
-        const double apart = padded_texels(first.fitted, limits_.padding) +
-                             padded_texels(second.fitted, limits_.padding);
         // Fewer texels must not cost a less uniform density than the two charts had (a curved
         // piece merged into a wider cone spreads its texels less evenly).
         const double distortion =
