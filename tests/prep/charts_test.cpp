@@ -50,6 +50,24 @@ TEST(Charts, FlatWallIsOnePlanarChartAtTheTexelSize) {
     expect_pages_sound(result);
 }
 
+TEST(Charts, CoarseQuadOverTheBudgetStaysOneChart) {
+    // A 4 x 4 m floor as modelling tools write it, one quad of two triangles: 6400 texels,
+    // over the surface budget (1024), but cutting it gives two triangles, each in a rectangle
+    // as large as the whole floor's (issue 22: Blender rooms packed at 43%).
+    const auto coarse = luxel::testing::run_prep(luxel::testing::single_mesh_scene(
+        levels::make_quad({0, 0, 0}, {4, 0, 0}, {0, 4, 0}, 1, 1)));
+    EXPECT_EQ(coarse.report.charts, 1u);
+    EXPECT_EQ(coarse.report.texels, 6400);
+    EXPECT_GE(coarse.report.efficiency, 0.9);
+    expect_pages_sound(coarse);
+    // The same floor finely meshed is still cut to the budget: its halves are rectangles.
+    const auto fine = luxel::testing::run_prep(luxel::testing::single_mesh_scene(
+        levels::make_quad({0, 0, 0}, {4, 0, 0}, {0, 4, 0}, 16, 16)));
+    EXPECT_GE(fine.report.surfaces, 7u);
+    EXPECT_GE(fine.report.efficiency, 0.8);
+    expect_pages_sound(fine);
+}
+
 TEST(Charts, OpenCylinderUnrollsConformally) {
     // The brass ring's shape: a tube cannot be one flat chart, but its pieces are developable,
     // so conformal maps flatten them with (almost) no stretch at all.

@@ -40,13 +40,9 @@ TEST_P(PreparedLevel, MeetsTheQualityGoalsAndMatchesTheCommittedFile) {
     const prep::PrepResult result = luxel::testing::run_prep(level, defaults);
     const prep::PrepReport& report = result.report;
 
-    // Issue 5's goals: packing efficiency at least 70%, stretch within 1.5. Files from other
-    // tools (Blender's exporter writes every quad as two triangles) are not there yet: issue
-    // 22's corpus test holds their packing goal; here they must prepare, validate and load.
-    const std::vector<std::string> blender = luxel::testing::blender_level_names();
-    if (std::find(blender.begin(), blender.end(), name) == blender.end()) {
-        EXPECT_GE(report.efficiency, 0.70) << name;
-    }
+    // Issue 5's goals: packing efficiency at least 70%, stretch within 1.5; the levels from
+    // Blender too, now that a coarse quad stays one chart (issue 22).
+    EXPECT_GE(report.efficiency, 0.70) << name;
     EXPECT_LE(report.stretch_max, 1.5) << name;
     EXPECT_GE(report.stretch_min, 1.0 / 1.5) << name;
     EXPECT_GT(report.surfaces, 0u);

@@ -18,8 +18,14 @@ using detail::Piece;
 /// Pieces whose normals stray further than this from their mean are cut by axis direction
 /// before anything else is tried on them (when they are too large) or after flattening failed.
 constexpr double kWideConeCos = 0.5;  // 60 degrees
-/// A planar projection this close to uniform is kept without trying the conformal map.
-constexpr double kGoodEnoughDistortion = 1.1;
+/// Over-budget pieces with at most this many faces are checked before a cut for whether the
+/// cut wastes page texels (ChartBuilder::cut_wastes_texels).
+constexpr std::size_t kCutCheckMaxFaces = 256;
+/// ... when all their normals are within this cone of their mean (about 8 degrees): the check
+/// compares planar charts.
+constexpr double kFlatCos = 0.99;
+/// A cut whose parts need this many times the whole chart's page texels is not made.
+constexpr double kCutWasteRatio = 1.25;
 
 struct PieceShape {
     double area = 0.0;
@@ -52,7 +58,13 @@ class ChartBuilder {
             stack.pop_back();
             push_all(stack, process(std::move(faces)));
         }
-        return std::move(charts_);
+        detail::merge_adjacent_charts(patch_, accepted_, limits_, vertex_scratch_);
+        std::vector<Chart> charts;
+        charts.reserve(accepted_.size());
+        for (detail::AcceptedPiece& accepted : accepted_) {
+            charts.push_back(to_chart(accepted));
+        }
+        return charts;
     }
 
   private:
@@ -77,33 +89,18 @@ class ChartBuilder {
                 }
             }
             // Halves: pieces of a rectangle stay rectangles of equal size, which pack well.
-            return split_longest_axis(faces, 2);
+            auto halves = split_longest_axis(faces, 2);
+            if (!cut_wastes_texels(faces, shape, halves)) {
+                return halves;
+            }
+            // Kept whole, over the budget: see cut_wastes_texels.
         }
         Piece piece = detail::make_piece(patch_, faces, vertex_scratch_);
-        FittedChart best;
-        ChartMethod best_method = ChartMethod::Planar;
-        const double normal_length = glm::length(shape.normal_sum);
-        if (normal_length > 1e-6 * shape.area && shape.min_cos > 0.05) {
-            best = detail::fit_chart(
-                patch_, piece, detail::planar_projection(patch_, piece, shape.normal_sum), limits_);
-        }
-        const bool planar_good = best.ok && best.distortion() <= kGoodEnoughDistortion;
-        if (!planar_good && !best.too_large && shape.has_boundary &&
-            faces.size() <= limits_.max_conformal_faces) {
-            if (auto uv = detail::conformal_map(patch_, piece)) {
-                FittedChart conformal = detail::fit_chart(patch_, piece, std::move(*uv), limits_);
-                counts_.conformal_failures += conformal.ok ? 0 : 1;
-                // A conformal map too wide for a page is only worth cutting along when nothing
-                // else worked.
-                if ((conformal.ok && (!best.ok || conformal.distortion() < best.distortion())) ||
-                    (conformal.too_large && !best.ok)) {
-                    best = std::move(conformal);
-                    best_method = ChartMethod::Conformal;
-                }
-            } else {
-                ++counts_.conformal_failures;
-            }
-        }
+        detail::Flattening flat =
+            detail::flatten_piece(patch_, piece, shape.normal_sum, shape.min_cos,
+                                  shape.has_boundary, limits_, &counts_.conformal_failures);
+        FittedChart& best = flat.fitted;
+        const ChartMethod best_method = flat.method;
         if (best.too_large) {
             if (faces.size() == 1) {
                 throw Error("a triangle of " + std::to_string(shape.area) +
@@ -127,6 +124,47 @@ class ChartBuilder {
             }
         }
         return split_longest_axis(faces, 2);
+    }
+
+    /// Whether cutting a flat piece over the area budget into `parts` would cost far more page
+    /// texels than keeping it whole. A coarse mesh (a wall or floor that a modelling tool
+    /// writes as one quad of two triangles) can only be cut along its diagonal: two triangle
+    /// charts, each in a rectangle as large as the whole quad's, so that half of every page
+    /// rectangle is empty and the padding doubles. Such a piece stays one chart, over the
+    /// budget, as a single triangle over it does; finely meshed walls (luxel's own levels) are
+    /// still cut, because their halves are rectangles too.
+    bool cut_wastes_texels(const std::vector<int>& faces, const PieceShape& shape,
+                           const std::vector<std::vector<int>>& parts) {
+        // Fine meshes cut along straight rows of vertices, so the check is only worth its
+        // cost (a planar fit of every part) on coarse pieces.
+        if (faces.size() > kCutCheckMaxFaces || shape.min_cos < kFlatCos) {
+            return false;
+        }
+        const double whole = padded_planar_area(faces, shape.normal_sum);
+        if (!(whole > 0.0)) {
+            return false;
+        }
+        double cut = 0.0;
+        for (const auto& part : parts) {
+            const double area = padded_planar_area(part, measure(part).normal_sum);
+            if (!(area > 0.0)) {
+                return false;
+            }
+            cut += area;
+        }
+        return cut > kCutWasteRatio * whole;
+    }
+
+    /// The page texels (padding included) of a piece's planar chart; 0 when it does not fit.
+    double padded_planar_area(const std::vector<int>& faces, const glm::dvec3& normal_sum) {
+        const Piece piece = detail::make_piece(patch_, faces, vertex_scratch_);
+        const FittedChart fitted = detail::fit_chart(
+            patch_, piece, detail::planar_projection(patch_, piece, normal_sum), limits_);
+        if (!fitted.ok) {
+            return 0.0;
+        }
+        const double pad = 2.0 * limits_.padding;
+        return (fitted.width + pad) * (fitted.height + pad);
     }
 
     PieceShape measure(const std::vector<int>& faces) {
@@ -342,7 +380,12 @@ class ChartBuilder {
         return parts;
     }
 
-    void accept(const Piece& piece, FittedChart fitted, ChartMethod method, double area) {
+    void accept(Piece& piece, FittedChart fitted, ChartMethod method, double area) {
+        accepted_.push_back({std::move(piece), std::move(fitted), method, area});
+    }
+
+    Chart to_chart(detail::AcceptedPiece& accepted) {
+        const Piece& piece = accepted.piece;
         Chart chart;
         chart.faces.reserve(piece.faces.size());
         for (const int f : piece.faces) {
@@ -353,16 +396,16 @@ class ChartBuilder {
             chart.vertices.push_back(patch_.node_vertex[static_cast<std::size_t>(v)]);
         }
         chart.corners = piece.corners;
-        chart.uv = std::move(fitted.uv);
-        chart.width = fitted.width;
-        chart.height = fitted.height;
-        chart.method = method;
-        chart.area = area;
-        chart.stretch_min = fitted.stretch_min;
-        chart.stretch_max = fitted.stretch_max;
-        chart.stretch_area_sum = fitted.stretch_area_sum;
-        (method == ChartMethod::Planar ? counts_.planar : counts_.conformal) += 1;
-        charts_.push_back(std::move(chart));
+        chart.uv = std::move(accepted.fitted.uv);
+        chart.width = accepted.fitted.width;
+        chart.height = accepted.fitted.height;
+        chart.method = accepted.method;
+        chart.area = accepted.area;
+        chart.stretch_min = accepted.fitted.stretch_min;
+        chart.stretch_max = accepted.fitted.stretch_max;
+        chart.stretch_area_sum = accepted.fitted.stretch_area_sum;
+        (chart.method == ChartMethod::Planar ? counts_.planar : counts_.conformal) += 1;
+        return chart;
     }
 
     const ChartLimits& limits_;
@@ -371,7 +414,7 @@ class ChartBuilder {
     std::vector<int> vertex_scratch_;
     std::vector<std::uint8_t> in_piece_;  ///< scratch marks per patch face, 0 between uses
     std::vector<int> component_;          ///< scratch component labels per patch face
-    std::vector<Chart> charts_;
+    std::vector<detail::AcceptedPiece> accepted_;
 };
 
 }  // namespace

@@ -273,3 +273,46 @@ FittedChart fit_chart(const Patch& patch, const Piece& piece, std::vector<glm::d
 }
 
 }  // namespace luxel::prep::detail
+
+namespace luxel::prep::detail {
+
+Flattening flatten_piece(const Patch& patch, const Piece& piece, const glm::dvec3& normal_sum,
+                         double min_cos, bool has_boundary, const ChartLimits& limits,
+                         std::size_t* conformal_failures) {
+    // A planar projection this close to uniform is kept without trying the conformal map.
+    constexpr double kGoodEnoughDistortion = 1.1;
+    double area = 0.0;
+    for (const int f : piece.faces) {
+        area += patch.areas[static_cast<std::size_t>(f)];
+    }
+    Flattening best;
+    if (glm::length(normal_sum) > 1e-6 * area && min_cos > 0.05) {
+        best.fitted = fit_chart(patch, piece, planar_projection(patch, piece, normal_sum), limits);
+    }
+    const bool planar_good = best.fitted.ok && best.fitted.distortion() <= kGoodEnoughDistortion;
+    if (planar_good || best.fitted.too_large || !has_boundary ||
+        piece.faces.size() > limits.max_conformal_faces) {
+        return best;
+    }
+    std::size_t failures = 0;
+    if (auto uv = conformal_map(patch, piece)) {
+        FittedChart conformal = fit_chart(patch, piece, std::move(*uv), limits);
+        failures += conformal.ok ? 0 : 1;
+        // A conformal map too wide for a page is only worth cutting along when nothing else
+        // worked.
+        if ((conformal.ok &&
+             (!best.fitted.ok || conformal.distortion() < best.fitted.distortion())) ||
+            (conformal.too_large && !best.fitted.ok)) {
+            best.fitted = std::move(conformal);
+            best.method = ChartMethod::Conformal;
+        }
+    } else {
+        ++failures;
+    }
+    if (conformal_failures != nullptr) {
+        *conformal_failures += failures;
+    }
+    return best;
+}
+
+}  // namespace luxel::prep::detail

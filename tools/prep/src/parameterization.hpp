@@ -77,4 +77,33 @@ struct FittedChart {
 [[nodiscard]] FittedChart fit_chart(const Patch& patch, const Piece& piece,
                                     std::vector<glm::dvec2> uv, const ChartLimits& limits);
 
+/// A flattening and how it was made.
+struct Flattening {
+    FittedChart fitted;
+    ChartMethod method = ChartMethod::Planar;
+};
+
+/// The better of a planar projection along `normal_sum` (tried when every face normal is within
+/// about 87 degrees of it: `min_cos`) and, where that is not near uniform, a least-squares
+/// conformal map (tried on pieces with a boundary). Counts the conformal maps that failed in
+/// `conformal_failures` when given.
+[[nodiscard]] Flattening flatten_piece(const Patch& patch, const Piece& piece,
+                                       const glm::dvec3& normal_sum, double min_cos,
+                                       bool has_boundary, const ChartLimits& limits,
+                                       std::size_t* conformal_failures);
+
+/// A flattened piece that passed the bounds: one chart before it is written out.
+struct AcceptedPiece {
+    Piece piece;
+    FittedChart fitted;
+    ChartMethod method = ChartMethod::Planar;
+    double area = 0.0;  ///< m^2
+};
+
+/// Merges adjacent charts of a patch while the union flattens within the bounds, stays within
+/// the area budget and needs fewer page texels (padding included) than the two apart. Charts
+/// keep their order (a merged chart takes the place of the earlier of the two).
+void merge_adjacent_charts(const Patch& patch, std::vector<AcceptedPiece>& charts,
+                           const ChartLimits& limits, std::vector<int>& vertex_scratch);
+
 }  // namespace luxel::prep::detail
