@@ -6,6 +6,28 @@
 #include "luxel/world/animation_system.hpp"
 
 namespace luxel::sandbox {
+namespace {
+
+/// "lighting warm-up converged after 120 updates (3400 ms)", or why it stopped. One that could
+/// not progress is a warning naming the level: it stays dark or without indirect light.
+void log_warm_up(const scene::Scene& level, const lighting::WarmUpResult& warm_up, double ms) {
+    const std::string took = std::to_string(warm_up.updates) +
+                             (warm_up.updates == 1 ? " update (" : " updates (") +
+                             std::to_string(static_cast<int>(ms)) + " ms)";
+    if (warm_up.end == lighting::WarmUpEnd::Converged) {
+        log::info("lighting warm-up converged after " + took);
+        return;
+    }
+    const std::string stopped =
+        "lighting warm-up stopped after " + took + ": " + lighting::describe(warm_up);
+    if (warm_up.end == lighting::WarmUpEnd::NoProgress) {
+        log::warn(level.in_file(stopped));
+    } else {
+        log::info(stopped);
+    }
+}
+
+}  // namespace
 
 std::string level_display_name(const std::string& name_or_path) {
     const auto& names = level_names();
@@ -44,11 +66,9 @@ SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const Shade
     // The loading screen: the first photon maps, AIMs and IIMs are built at once, so the game
     // starts lit and the per-frame budget only has to follow changes.
     const Stopwatch warming;
-    const int updates = lighting_->warm_up(0.0, settings.warm_up_ms);
+    const lighting::WarmUpResult warm_up = lighting_->warm_up(0.0, settings.warm_up_ms);
     warm_up_ms_ = warming.elapsed_ms();
-    log::info("lighting warmed up in " + std::to_string(updates) + " updates, " +
-              std::to_string(static_cast<int>(warm_up_ms_)) + " ms" +
-              (lighting_->plan().census().converged ? "" : " (not converged: time limit)"));
+    log_warm_up(*scene_, warm_up, warm_up_ms_);
     log::info("level '" + level_name_ + "' from " + level_file_.string() + ": " +
               std::to_string(scene_->nodes.size()) + " nodes, " +
               std::to_string(scene_->animations.size()) + " animations, " +
