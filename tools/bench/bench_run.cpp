@@ -7,6 +7,7 @@
 #include "config_run.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/scene/gltf.hpp"
+#include "luxel/scene/level_check.hpp"
 
 namespace luxel::bench {
 namespace {
@@ -28,6 +29,11 @@ Bench::Bench(const Options& options, const std::filesystem::path& level_file)
     : options_(&options), file_(level_file) {
     // load_gltf's errors already start with the file's path.
     source_ = std::make_shared<scene::Scene>(scene::load_gltf(level_file, options.load_limits));
+    // What the level lacks, once, in luxel-sandbox's and luxel-ref's words; the image error is
+    // the only use of the level's camera.
+    scene::LevelCheckOptions check;
+    check.uses_camera = options.image.enabled;
+    scene::warn(scene::check_level(*source_, check));
     if (options.parsed_change) {
         change_ = options.parsed_change;
     } else if (options.change == "auto") {

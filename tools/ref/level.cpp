@@ -12,6 +12,7 @@
 #include "luxel/lighting/reference/reference_integrator.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/scene/gltf.hpp"
+#include "luxel/scene/level_check.hpp"
 #include "luxel/world/animation_system.hpp"
 
 namespace luxel::ref {
@@ -90,6 +91,12 @@ std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file, doubl
 std::optional<lighting::reference::ReferenceCamera> level_camera(const LoadedLevel& level,
                                                                  int width, int height) {
     return level_camera(level.registry, level.instance, width, height);
+}
+
+lighting::reference::ReferenceCamera default_camera(int width, int height) {
+    const scene::DefaultView view;
+    return lighting::reference::ReferenceCamera::look_at(
+        view.eye, view.target, glm::radians(view.vertical_fov_degrees), width, height);
 }
 
 std::optional<lighting::reference::ReferenceCamera> level_camera(

@@ -47,6 +47,9 @@ void check_reference_memory(const std::filesystem::path& file, std::uint64_t tex
 /// The level's first camera (node order) for a width x height image, if it has one.
 [[nodiscard]] std::optional<lighting::reference::ReferenceCamera> level_camera(
     const LoadedLevel& level, int width, int height);
+/// The camera of scene::DefaultView (what luxel-sandbox shows of a level without a camera) for a
+/// width x height image.
+[[nodiscard]] lighting::reference::ReferenceCamera default_camera(int width, int height);
 /// The same for any posed instance of a level (luxel-bench renders the real-time frame and
 /// the reference frame from this one camera).
 [[nodiscard]] std::optional<lighting::reference::ReferenceCamera> level_camera(

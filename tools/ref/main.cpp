@@ -25,6 +25,7 @@
 #include "luxel/runtime/image.hpp"
 #include "luxel/runtime/jobs.hpp"
 #include "luxel/runtime/tool_main.hpp"
+#include "luxel/scene/level_check.hpp"
 #include "luxel/scene/load_limits_flag.hpp"
 #include "options.hpp"
 
@@ -46,7 +47,8 @@ void add_flags(CLI::App& app, ref::Options& options, std::string& camera_text) {
     app.add_option("--time", options.time, "animation time in seconds")->capture_default_str();
     app.add_option("--camera", camera_text,
                    "x,y,z:tx,ty,tz:fov (position, target, vertical fov in degrees); default: "
-                   "the level's first camera");
+                   "the level's first camera, else the default view " +
+                       luxel::scene::describe(luxel::scene::DefaultView{}));
     app.add_option("--width", options.width, "frame width in pixels")->capture_default_str();
     app.add_option("--height", options.height, "frame height in pixels")->capture_default_str();
     app.add_option("--spp", options.spp, "path samples per pixel and per texel, in all")
@@ -80,8 +82,7 @@ void add_flags(CLI::App& app, ref::Options& options, std::string& camera_text) {
 
 /// The frame's camera: --camera, else the level's first; none when no frame is asked for.
 std::optional<ReferenceCamera> frame_camera(const ref::Options& options,
-                                            const ref::LoadedLevel& level,
-                                            const std::filesystem::path& file) {
+                                            const ref::LoadedLevel& level) {
     if (options.image.empty()) {
         return std::nullopt;
     }
@@ -90,11 +91,10 @@ std::optional<ReferenceCamera> frame_camera(const ref::Options& options,
                                         glm::radians(options.camera->fov_degrees), options.width,
                                         options.height);
     }
+    // A level without a camera is seen from the default view, as luxel-sandbox sees it; the
+    // warning at load (scene::check_level) says which.
     std::optional<ReferenceCamera> camera = ref::level_camera(level, options.width, options.height);
-    if (!camera) {
-        throw Error(file.string() + " has no camera: give --camera x,y,z:tx,ty,tz:fov");
-    }
-    return camera;
+    return camera ? camera : ref::default_camera(options.width, options.height);
 }
 
 ReferenceSettings integrator_settings(const ref::Options& options) {
@@ -202,7 +202,12 @@ int run(int argc, char** argv) {
                  file.string().c_str(), options.time, scene.surfaces().size(), scene.texel_count(),
                  scene.lights().size(), scene.generator_spheres().size(),
                  clock.elapsed_ms() / 1000.0);
-    const std::optional<ReferenceCamera> camera = frame_camera(options, *level, file);
+    // What the level lacks, in luxel-sandbox's words. Only a frame without --camera is seen
+    // through the level's camera.
+    scene::LevelCheckOptions check;
+    check.uses_camera = !options.image.empty() && !options.camera;
+    scene::warn(scene::check_level(*level->instance.source, check));
+    const std::optional<ReferenceCamera> camera = frame_camera(options, *level);
 
     ReferenceIntegrator integrator(scene, integrator_settings(options));
     ReferenceFrameSettings frame_settings;
