@@ -3,7 +3,6 @@
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/log.hpp"
 #include "luxel/scene/gltf.hpp"
-#include "luxel/scene/level_check.hpp"
 #include "luxel/world/animation_system.hpp"
 
 namespace luxel::sandbox {
@@ -47,12 +46,12 @@ SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const Shade
       width_(settings.width),
       height_(settings.height) {
     const Stopwatch loading;
-    scene_ = std::make_shared<scene::Scene>(scene::load_gltf(level_file_, settings.load_limits));
-    // What the level lacks, said once at load in the words luxel-ref and luxel-bench use. The
-    // sandbox level walks its own scripted path and needs no camera (camera_path_for).
-    scene::LevelCheckOptions check;
-    check.uses_camera = level_name_ != "sandbox";
-    scene::warn(scene::check_level(*scene_, check));
+    // What the level lacks, said once at load in the words luxel-ref and luxel-bench use, and
+    // a level luxel-prep never prepared prepared now. The sandbox level walks its own scripted
+    // path and needs no camera (camera_path_for).
+    prep::PlayableLevel playable{settings.load_limits, {}, settings.auto_prep};
+    playable.check.uses_camera = level_name_ != "sandbox";
+    scene_ = prep::load_playable(level_file_, playable, jobs);
     instance_ = world::instantiate(registry_, scene_);
     const std::size_t bounces = add_bounces(registry_, instance_, *scene_);
     // The pose the first frame shows, before anything is lit: the animations and light switches

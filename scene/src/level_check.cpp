@@ -103,6 +103,11 @@ std::string prep_command(const std::filesystem::path& file) {
            shell_word(prepared_path(file).string());
 }
 
+std::string not_prepared_text(const Scene& scene) {
+    return scene.in_file(
+        "not prepared for light maps (luxel-prep has not written its light-map layout into it)");
+}
+
 std::string diagnosis_text(const Scene& scene, LevelProblem problem) {
     switch (problem) {
         case LevelProblem::NoLight:
@@ -112,10 +117,8 @@ std::string diagnosis_text(const Scene& scene, LevelProblem problem) {
         case LevelProblem::NoCamera:
             return scene.in_file("no camera: using the default view " + describe(DefaultView{}));
         case LevelProblem::NotPrepared:
-            return scene.in_file(
-                "not prepared for light maps (luxel-prep has not written its light-map layout "
-                "into it): it gets no indirect light; prepare it with: " +
-                prep_command(scene.source));
+            return not_prepared_text(scene) +
+                   ": it gets no indirect light; prepare it with: " + prep_command(scene.source);
     }
     return scene.in_file("unknown problem");
 }

@@ -1,7 +1,9 @@
 // A level that lacks a light, a camera or luxel-prep's light-map layout runs to the end in
 // luxel-sandbox, luxel-ref and luxel-bench (exit 0), and each says so once at load in the same
-// words, naming the file (issue 21, "clear words"). The words themselves are pinned in
-// tests/scene/level_check_test.cpp; here the programs must print them.
+// words, naming the file (issue 21, "clear words"); an unprepared one is prepared at load, or
+// with --no-auto-prep refused with the command to run. The words themselves are pinned in
+// tests/scene/level_check_test.cpp and tests/prep/auto_prep_test.cpp; here the programs must
+// print them.
 
 #include <filesystem>
 #include <string>
@@ -49,11 +51,11 @@ CommandResult sandbox(const LackingLevel& lacking, const std::string& more = "")
                            quoted(lacking.file) + " --out " + quoted(lacking.dir / "out") + more);
 }
 
-CommandResult ref(const LackingLevel& lacking) {
+CommandResult ref(const LackingLevel& lacking, const std::string& more = "") {
     return run_command(LUXEL_REF_EXECUTABLE,
                        "--spp 1 --passes 1 --width 16 --height 12 --photons 1000 "
                        "--indirect-photons 1000 --threads 2 --level " +
-                           quoted(lacking.file) + " -o " + quoted(lacking.dir / "ref.exr"));
+                           quoted(lacking.file) + " -o " + quoted(lacking.dir / "ref.exr") + more);
 }
 
 TEST(LevelWords, ALevelWithoutLightIsNamedOnceAndItsWarmUpStopsSayingWhy) {
@@ -99,21 +101,49 @@ TEST(LevelWords, ALevelWithoutACameraIsShownFromTheDefaultViewItNames) {
     EXPECT_EQ(count(bench.output, expected), 1u) << bench.output;
 }
 
-TEST(LevelWords, AnUnpreparedLevelIsToldTheCommandAndItsWarmUpEnds) {
+TEST(LevelWords, AnUnpreparedLevelIsPreparedAtLoadOrRefusedWithTheCommand) {
     const LackingLevel exported(luxel::testing::unprepared(luxel::testing::prepared_cornell()),
                                 "exported.glb");
-    const std::string expected = warning(exported.level, scene::LevelProblem::NotPrepared);
-    ASSERT_NE(expected.find("luxel-prep " + exported.file.string() + " -o "), std::string::npos);
-    const CommandResult run = sandbox(exported);
+    const std::string cache = " --prep-cache " + quoted(exported.dir / "cache");
+    const std::string unprepared = scene::not_prepared_text(exported.level);
+    const std::string command = scene::prep_command(exported.file);
+    ASSERT_NE(command.find("luxel-prep " + exported.file.string() + " -o "), std::string::npos);
+    const std::string preparing = "[luxel warn ] " + unprepared +
+                                  ": preparing it in memory with luxel-prep's pipeline (to "
+                                  "prepare it for good: " +
+                                  command + ")\n";
+    CommandResult run = sandbox(exported, cache + " --warm-up-ms 0");
     ASSERT_EQ(run.exit_code, 0) << run.output;
-    EXPECT_EQ(count(run.output, expected), 1u) << run.output;
-    EXPECT_NE(run.output.find(" ms): no progress possible (no light-mapped surface: global "
-                              "photons would have nowhere to be stored)\n"),
-              std::string::npos)
+    EXPECT_EQ(count(run.output, preparing), 1u) << run.output;
+    EXPECT_EQ(count(run.output, "[luxel warn ] "), 1u) << run.output;
+    EXPECT_EQ(count(run.output,
+                    "[luxel info ] " + exported.file.string() + ": prepared for light maps in "),
+              1u)
         << run.output;
-    const CommandResult reference = ref(exported);
-    ASSERT_EQ(reference.exit_code, 0) << reference.output;
-    EXPECT_EQ(count(reference.output, expected), 1u) << reference.output;
+    // luxel-ref and luxel-bench prepare the same way: here they find what the sandbox cached.
+    const std::string from_cache =
+        "[luxel info ] " + exported.file.string() + ": light-map layout from the cache: ";
+    run = ref(exported, cache);
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_EQ(count(run.output, preparing), 1u) << run.output;
+    EXPECT_EQ(count(run.output, from_cache), 1u) << run.output;
+
+    // Refused, it is an error that gives the command, in every program.
+    const std::string refused = unprepared +
+                                ", and --no-auto-prep refuses to prepare it at load; prepare it "
+                                "with: " +
+                                command + ", then run that file\n";
+    run = sandbox(exported, " --no-auto-prep");
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    EXPECT_EQ(count(run.output, "luxel-sandbox: error: " + refused), 1u) << run.output;
+    run = ref(exported, " --no-auto-prep");
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    EXPECT_EQ(count(run.output, "luxel-ref: error: " + refused), 1u) << run.output;
+    run = run_command(LUXEL_BENCH_EXECUTABLE, "--no-auto-prep --no-image --level " +
+                                                  quoted(exported.file) + " --out " +
+                                                  quoted(exported.dir / "bench"));
+    EXPECT_EQ(run.exit_code, 1) << run.output;
+    EXPECT_EQ(count(run.output, "luxel-bench: error: " + refused), 1u) << run.output;
 }
 
 }  // namespace

@@ -62,11 +62,11 @@ void check_reference_memory(const std::filesystem::path& file, std::uint64_t tex
 }
 
 std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file, double time,
-                                        const scene::LoadOptions& limits) {
+                                        const prep::PlayableLevel& playable, JobSystem& jobs) {
     auto level = std::make_unique<LoadedLevel>();
+    const scene::LoadOptions& limits = playable.limits;
     // load_gltf's errors already start with the file's path.
-    const std::shared_ptr<const scene::Scene> source =
-        std::make_shared<scene::Scene>(scene::load_gltf(file, limits));
+    const std::shared_ptr<const scene::Scene> source = prep::load_playable(file, playable, jobs);
     world::InstantiateOptions options;
     options.play_animations = true;
     level->instance = world::instantiate(level->registry, source, options);

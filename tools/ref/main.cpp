@@ -72,6 +72,7 @@ void add_flags(CLI::App& app, ref::Options& options, std::string& camera_text) {
         ->capture_default_str();
     cli::add_threads(app, options.threads);
     cli::add_load_limits(app, options.load_limits);
+    prep::add_auto_prep_flags(app, options.auto_prep);
     app.add_option("-o,--output", options.image, "the frame as OpenEXR (linear RGB radiance)");
     app.add_option("--png", options.preview, "also a tone-mapped PNG preview of the frame");
     app.add_flag("--no-caustic-bounce", options.no_caustic_bounce,
@@ -194,7 +195,11 @@ int run(int argc, char** argv) {
     const std::filesystem::path file = ref::resolve_level(options.level);
     JobSystem jobs(options.threads);
     Stopwatch clock;
-    const auto level = ref::load_level(file, options.time, options.load_limits);
+    // What the level lacks, in luxel-sandbox's words (only a frame without --camera is seen
+    // through the level's camera), and the level prepared at load if luxel-prep never did.
+    prep::PlayableLevel playable{options.load_limits, {}, options.auto_prep};
+    playable.check.uses_camera = !options.image.empty() && !options.camera;
+    const auto level = ref::load_level(file, options.time, playable, jobs);
     const ReferenceScene& scene = *level->scene;
     std::fprintf(stderr,
                  "luxel-ref: %s at t = %.3f s: %zu light-mapped surfaces, %zu texels, %zu "
@@ -202,11 +207,6 @@ int run(int argc, char** argv) {
                  file.string().c_str(), options.time, scene.surfaces().size(), scene.texel_count(),
                  scene.lights().size(), scene.generator_spheres().size(),
                  clock.elapsed_ms() / 1000.0);
-    // What the level lacks, in luxel-sandbox's words. Only a frame without --camera is seen
-    // through the level's camera.
-    scene::LevelCheckOptions check;
-    check.uses_camera = !options.image.empty() && !options.camera;
-    scene::warn(scene::check_level(*level->instance.source, check));
     const std::optional<ReferenceCamera> camera = frame_camera(options, *level);
 
     ReferenceIntegrator integrator(scene, integrator_settings(options));

@@ -58,6 +58,10 @@ struct LevelCheckOptions {
 /// POSIX shell where they need it).
 [[nodiscard]] std::string prep_command(const std::filesystem::path& file);
 
+/// "FILE: not prepared for light maps (luxel-prep has not written its light-map layout into
+/// it)": how every message about an unprepared level begins.
+[[nodiscard]] std::string not_prepared_text(const Scene& scene);
+
 /// Every problem of `scene`, each as one line naming `scene.source` (the level's file).
 [[nodiscard]] std::vector<LevelDiagnosis> check_level(const Scene& scene,
                                                       const LevelCheckOptions& options = {});
