@@ -97,8 +97,10 @@ int run(int argc, char** argv) {
     for (const auto& name : luxel::sandbox::level_names()) {
         level_names += (level_names.empty() ? "" : ", ") + name;
     }
-    app.add_option("--level", options.app.level,
-                   "a built-in level (" + level_names + ") or a prepared .glb file")
+    app.add_option(
+           "--level", options.app.level,
+           "a built-in level (" + level_names +
+               ") or a .glb/.gltf file (prepared at load if luxel-prep never was run on it)")
         ->capture_default_str();
     app.add_option("--gl", options.gl, "OpenGL backend")
         ->check(CLI::IsMember({"auto", "egl", "osmesa", "window"}))
@@ -155,6 +157,7 @@ int run(int argc, char** argv) {
     luxel::cli::add_threads(app, options.app.threads);
     luxel::cli::add_log_level(app);
     luxel::cli::add_load_limits(app, options.app.load_limits);
+    luxel::prep::add_auto_prep_flags(app, options.app.auto_prep);
     if (!luxel::cli::parse(app, argc, argv)) {
         return 0;
     }

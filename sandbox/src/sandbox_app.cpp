@@ -6,6 +6,28 @@
 #include "luxel/world/animation_system.hpp"
 
 namespace luxel::sandbox {
+namespace {
+
+/// "lighting warm-up converged after 120 updates (3400 ms)", or why it stopped. One that could
+/// not progress is a warning naming the level: it stays dark or without indirect light.
+void log_warm_up(const scene::Scene& level, const lighting::WarmUpResult& warm_up, double ms) {
+    const std::string took = std::to_string(warm_up.updates) +
+                             (warm_up.updates == 1 ? " update (" : " updates (") +
+                             std::to_string(static_cast<int>(ms)) + " ms)";
+    if (warm_up.end == lighting::WarmUpEnd::Converged) {
+        log::info("lighting warm-up converged after " + took);
+        return;
+    }
+    const std::string stopped =
+        "lighting warm-up stopped after " + took + ": " + lighting::describe(warm_up);
+    if (warm_up.end == lighting::WarmUpEnd::NoProgress) {
+        log::warn(level.in_file(stopped));
+    } else {
+        log::info(stopped);
+    }
+}
+
+}  // namespace
 
 std::string level_display_name(const std::string& name_or_path) {
     const auto& names = level_names();
@@ -24,7 +46,12 @@ SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const Shade
       width_(settings.width),
       height_(settings.height) {
     const Stopwatch loading;
-    scene_ = std::make_shared<scene::Scene>(scene::load_gltf(level_file_, settings.load_limits));
+    // What the level lacks, said once at load in the words luxel-ref and luxel-bench use, and
+    // a level luxel-prep never prepared prepared now. The sandbox level walks its own scripted
+    // path and needs no camera (camera_path_for).
+    prep::PlayableLevel playable{settings.load_limits, {}, settings.auto_prep};
+    playable.check.uses_camera = level_name_ != "sandbox";
+    scene_ = prep::load_playable(level_file_, playable, jobs);
     instance_ = world::instantiate(registry_, scene_);
     const std::size_t bounces = add_bounces(registry_, instance_, *scene_);
     // The pose the first frame shows, before anything is lit: the animations and light switches
@@ -44,11 +71,9 @@ SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const Shade
     // The loading screen: the first photon maps, AIMs and IIMs are built at once, so the game
     // starts lit and the per-frame budget only has to follow changes.
     const Stopwatch warming;
-    const int updates = lighting_->warm_up(0.0, settings.warm_up_ms);
+    const lighting::WarmUpResult warm_up = lighting_->warm_up(0.0, settings.warm_up_ms);
     warm_up_ms_ = warming.elapsed_ms();
-    log::info("lighting warmed up in " + std::to_string(updates) + " updates, " +
-              std::to_string(static_cast<int>(warm_up_ms_)) + " ms" +
-              (lighting_->plan().census().converged ? "" : " (not converged: time limit)"));
+    log_warm_up(*scene_, warm_up, warm_up_ms_);
     log::info("level '" + level_name_ + "' from " + level_file_.string() + ": " +
               std::to_string(scene_->nodes.size()) + " nodes, " +
               std::to_string(scene_->animations.size()) + " animations, " +

@@ -9,6 +9,7 @@
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
 #include "luxel/lighting/gpu/caustic_pass.hpp"
+#include "luxel/prep/auto_prep.hpp"
 #include "luxel/renderer/frame_renderer.hpp"
 #include "luxel/runtime/jobs.hpp"
 #include "luxel/runtime/shader_library.hpp"
@@ -27,7 +28,8 @@ struct AppSettings {
     int threads = 0;
     /// Wall-time limit of the lighting warm-up at load (0: none, start dark).
     double warm_up_ms = 20'000.0;
-    scene::LoadOptions load_limits;  ///< --limit
+    scene::LoadOptions load_limits;    ///< --limit
+    prep::AutoPrepSettings auto_prep;  ///< --no-auto-prep, --prep-cache
 };
 
 /// The game: a level in an ECS registry, the game systems that move it, the lighting system and

@@ -7,6 +7,7 @@
 #include "luxel/ecs/transform.hpp"
 #include "luxel/lighting/components.hpp"
 #include "luxel/runtime/error.hpp"
+#include "luxel/scene/level_check.hpp"
 
 namespace luxel::sandbox {
 
@@ -88,7 +89,8 @@ void update_bounces(ecs::Registry& registry, double seconds) {
 CameraPath::CameraPath(std::vector<Key> keys, float vertical_fov)
     : keys_(std::move(keys)), vertical_fov_(vertical_fov) {
     if (keys_.empty()) {
-        keys_.push_back({0.0, glm::vec3(0.0f, 1.0f, 3.0f), glm::vec3(0.0f, 1.0f, 0.0f)});
+        const scene::DefaultView view;
+        keys_.push_back({0.0, view.eye, view.target});
     }
 }
 
@@ -148,7 +150,8 @@ CameraPath camera_path_for(const std::string& level_name, const scene::Scene& sc
                            {12.0, eye, target}},
                           fov);
     }
-    return CameraPath({}, glm::radians(60.0f));
+    // No camera: the default view every tool uses, which scene::check_level names.
+    return CameraPath({}, glm::radians(scene::DefaultView{}.vertical_fov_degrees));
 }
 
 }  // namespace luxel::sandbox

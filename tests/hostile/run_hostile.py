@@ -194,7 +194,10 @@ def _run_in(entry, tool, args, level, case_dir, out):
     if args.strace:
         cmd = [args.strace, "-f", "-qq", "-y", "-s", "4096", "-o", log,
                "-e", "trace=open,openat,openat2,creat,execve"] + cmd
-    env = dict(os.environ, EGL_PLATFORM="surfaceless", XDG_CACHE_HOME=args.cache_home)
+    # Levels the tools prepare at load are cached in the run's own folder, the one place
+    # besides Mesa's shader cache they may write.
+    env = dict(os.environ, EGL_PLATFORM="surfaceless", XDG_CACHE_HOME=args.cache_home,
+               LUXEL_CACHE_DIR=os.path.join(out, "prep-cache"))
     before = snapshot(case_dir)
     started = time.monotonic()
     with open(os.path.join(out, "stdout"), "wb") as so, open(os.path.join(out, "stderr"),

@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "luxel/prep/auto_prep.hpp"
 #include "luxel/scene/gltf.hpp"
 
 namespace luxel::bench {
@@ -51,7 +52,8 @@ struct ImageSpec {
 
 struct Options {
     std::string level;
-    scene::LoadOptions load_limits;  ///< --limit
+    scene::LoadOptions load_limits;    ///< --limit
+    prep::AutoPrepSettings auto_prep;  ///< --no-auto-prep, --prep-cache
     std::vector<double> budgets{1.0, 2.0, 4.0, 8.0};
     std::uint32_t frames = 150;  ///< static frames per configuration
     std::uint32_t after = 90;    ///< frames after the scripted change

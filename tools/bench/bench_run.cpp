@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "config_run.hpp"
+#include "luxel/prep/auto_prep.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/scene/gltf.hpp"
 
@@ -26,8 +27,13 @@ bool sweeps_gpu_backend(const Options& options) {
 
 Bench::Bench(const Options& options, const std::filesystem::path& level_file)
     : options_(&options), file_(level_file) {
-    // load_gltf's errors already start with the file's path.
-    source_ = std::make_shared<scene::Scene>(scene::load_gltf(level_file, options.load_limits));
+    jobs_ = std::make_unique<JobSystem>(options.threads);
+    // What the level lacks, once, in luxel-sandbox's and luxel-ref's words (the image error is
+    // the only use of the level's camera), and the level prepared at load if luxel-prep never
+    // did. load_gltf's errors already start with the file's path.
+    prep::PlayableLevel playable{options.load_limits, {}, options.auto_prep};
+    playable.check.uses_camera = options.image.enabled;
+    source_ = prep::load_playable(level_file, playable, *jobs_);
     if (options.parsed_change) {
         change_ = options.parsed_change;
     } else if (options.change == "auto") {
@@ -52,7 +58,6 @@ Bench::Bench(const Options& options, const std::filesystem::path& level_file)
     pose << "level=" << level_file.filename().string()
          << ";bytes=" << std::filesystem::file_size(level_file) << ";time=" << options.time;
     pose_ = pose.str();
-    jobs_ = std::make_unique<JobSystem>(options.threads);
     if (options.image.enabled || sweeps_gpu_backend(options)) {
         gl_ = make_headless_context();
         shaders_ = std::make_unique<ShaderLibrary>();

@@ -121,11 +121,12 @@ ConfigRun::ConfigRun(const LevelRunContext& context, const BenchConfig& config)
         lighting_->set_gatherer(gpu_gatherer_.get());
     }
     if (options_.image.enabled) {
+        // A level without a camera is seen from the default view, as luxel-sandbox and
+        // luxel-ref see it (the warning at load says which).
         camera_ =
             ref::level_camera(registry_, instance_, options_.image.width, options_.image.height);
         if (!camera_) {
-            throw Error(context.file.string() +
-                        " has no camera for the image error (--no-image leaves it out)");
+            camera_ = ref::default_camera(options_.image.width, options_.image.height);
         }
         view_ = std::make_unique<FrameView>(registry_, *lighting_, *camera_,
                                             parse_kernel(config.kernel), *context.shaders);

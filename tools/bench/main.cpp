@@ -128,6 +128,7 @@ int run(int argc, char** argv) {
                  "also write every run's per-texel light maps and reference to OUT/maps/");
     cli::add_threads(app, options.threads);
     cli::add_load_limits(app, options.load_limits);
+    prep::add_auto_prep_flags(app, options.auto_prep);
     if (!cli::parse(app, argc, argv)) {
         return 0;
     }

@@ -12,6 +12,7 @@
 #include "luxel/lighting/reference/reference_integrator.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/scene/gltf.hpp"
+#include "luxel/scene/level_check.hpp"
 #include "luxel/world/animation_system.hpp"
 
 namespace luxel::ref {
@@ -61,11 +62,11 @@ void check_reference_memory(const std::filesystem::path& file, std::uint64_t tex
 }
 
 std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file, double time,
-                                        const scene::LoadOptions& limits) {
+                                        const prep::PlayableLevel& playable, JobSystem& jobs) {
     auto level = std::make_unique<LoadedLevel>();
+    const scene::LoadOptions& limits = playable.limits;
     // load_gltf's errors already start with the file's path.
-    const std::shared_ptr<const scene::Scene> source =
-        std::make_shared<scene::Scene>(scene::load_gltf(file, limits));
+    const std::shared_ptr<const scene::Scene> source = prep::load_playable(file, playable, jobs);
     world::InstantiateOptions options;
     options.play_animations = true;
     level->instance = world::instantiate(level->registry, source, options);
@@ -90,6 +91,12 @@ std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file, doubl
 std::optional<lighting::reference::ReferenceCamera> level_camera(const LoadedLevel& level,
                                                                  int width, int height) {
     return level_camera(level.registry, level.instance, width, height);
+}
+
+lighting::reference::ReferenceCamera default_camera(int width, int height) {
+    const scene::DefaultView view;
+    return lighting::reference::ReferenceCamera::look_at(
+        view.eye, view.target, glm::radians(view.vertical_fov_degrees), width, height);
 }
 
 std::optional<lighting::reference::ReferenceCamera> level_camera(

@@ -13,6 +13,7 @@
 #include "luxel/lighting/core/photon_world.hpp"
 #include "luxel/lighting/reference/reference_frame.hpp"
 #include "luxel/lighting/reference/reference_scene.hpp"
+#include "luxel/prep/auto_prep.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/scene_instance.hpp"
 
@@ -38,15 +39,19 @@ struct LoadedLevel {
 void check_reference_memory(const std::filesystem::path& file, std::uint64_t texels,
                             const scene::LoadOptions& limits);
 
-/// Loads `file` within `limits` and poses it at `time` seconds (animations and light switches
-/// advanced).
+/// Loads `file` (prep::load_playable: its warnings, and prepared at load if luxel-prep never
+/// did) and poses it at `time` seconds (animations and light switches advanced).
 [[nodiscard]] std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file,
                                                       double time,
-                                                      const scene::LoadOptions& limits = {});
+                                                      const prep::PlayableLevel& playable,
+                                                      JobSystem& jobs);
 
 /// The level's first camera (node order) for a width x height image, if it has one.
 [[nodiscard]] std::optional<lighting::reference::ReferenceCamera> level_camera(
     const LoadedLevel& level, int width, int height);
+/// The camera of scene::DefaultView (what luxel-sandbox shows of a level without a camera) for a
+/// width x height image.
+[[nodiscard]] lighting::reference::ReferenceCamera default_camera(int width, int height);
 /// The same for any posed instance of a level (luxel-bench renders the real-time frame and
 /// the reference frame from this one camera).
 [[nodiscard]] std::optional<lighting::reference::ReferenceCamera> level_camera(

@@ -25,6 +25,7 @@
 #include "luxel/runtime/image.hpp"
 #include "luxel/runtime/jobs.hpp"
 #include "luxel/runtime/tool_main.hpp"
+#include "luxel/scene/level_check.hpp"
 #include "luxel/scene/load_limits_flag.hpp"
 #include "options.hpp"
 
@@ -46,7 +47,8 @@ void add_flags(CLI::App& app, ref::Options& options, std::string& camera_text) {
     app.add_option("--time", options.time, "animation time in seconds")->capture_default_str();
     app.add_option("--camera", camera_text,
                    "x,y,z:tx,ty,tz:fov (position, target, vertical fov in degrees); default: "
-                   "the level's first camera");
+                   "the level's first camera, else the default view " +
+                       luxel::scene::describe(luxel::scene::DefaultView{}));
     app.add_option("--width", options.width, "frame width in pixels")->capture_default_str();
     app.add_option("--height", options.height, "frame height in pixels")->capture_default_str();
     app.add_option("--spp", options.spp, "path samples per pixel and per texel, in all")
@@ -70,6 +72,7 @@ void add_flags(CLI::App& app, ref::Options& options, std::string& camera_text) {
         ->capture_default_str();
     cli::add_threads(app, options.threads);
     cli::add_load_limits(app, options.load_limits);
+    prep::add_auto_prep_flags(app, options.auto_prep);
     app.add_option("-o,--output", options.image, "the frame as OpenEXR (linear RGB radiance)");
     app.add_option("--png", options.preview, "also a tone-mapped PNG preview of the frame");
     app.add_flag("--no-caustic-bounce", options.no_caustic_bounce,
@@ -80,8 +83,7 @@ void add_flags(CLI::App& app, ref::Options& options, std::string& camera_text) {
 
 /// The frame's camera: --camera, else the level's first; none when no frame is asked for.
 std::optional<ReferenceCamera> frame_camera(const ref::Options& options,
-                                            const ref::LoadedLevel& level,
-                                            const std::filesystem::path& file) {
+                                            const ref::LoadedLevel& level) {
     if (options.image.empty()) {
         return std::nullopt;
     }
@@ -90,11 +92,10 @@ std::optional<ReferenceCamera> frame_camera(const ref::Options& options,
                                         glm::radians(options.camera->fov_degrees), options.width,
                                         options.height);
     }
+    // A level without a camera is seen from the default view, as luxel-sandbox sees it; the
+    // warning at load (scene::check_level) says which.
     std::optional<ReferenceCamera> camera = ref::level_camera(level, options.width, options.height);
-    if (!camera) {
-        throw Error(file.string() + " has no camera: give --camera x,y,z:tx,ty,tz:fov");
-    }
-    return camera;
+    return camera ? camera : ref::default_camera(options.width, options.height);
 }
 
 ReferenceSettings integrator_settings(const ref::Options& options) {
@@ -194,7 +195,11 @@ int run(int argc, char** argv) {
     const std::filesystem::path file = ref::resolve_level(options.level);
     JobSystem jobs(options.threads);
     Stopwatch clock;
-    const auto level = ref::load_level(file, options.time, options.load_limits);
+    // What the level lacks, in luxel-sandbox's words (only a frame without --camera is seen
+    // through the level's camera), and the level prepared at load if luxel-prep never did.
+    prep::PlayableLevel playable{options.load_limits, {}, options.auto_prep};
+    playable.check.uses_camera = !options.image.empty() && !options.camera;
+    const auto level = ref::load_level(file, options.time, playable, jobs);
     const ReferenceScene& scene = *level->scene;
     std::fprintf(stderr,
                  "luxel-ref: %s at t = %.3f s: %zu light-mapped surfaces, %zu texels, %zu "
@@ -202,7 +207,7 @@ int run(int argc, char** argv) {
                  file.string().c_str(), options.time, scene.surfaces().size(), scene.texel_count(),
                  scene.lights().size(), scene.generator_spheres().size(),
                  clock.elapsed_ms() / 1000.0);
-    const std::optional<ReferenceCamera> camera = frame_camera(options, *level, file);
+    const std::optional<ReferenceCamera> camera = frame_camera(options, *level);
 
     ReferenceIntegrator integrator(scene, integrator_settings(options));
     ReferenceFrameSettings frame_settings;

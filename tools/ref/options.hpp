@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "luxel/prep/auto_prep.hpp"
 #include "luxel/scene/gltf.hpp"
 
 namespace luxel::ref {
@@ -40,6 +41,7 @@ struct Options {
     std::string indirect = "photons";
     std::uint64_t indirect_photons = 20'000'000;  ///< in all, over the passes
     scene::LoadOptions load_limits;               ///< --limit
+    prep::AutoPrepSettings auto_prep;             ///< --no-auto-prep, --prep-cache
 };
 
 /// Parses --camera's value; throws luxel::Error naming the flag and what is wrong.

@@ -40,19 +40,64 @@ LightingSystem::LightingSystem(ecs::Registry& registry, JobSystem& jobs, Lightin
 
 LightingSystem::~LightingSystem() = default;
 
-int LightingSystem::warm_up(double now_seconds, double max_ms) {
-    const Stopwatch watch;
-    int updates = 0;
+std::string describe(const WarmUpResult& result) {
+    switch (result.end) {
+        case WarmUpEnd::Converged:
+            return "converged";
+        case WarmUpEnd::NoProgress:
+            return "no progress possible (" + result.why + ")";
+        case WarmUpEnd::TimeLimit:
+            return "time limit reached, not converged";
+    }
+    return "not converged";
+}
+
+std::string LightingSystem::warm_up_stall(int idle_updates) const {
+    if (!plan_.photon_tracing()) {
+        // "no light in the scene: no lighting work", "no light-mapped surface: ...".
+        return plan_.reason(Pass::PhotonTracing);
+    }
+    if (stats_.schedule.units_done == 0) {
+        return "no lighting work to queue, yet the maps are not converged";
+    }
+    return std::to_string(idle_updates) + " updates in a row traced, rebuilt and gathered nothing";
+}
+
+WarmUpResult LightingSystem::warm_up(double now_seconds, double max_ms) {
+    // Updates in a row whose units traced, rebuilt and gathered nothing before the warm-up gives
+    // up: units can run without effect (gathers waiting for an AIM that no unit will build), and
+    // a pass's last filter slices gather nothing but take at most one update on a surface within
+    // luxel-prep's texel budget.
+    constexpr int kIdleUpdates = 8;
+    const Stopwatch watch(*clock_);
+    WarmUpResult result;
+    int idle = 0;
     while (watch.elapsed_ms() < max_ms) {
         // Stamped one blend time early: what the loading screen built shows in full at
         // `now_seconds` instead of fading in from black.
         update(std::numeric_limits<double>::infinity(), now_seconds - config_.maps.blend_seconds);
-        ++updates;
+        ++result.updates;
         if (plan_.census().converged) {
-            break;
+            return result;
+        }
+        const bool worked = stats_.photons_traced + stats_.caustic_photons_traced +
+                                stats_.aim_texels + stats_.texels_gathered >
+                            0;
+        idle = worked ? 0 : idle + 1;
+        // With an unlimited budget every queued unit ran: an update that ran none leaves the
+        // next one exactly where it was. Without an enabled light there is nothing to build:
+        // the maps start black, and the passes that would clear what lights switched off left
+        // in them (FeaturePlan) have nothing to clear at load; the frames' budget does it if a
+        // game warms up later.
+        const bool unlit = stats_.census.lights_enabled == 0;
+        if (unlit || stats_.schedule.units_done == 0 || idle >= kIdleUpdates) {
+            result.end = WarmUpEnd::NoProgress;
+            result.why = warm_up_stall(idle);
+            return result;
         }
     }
-    return updates;
+    result.end = WarmUpEnd::TimeLimit;
+    return result;
 }
 
 void LightingSystem::set_gatherer(IrradianceGatherer* gatherer) {

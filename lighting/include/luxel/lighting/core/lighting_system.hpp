@@ -4,6 +4,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "luxel/ecs/registry.hpp"
@@ -57,6 +58,25 @@ struct LightingStats {
     std::size_t caustic_bytes = 0;
 };
 
+/// Why LightingSystem::warm_up stopped.
+enum class WarmUpEnd : std::uint8_t {
+    Converged,   ///< everything converged: the maps show what the lights give
+    NoProgress,  ///< an update had no work that could change anything (see WarmUpResult::why)
+    TimeLimit,   ///< max_ms passed first: the per-frame budget goes on from there
+};
+
+struct WarmUpResult {
+    int updates = 0;
+    WarmUpEnd end = WarmUpEnd::Converged;
+    /// For NoProgress, why nothing could be done, in the FeaturePlan's words ("no light in the
+    /// scene: no lighting work", "no light-mapped surface: ..."); empty otherwise.
+    std::string why;
+};
+
+/// How it ended, for a log line: "converged", "time limit reached, not converged", "no progress
+/// possible (<why>)".
+[[nodiscard]] std::string describe(const WarmUpResult& result);
+
 /// The one façade a game drives lighting with:
 ///
 ///     LightingSystem lighting(registry, jobs);   // after the game has added its components
@@ -82,10 +102,11 @@ class LightingSystem {
     const LightingStats& update(double budget_ms, double now_seconds);
 
     /// What a game does behind a loading screen: updates with an unlimited budget at
-    /// `now_seconds` (the game holds still) until everything has converged or `max_ms` of
-    /// wall time has passed. Returns the updates run. The first maps then do not have to be
-    /// built a budget's worth at a time while the player watches.
-    int warm_up(double now_seconds, double max_ms);
+    /// `now_seconds` (the game holds still) until everything has converged, an update finds
+    /// nothing it could do (no light, nothing light-mapped: it would never converge), or
+    /// `max_ms` has passed on the system's clock. The first maps then do not have to be built
+    /// a budget's worth at a time while the player watches.
+    WarmUpResult warm_up(double now_seconds, double max_ms);
 
     /// Replaces the gather backend (e.g. lighting/gpu's HemiPlaneGatherer); null restores the
     /// CPU one. The gatherer must outlive its use here.
@@ -107,6 +128,8 @@ class LightingSystem {
 
   private:
     SceneCensus take_census() const;
+    /// Why the warm-up can make no progress, after this update and `idle_updates` without any.
+    [[nodiscard]] std::string warm_up_stall(int idle_updates) const;
     void queue_work();
     /// Probes, group retraces and caustic slices.
     void queue_photon_units();
