@@ -1,6 +1,6 @@
 # luxel-prep corpus: the 100k-triangle curved mesh: a smooth UV sphere of 320 segments and 160
 # rings (101 760 triangles). Its .glb is over 3 MB, so it is not committed: the corpus test
-# exports it at test time into its own folder (check-corpus.sh skips it).
+# exports it at test time into its own folder (check-exports.sh skips it).
 #   blender --background --factory-startup --python sphere-100k.py -- OUT.glb
 import os
 import sys
