@@ -56,7 +56,8 @@ std::vector<CorpusFile> corpus() {
     };
 }
 
-/// Exports sphere-100k.py with Blender into `dir`, as tests/support/check-exports.sh runs the other scripts.
+/// Exports sphere-100k.py with Blender into `dir`, as tests/support/check-exports.sh runs the
+/// other scripts.
 std::filesystem::path export_generated(const std::string& name, const std::filesystem::path& dir) {
     const auto out = dir / (name + ".glb");
     const luxel::testing::CommandResult run = luxel::testing::run_command(
