@@ -15,24 +15,14 @@
 #include "luxel/lighting/core/lighting_system.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/world/scene_instance.hpp"
+#include "ticking_clock.hpp"
 
 namespace {
 
 using namespace luxel;
 using namespace luxel::lighting;
 
-/// A clock that advances a millisecond each time it is read: time passes with the work done,
-/// the same on every machine.
-class TickingClock final : public Clock {
-  public:
-    [[nodiscard]] Nanoseconds now() const override {
-        now_ += std::chrono::milliseconds(1);
-        return now_;
-    }
-
-  private:
-    mutable Nanoseconds now_{0};
-};
+using luxel::testing::TickingClock;
 
 constexpr double kLimitMs = 1e6;  // a thousand seconds of ticks: never reached by a sound warm-up
 

@@ -19,6 +19,7 @@
 #include "luxel/runtime/error.hpp"
 #include "luxel/world/scene_instance.hpp"
 #include "temp_dir.hpp"
+#include "ticking_clock.hpp"
 
 namespace {
 
@@ -140,17 +141,7 @@ TEST(AutoPrep, APreparedLevelIsLoadedAsItIs) {
     EXPECT_FALSE(std::filesystem::exists(dir / "cache"));
 }
 
-/// A clock that advances a millisecond each time it is read (tests/lighting_system's).
-class TickingClock final : public Clock {
-  public:
-    [[nodiscard]] Nanoseconds now() const override {
-        now_ += std::chrono::milliseconds(1);
-        return now_;
-    }
-
-  private:
-    mutable Nanoseconds now_{0};
-};
+using luxel::testing::TickingClock;
 
 TEST(AutoPrep, TheWarmUpOfAnUnpreparedLevelConvergesOncePrepared) {
     const Unprepared level;
