@@ -214,6 +214,7 @@ struct FrameRenderer::Impl {
                 program.set("u_albedo", m.albedo);
                 // Texture x factor per pixel (white for untextured primitives).
                 glBindTextureUnit(kBaseColorTextureUnit, m.base_color_texture);
+                glBindTextureUnit(kEmissiveTextureUnit, m.emissive_texture);
                 program.set("u_emission", m.emission);
                 program.set("u_specular", m.specular);
                 program.set("u_lightmap", m.lightmap);

@@ -14,6 +14,9 @@ namespace luxel::renderer {
 /// base-colour texture from: above every unit the G-buffer and probe passes already use
 /// (shadow maps 4..11, IIM pages 12..14) and within the 16 units GL 4.5 guarantees.
 inline constexpr GLuint kBaseColorTextureUnit = 15;
+/// The unit the same passes read the emissive texture from. GL 4.5 guarantees 16 samplers per
+/// stage but 80 combined units, so a binding above 15 is valid; these passes use two samplers.
+inline constexpr GLuint kEmissiveTextureUnit = 16;
 
 /// GL textures for scene images: one GL_SRGB8_ALPHA8 texture with a full mip chain per
 /// (scene, image), sampled trilinearly (and anisotropically where the driver offers it) with

@@ -15,22 +15,22 @@ struct Vertex {
 };
 static_assert(sizeof(Vertex) == 40);
 
-/// The base-colour texture a primitive samples, or null: none without a textured material or
-/// without TEXCOORD_0 to sample it with.
-std::shared_ptr<const gl::Texture> base_color_of(const std::shared_ptr<const scene::Scene>& source,
-                                                 const scene::Primitive& primitive,
-                                                 MaterialTextures& textures) {
+/// The texture a primitive samples for a material's image slot (`image_of` picks it), or null:
+/// none without a textured material or without TEXCOORD_0 to sample it with.
+template <class ImageOf>
+std::shared_ptr<const gl::Texture> texture_of(const std::shared_ptr<const scene::Scene>& source,
+                                              const scene::Primitive& primitive,
+                                              MaterialTextures& textures, ImageOf image_of) {
     if (primitive.material < 0 ||
         static_cast<std::size_t>(primitive.material) >= source->materials.size() ||
         primitive.texcoords0.size() != primitive.positions.size() || primitive.positions.empty()) {
         return nullptr;
     }
-    const scene::Material& material =
-        source->materials[static_cast<std::size_t>(primitive.material)];
-    if (material.base_color_image < 0) {
+    const int image = image_of(source->materials[static_cast<std::size_t>(primitive.material)]);
+    if (image < 0) {
         return nullptr;
     }
-    return textures.get(source, material.base_color_image);
+    return textures.get(source, image);
 }
 
 GpuMesh upload(const std::shared_ptr<const scene::Scene>& source, const scene::Mesh& mesh,
@@ -45,7 +45,10 @@ GpuMesh upload(const std::shared_ptr<const scene::Scene>& source, const scene::M
         range.first_index = indices.size();
         range.index_count = static_cast<GLsizei>(primitive.indices.size());
         range.material = primitive.material;
-        range.base_color = base_color_of(source, primitive, textures);
+        range.base_color = texture_of(source, primitive, textures,
+                                      [](const scene::Material& m) { return m.base_color_image; });
+        range.emissive = texture_of(source, primitive, textures,
+                                    [](const scene::Material& m) { return m.emissive_image; });
         const std::size_t count = primitive.positions.size();
         const bool normals = primitive.normals.size() == count;
         const bool uv0 = primitive.texcoords0.size() == count;

@@ -45,6 +45,8 @@ struct GpuPrimitive {
     /// The material's base-colour texture, shared with every primitive using the image; null
     /// when the material has none or the primitive has no TEXCOORD_0 (the factor alone).
     std::shared_ptr<const gl::Texture> base_color;
+    /// The material's emissive texture, likewise (null: the emissive factor alone).
+    std::shared_ptr<const gl::Texture> emissive;
 };
 
 /// A scene mesh on the GPU: one interleaved vertex buffer and one index buffer for all its

@@ -84,6 +84,10 @@ void build_draw_list(ecs::Registry& registry, const lighting::LightingSystem& li
                 draw.range->base_color && draw.material.albedo != glm::vec3(0.0f)
                     ? draw.range->base_color->id()
                     : meshes.white_texture();
+            draw.material.emissive_texture =
+                draw.range->emissive && draw.material.emission != glm::vec3(0.0f)
+                    ? draw.range->emissive->id()
+                    : meshes.white_texture();
             item.specular = item.specular || draw.material.specular.r > 0.0f;
             const auto found = surface_of.find(std::make_pair(entity, static_cast<int>(p)));
             if (found != surface_of.end() && found->second < surface_page.size() &&

@@ -20,7 +20,10 @@ struct DrawMaterial {
     /// Sampled with TEXCOORD_0 and multiplied into `albedo` per pixel: the base-colour texture,
     /// or MeshCache's 1x1 white one (never 0, so every draw can bind it unconditionally).
     GLuint base_color_texture = 0;
-    glm::vec3 emission{0.0f};         ///< emitted radiance W/(m^2 sr), times the AreaLight's scale
+    glm::vec3 emission{0.0f};  ///< emitted radiance W/(m^2 sr), times the AreaLight's scale
+    /// Sampled with TEXCOORD_0 and multiplied into `emission` per pixel: the emissive texture
+    /// or the white one, as base_color_texture.
+    GLuint emissive_texture = 0;
     glm::vec4 specular{0.0f};         ///< rgb: Fresnel F0 (0: not specular), a: transmission
     glm::vec2 lightmap{-1.0f, 0.0f};  ///< IIM page layer (-1: none), 1 = holds irradiance
     float ior = 1.5f;

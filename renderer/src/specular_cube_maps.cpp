@@ -89,6 +89,7 @@ void SpecularCubeMaps::render_face(CubeMap& cube_map, int face, const DrawList& 
             cull_as_material(item, primitive.material);
             program.set("u_albedo", primitive.material.albedo);
             glBindTextureUnit(kBaseColorTextureUnit, primitive.material.base_color_texture);
+            glBindTextureUnit(kEmissiveTextureUnit, primitive.material.emissive_texture);
             program.set("u_emission", primitive.material.emission);
             program.set("u_lightmap", primitive.material.lightmap);
             draw_range(*primitive.range);

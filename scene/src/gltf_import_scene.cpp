@@ -74,26 +74,28 @@ bool is_jpeg(const std::vector<unsigned char>& bytes) {
     return bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
 }
 
-void import_base_color_texture(ImportContext& context, const tinygltf::TextureInfo& info,
-                               Material& material, const std::string& where) {
+/// The scene image a material's texture slot samples, or -1 (none, or no PNG/JPEG source).
+/// `slot` names it in messages ("baseColorTexture", "emissiveTexture").
+int import_texture(ImportContext& context, const tinygltf::TextureInfo& info, const char* slot,
+                   const std::string& where) {
     const tinygltf::Model& model = context.model();
     if (info.index < 0) {
-        return;
+        return -1;
     }
     if (static_cast<std::size_t>(info.index) >= model.textures.size()) {
-        context.fail(where + ": baseColorTexture " + std::to_string(info.index) + " out of range");
+        context.fail(where + ": " + slot + " " + std::to_string(info.index) + " out of range");
     }
     if (info.texCoord != 0) {
-        context.warn(where + ": baseColorTexture uses TEXCOORD_" + std::to_string(info.texCoord) +
+        context.warn(where + ": " + slot + " uses TEXCOORD_" + std::to_string(info.texCoord) +
                      "; luxel samples it with TEXCOORD_0");
     }
     const tinygltf::Texture& texture = model.textures[static_cast<std::size_t>(info.index)];
     if (texture.source < 0) {
         context.warn(where + ": texture " + std::to_string(info.index) +
                      " has no PNG or JPEG source; ignored");
-        return;
+        return -1;
     }
-    material.base_color_image = context.scene_image(texture.source, where);
+    return context.scene_image(texture.source, where);
 }
 
 Light convert_light(const ImportContext& context, const tinygltf::Light& source,
@@ -400,7 +402,10 @@ void import_materials(ImportContext& context) {
                                                where + " emissiveFactor");
         }
         material.double_sided = source.doubleSided;
-        import_base_color_texture(context, pbr.baseColorTexture, material, where);
+        material.base_color_image =
+            import_texture(context, pbr.baseColorTexture, "baseColorTexture", where);
+        material.emissive_image =
+            import_texture(context, source.emissiveTexture, "emissiveTexture", where);
 
         const nlohmann::json extensions = parse_kept_json(source.extensions_json_string);
         if (extensions.is_object()) {

@@ -220,6 +220,9 @@ class DocumentWriter {
             if (emissive != glm::vec3(0.0f)) {
                 entry["emissiveFactor"] = vec_json(&emissive.x, 3);
             }
+            if (material.emissive_image >= 0) {
+                entry["emissiveTexture"] = {{"index", material.emissive_image}};
+            }
             json extensions = json::object();
             if (strength != 1.0f) {
                 extensions["KHR_materials_emissive_strength"] = {{"emissiveStrength", strength}};

@@ -191,6 +191,10 @@ void validate_materials(const Scene& scene) {
             invalid(where + ": base colour image " + std::to_string(material.base_color_image) +
                     " out of range");
         }
+        if (!optional_in_range(material.emissive_image, scene.images.size())) {
+            invalid(where + ": emissive image " + std::to_string(material.emissive_image) +
+                    " out of range");
+        }
     }
     for (std::size_t i = 0; i < scene.images.size(); ++i) {
         const Image& image = scene.images[i];

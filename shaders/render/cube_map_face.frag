@@ -15,6 +15,8 @@ uniform vec3 u_albedo;  // diffuse albedo factor
 // The base-colour texture or a 1x1 white one, as in render/gbuffer.frag (unit 15 is clear of
 // the shadow maps and IIM pages bound here).
 layout(binding = 15) uniform sampler2D u_base_color;
+// The emissive texture (sRGB, sampled linear) or the white one; unit 16 is kEmissiveTextureUnit.
+layout(binding = 16) uniform sampler2D u_emissive;
 uniform vec3 u_emission;
 uniform vec2 u_lightmap;  // page layer, content
 uniform vec3 u_camera;    // the cube map's centre
@@ -31,7 +33,8 @@ void main() {
         n = -n;  // the cube map sees sheets from either side
     }
     vec3 albedo = u_albedo * texture(u_base_color, v_texcoord0).rgb;
-    vec3 l = u_emission + lambert_radiance(albedo, batch_irradiance(v_position, n)) +
+    vec3 l = u_emission * texture(u_emissive, v_texcoord0).rgb +
+             lambert_radiance(albedo, batch_irradiance(v_position, n)) +
              iim_radiance(v_lightmap_uv, u_lightmap.x, u_lightmap.y > 0.5, albedo);
     out_radiance = vec4(l, 1.0);
 }

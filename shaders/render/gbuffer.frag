@@ -12,6 +12,8 @@ uniform vec3 u_albedo;         // diffuse albedo factor (linear, [0,1])
 // The base-colour texture (GL_SRGB8_ALPHA8: sampling returns linear values), or a 1x1 white
 // one for untextured primitives; unit 15 is lighting/gpu's kBaseColorTextureUnit.
 layout(binding = 15) uniform sampler2D u_base_color;
+// The emissive texture (sRGB, sampled linear) or the white one; unit 16 is kEmissiveTextureUnit.
+layout(binding = 16) uniform sampler2D u_emissive;
 uniform vec3 u_emission;       // emitted radiance W/(m^2 sr)
 uniform vec4 u_specular;       // rgb: specular colour F0 (0: none), a: transmission
 uniform vec2 u_lightmap;       // x: IIM page layer (-1: none), y: 1 = irradiance, 0 = radiance
@@ -44,6 +46,7 @@ void main() {
     out_normal = vec4(n, 0.0);
     out_position = vec4(v_position, 1.0);
     out_lightmap = vec4(v_lightmap_uv, u_lightmap);
-    out_emission = vec4(u_emission, 0.0);
+    // glTF: emission = factor x strength x texture, per pixel.
+    out_emission = vec4(u_emission * texture(u_emissive, v_texcoord0).rgb, 0.0);
     out_specular = u_specular;
 }

@@ -78,6 +78,7 @@ inline void expect_same_scene(const scene::Scene& a, const scene::Scene& b) {
             EXPECT_NEAR(x.base_color[c], y.base_color[c], kRoundTripTolerance) << what;
         }
         EXPECT_EQ(x.base_color_image, y.base_color_image) << what;
+        EXPECT_EQ(x.emissive_image, y.emissive_image) << what;
         EXPECT_NEAR(x.metallic, y.metallic, kRoundTripTolerance) << what;
         EXPECT_NEAR(x.roughness, y.roughness, kRoundTripTolerance) << what;
         expect_near(x.emitted_radiance(), y.emitted_radiance(), what + " emission");

@@ -167,6 +167,15 @@ scene::Scene box_room() {
         m.roughness = 0.02f;
         m.double_sided = true;
     }
+    {
+        // No mesh uses it (the lamp panel stays the room's uniform light); it round-trips an
+        // emissiveTexture.
+        auto& m = material("sign");
+        m.emissive = {1.0f, 1.0f, 1.0f};
+        m.emissive_strength = 3.0f;
+        m.emissive_image = 0;
+        m.metallic = 0.0f;
+    }
 
     auto mesh = [&s](const std::string& name, Primitive primitive, int material_index) {
         primitive.material = material_index;

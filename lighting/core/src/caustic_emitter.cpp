@@ -114,7 +114,9 @@ CausticEmitter::CausticEmitter(const LightSource& light, const BoundingSphere& g
             break;
         }
         case LightKind::Area: {
-            area_ = TriangleSampler(light.triangles);
+            area_ = TriangleSampler(light.triangles, light.pieces);
+            pieces_ = light.pieces;
+            piece_scale_ = light.piece_scale;
             const double area = area_.area();
             for (std::size_t t = 0; t < area_.size(); ++t) {
                 // The light reaches the generator if the sphere is not wholly behind some
@@ -180,7 +182,17 @@ EmittedPhoton CausticEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
             photon.direction = direction_in_cone(toward, d);
             photon.origin = offset_ray_origin(point, normal);
             const float cosine = glm::dot(normal, photon.direction);
-            if (cosine > 0.0f) {
+            if (cosine > 0.0f && pieces_ != nullptr) {
+                // L cos / (density x cone pdf x N), the cone's pdf 1 / solid angle.
+                const double density = on_light.density;
+                photon.power = density > 0.0
+                                   ? glm::vec3(glm::dvec3(pieces_->radiance(on_light.triangle,
+                                                                            on_light.piece) *
+                                                          piece_scale_) *
+                                               (static_cast<double>(cosine) * toward.solid_angle() *
+                                                share / density))
+                                   : glm::vec3(0.0f);
+            } else if (cosine > 0.0f) {
                 photon.power = power_scale_ * static_cast<float>(static_cast<double>(cosine) *
                                                                  toward.solid_angle() * share);
             }

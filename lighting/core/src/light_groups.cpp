@@ -48,23 +48,21 @@ void LightGroups::refresh(ecs::Entity entity, const BoundingSphere& scene) {
         enabled = area->enabled;
         const scene::MeshInstance& instance = registry_.get<scene::MeshInstance>(entity);
         for (const auto& primitive : instance.geometry().primitives) {
-            if (primitive.material < 0) {
+            if (primitive.material < 0 ||
+                !instance.source->materials.at(static_cast<std::size_t>(primitive.material))
+                     .is_emissive()) {
                 continue;
-            }
-            const scene::Material& material =
-                instance.source->materials.at(static_cast<std::size_t>(primitive.material));
-            if (!material.is_emissive()) {
-                continue;
-            }
-            // One radiance per light: the first emissive material's (documented limitation).
-            if (source.triangles.empty()) {
-                source.power = material.emitted_radiance() * area->scale;
             }
             for (std::uint32_t index : primitive.indices) {
                 source.triangles.push_back(
                     glm::vec3(world * glm::vec4(primitive.positions[index], 1.0f)));
             }
         }
+        const PiecesCache& pieces = emission_pieces(entity, instance);
+        source.pieces = pieces.pieces;
+        source.piece_scale = area->scale;
+        source.power =
+            source.pieces != nullptr ? mean_radiance(source) : pieces.uniform * area->scale;
     } else {
         remove(entity);
         return;
@@ -96,7 +94,48 @@ void LightGroups::refresh(ecs::Entity entity, const BoundingSphere& scene) {
     }
 }
 
+const LightGroups::PiecesCache& LightGroups::emission_pieces(ecs::Entity entity,
+                                                             const scene::MeshInstance& instance) {
+    // The pieces depend on the mesh and its materials only, so a moving emitter keeps its
+    // own; the scene held in the key keeps its address from being reused while cached.
+    PiecesCache& cached = pieces_[entity];
+    if (cached.source == nullptr || cached.source != instance.source ||
+        cached.mesh != instance.mesh) {
+        cached.source = instance.source;
+        cached.mesh = instance.mesh;
+        EmissionPieces pieces = EmissionPieces::of_mesh(*instance.source, instance.geometry());
+        // One radiance everywhere (an untextured emitter): no pieces, and photons of exactly
+        // equal power, as before pieces existed.
+        cached.uniform = pieces.piece_count() > 0 ? pieces.radiance(0, 0) : glm::vec3(0.0f);
+        cached.pieces =
+            pieces.uniform() ? nullptr : std::make_shared<const EmissionPieces>(std::move(pieces));
+    }
+    return cached;
+}
+
+glm::vec3 LightGroups::mean_radiance(const LightSource& light) {
+    // Area-weighted over the world-space triangles: pi x this x area is the light's flux.
+    glm::dvec3 sum(0.0);
+    double total = 0.0;
+    for (std::size_t t = 0; 3 * t + 2 < light.triangles.size(); ++t) {
+        const glm::vec3* v = &light.triangles[3 * t];
+        const double area = 0.5 * glm::length(glm::dvec3(glm::cross(v[1] - v[0], v[2] - v[0])));
+        if (!(area > 0.0) || !std::isfinite(area)) {
+            continue;
+        }
+        glm::dvec3 pieces(0.0);
+        const std::uint32_t level = light.pieces != nullptr ? light.pieces->level(t) : 1;
+        for (std::uint32_t k = 0; k < level * level; ++k) {
+            pieces += glm::dvec3(area_radiance(light, t, k));
+        }
+        sum += pieces / (static_cast<double>(level) * level) * area;
+        total += area;
+    }
+    return total > 0.0 ? glm::vec3(sum / total) : glm::vec3(0.0f);
+}
+
 void LightGroups::remove(ecs::Entity entity) {
+    pieces_.erase(entity);
     const auto found = lights_.find(entity);
     if (found == lights_.end()) {
         return;

@@ -16,6 +16,7 @@
 #include "luxel/lighting/core/ray_scene.hpp"
 #include "luxel/lighting/core/selective_emitter.hpp"
 #include "luxel/runtime/jobs.hpp"
+#include "luxel/scene/components.hpp"
 
 namespace luxel::lighting {
 
@@ -67,6 +68,16 @@ class LightGroups {
         bool enabled = true;
         bool directional = false;
     };
+    struct PiecesCache {
+        std::shared_ptr<const scene::Scene> source;
+        int mesh = -1;
+        std::shared_ptr<const EmissionPieces> pieces;  ///< null when uniform
+        glm::vec3 uniform{0.0f};                       ///< the radiance when uniform
+    };
+    /// The emitter's EmissionPieces, made once per mesh.
+    const PiecesCache& emission_pieces(ecs::Entity entity, const scene::MeshInstance& instance);
+    /// An area light's radiance averaged over its area (LightSource::power).
+    [[nodiscard]] static glm::vec3 mean_radiance(const LightSource& light);
     void add_pending(std::uint32_t group);
     void drop_pending(const LightPhotons& photons);
 
@@ -74,6 +85,7 @@ class LightGroups {
     PhotonMap& map_;
     SelectiveSettings settings_;
     std::map<ecs::Entity, Record> lights_;
+    std::map<ecs::Entity, PiecesCache> pieces_;
     std::vector<std::uint32_t> pending_;
     PathSegmentIndex paths_;
     std::uint32_t next_seed_ = 1;

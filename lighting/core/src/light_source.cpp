@@ -29,22 +29,91 @@ glm::vec3 cone_direction(const glm::vec3& axis, float angle, const glm::dvec2& u
 
 }  // namespace
 
-TriangleSampler::TriangleSampler(std::vector<glm::vec3> triangles)
-    : vertices_(std::move(triangles)) {
+glm::vec3 area_radiance(const LightSource& light, std::size_t triangle, std::uint32_t piece) {
+    if (light.pieces == nullptr || triangle >= light.pieces->triangle_count() ||
+        piece >= light.pieces->level(triangle) * light.pieces->level(triangle)) {
+        return light.power;
+    }
+    return light.pieces->radiance(triangle, piece) * light.piece_scale;
+}
+
+TriangleSampler::TriangleSampler(std::vector<glm::vec3> triangles,
+                                 std::shared_ptr<const EmissionPieces> pieces)
+    : vertices_(std::move(triangles)), pieces_(std::move(pieces)) {
     if (vertices_.size() % 3 != 0) {
         throw Error("TriangleSampler: triangles need three vertices each");
+    }
+    if (pieces_ != nullptr && pieces_->triangle_count() != vertices_.size() / 3) {
+        throw Error("TriangleSampler: " + std::to_string(pieces_->triangle_count()) +
+                    " triangles of pieces for " + std::to_string(vertices_.size() / 3) +
+                    " triangles");
     }
     for (std::size_t t = 0; t < vertices_.size(); t += 3) {
         const glm::vec3 cross =
             glm::cross(vertices_[t + 1] - vertices_[t], vertices_[t + 2] - vertices_[t]);
         const float length = glm::length(cross);
-        area_ += 0.5 * static_cast<double>(length);
-        normals_.push_back(length > 0.0f ? cross / length : glm::vec3(0.0f));
-        cdf_.push_back(area_);
+        const double area = std::isfinite(length) ? 0.5 * static_cast<double>(length) : 0.0;
+        area_ += area;
+        triangle_area_.push_back(area);
+        normals_.push_back(length > 0.0f && std::isfinite(length) ? cross / length
+                                                                  : glm::vec3(0.0f));
+        if (pieces_ == nullptr) {
+            cdf_.push_back(area_);
+            continue;
+        }
+        // Each piece covers 1/level^2 of its triangle (a regular subdivision).
+        const std::size_t triangle = t / 3;
+        const std::uint32_t level = pieces_->level(triangle);
+        const double piece_area = area / (static_cast<double>(level) * level);
+        for (std::uint32_t k = 0; k < level * level; ++k) {
+            const glm::vec3& radiance = pieces_->radiance(triangle, k);
+            const double weight = static_cast<double>(radiance.x) + radiance.y + radiance.z;
+            if (weight > 0.0 && std::isfinite(weight)) {
+                weighted_area_ += piece_area * weight;
+            }
+            cdf_.push_back(weighted_area_);
+            piece_triangle_.push_back(static_cast<std::uint32_t>(triangle));
+        }
     }
+    const double total = pieces_ == nullptr ? area_ : weighted_area_;
     for (double& c : cdf_) {
-        c = area_ > 0.0 ? c / area_ : 0.0;
+        c = total > 0.0 ? c / total : 0.0;
     }
+}
+
+double TriangleSampler::density(std::size_t triangle, std::uint32_t piece) const {
+    if (pieces_ == nullptr) {
+        return area_ > 0.0 ? 1.0 / area_ : 0.0;
+    }
+    if (triangle >= pieces_->triangle_count() || !(weighted_area_ > 0.0)) {
+        return 0.0;
+    }
+    const glm::vec3& radiance = pieces_->radiance(triangle, piece);
+    const double weight = static_cast<double>(radiance.x) + radiance.y + radiance.z;
+    // p(point) = (piece area x weight / total) / piece area.
+    return weight > 0.0 && std::isfinite(weight) ? weight / weighted_area_ : 0.0;
+}
+
+std::uint32_t TriangleSampler::piece_at(std::size_t triangle, const glm::vec3& point) const {
+    if (pieces_ == nullptr || triangle >= normals_.size()) {
+        return 0;
+    }
+    const glm::dvec3 a(vertices_[3 * triangle]);
+    const glm::dvec3 e1 = glm::dvec3(vertices_[3 * triangle + 1]) - a;
+    const glm::dvec3 e2 = glm::dvec3(vertices_[3 * triangle + 2]) - a;
+    const glm::dvec3 d = glm::dvec3(point) - a;
+    // Least squares in the triangle's plane: [e1 e2] (s, q) = d.
+    const double d11 = glm::dot(e1, e1);
+    const double d12 = glm::dot(e1, e2);
+    const double d22 = glm::dot(e2, e2);
+    const double det = d11 * d22 - d12 * d12;
+    if (!(det > 0.0)) {
+        return 0;
+    }
+    const double b1 = glm::dot(d, e1);
+    const double b2 = glm::dot(d, e2);
+    const glm::dvec2 sq((d22 * b1 - d12 * b2) / det, (d11 * b2 - d12 * b1) / det);
+    return EmissionPieces::piece_at(pieces_->level(triangle), sq);
 }
 
 TriangleSampler::Sample TriangleSampler::sample(const glm::dvec2& p) const {
@@ -52,20 +121,32 @@ TriangleSampler::Sample TriangleSampler::sample(const glm::dvec2& p) const {
         return {};
     }
     const auto found = std::upper_bound(cdf_.begin(), cdf_.end(), p.x);
-    const std::size_t t =
+    const std::size_t entry =
         std::min<std::size_t>(static_cast<std::size_t>(found - cdf_.begin()), cdf_.size() - 1);
-    const double low = t == 0 ? 0.0 : cdf_[t - 1];
-    const double width = cdf_[t] - low;
+    const double low = entry == 0 ? 0.0 : cdf_[entry - 1];
+    const double width = cdf_[entry] - low;
     double s = width > 0.0 ? std::clamp((p.x - low) / width, 0.0, 1.0) : 0.0;
     double q = p.y;
     if (s + q > 1.0) {  // fold the far half of the parallelogram back into the triangle
         s = 1.0 - s;
         q = 1.0 - q;
     }
+    std::size_t t = entry;
+    std::uint32_t piece = 0;
+    if (pieces_ != nullptr) {
+        t = piece_triangle_[entry];
+        piece = static_cast<std::uint32_t>(entry - pieces_->first_piece(t));
+        // (s, q) within the piece, to the triangle's own barycentrics.
+        const auto corner = EmissionPieces::corners(pieces_->level(t), piece);
+        const glm::dvec2 sq = corner[0] + s * (corner[1] - corner[0]) + q * (corner[2] - corner[0]);
+        s = sq.x;
+        q = sq.y;
+    }
     const glm::vec3& a = vertices_[3 * t];
     const glm::vec3& b = vertices_[3 * t + 1];
     const glm::vec3& c = vertices_[3 * t + 2];
-    return {a + static_cast<float>(s) * (b - a) + static_cast<float>(q) * (c - a), normals_[t], t};
+    return {a + static_cast<float>(s) * (b - a) + static_cast<float>(q) * (c - a), normals_[t], t,
+            piece, density(t, piece)};
 }
 
 void orthonormal_basis(const glm::vec3& n, glm::vec3& tangent, glm::vec3& bitangent) {
@@ -116,9 +197,28 @@ PhotonEmitter::PhotonEmitter(LightSource light, const BoundingSphere& scene_boun
             total_power_ = light_.power * pi * bounds_.radius * bounds_.radius;
             break;
         case LightKind::Area: {
-            area_ = TriangleSampler(light_.triangles);
-            const double area = area_.area();
-            total_power_ = light_.power * (pi * static_cast<float>(area));
+            area_ = TriangleSampler(light_.triangles, light_.pieces);
+            if (light_.pieces == nullptr) {
+                total_power_ = light_.power * (pi * static_cast<float>(area_.area()));
+                break;
+            }
+            // pi x the sum of every piece's radiance x area.
+            glm::dvec3 flux(0.0);
+            const EmissionPieces& pieces = *light_.pieces;
+            for (std::size_t t = 0; t < pieces.triangle_count(); ++t) {
+                const glm::vec3* v = &light_.triangles[3 * t];
+                const double area =
+                    0.5 * glm::length(glm::dvec3(glm::cross(v[1] - v[0], v[2] - v[0])));
+                const std::uint32_t level = pieces.level(t);
+                glm::dvec3 sum(0.0);
+                for (std::uint32_t k = 0; k < level * level; ++k) {
+                    sum += glm::dvec3(area_radiance(light_, t, k));
+                }
+                if (std::isfinite(area)) {
+                    flux += sum * (area / (static_cast<double>(level) * level));
+                }
+            }
+            total_power_ = glm::vec3(flux * glm::pi<double>());
             break;
         }
     }
@@ -168,6 +268,15 @@ EmittedPhoton PhotonEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
             const glm::vec3 normal = on_light.normal;
             photon.direction = cosine_direction(normal, d);
             photon.origin = offset_ray_origin(photon.origin, normal);
+            if (light_.pieces != nullptr) {
+                // pi L / (density N): the flux estimate of a point chosen by power.
+                const double weight = on_light.density * static_cast<double>(photon_count);
+                photon.power = weight > 0.0
+                                   ? glm::vec3(glm::dvec3(area_radiance(light_, on_light.triangle,
+                                                                        on_light.piece)) *
+                                               (glm::pi<double>() / weight))
+                                   : glm::vec3(0.0f);
+            }
             break;
         }
     }

@@ -9,6 +9,7 @@
 
 #include "luxel/ecs/hierarchy.hpp"
 #include "luxel/scene/image_decode.hpp"
+#include "luxel/scene/texture_mean.hpp"
 #include "map_support.hpp"
 
 namespace luxel::lighting {
@@ -91,7 +92,15 @@ void MapRegistry::add_surface(std::uint32_t surface) {
             const scene::Material& material =
                 instance->source->materials.at(static_cast<std::size_t>(primitive.material));
             if (material.is_emissive()) {
-                mapped.material_emission = sanitized(material.emitted_radiance());
+                // The gathers see a surface's mean emission (the photons emit each piece's own:
+                // EmissionPieces), so an emissive texture's bright patch lights the room with
+                // the texture's power, not the factor's.
+                const scene::LinearImage texels =
+                    primitive.texcoords0.size() == primitive.positions.size()
+                        ? scene::emissive_texels(*instance->source, material)
+                        : scene::LinearImage{};
+                mapped.material_emission = sanitized(scene::mean_emission(
+                    primitive, scene::triangle_emission(primitive, material, texels)));
             }
         }
     }

@@ -119,10 +119,14 @@ void IndirectPhotons::trace(std::uint64_t index, std::vector<Deposit>& out,
         }
         case LightKind::Area: {
             const TriangleSampler::Sample sample = light.triangles.sample(random.next2());
-            if (glm::dot(sample.normal, sample.normal) <= 0.0f) {
+            if (glm::dot(sample.normal, sample.normal) <= 0.0f || !(sample.density > 0.0)) {
                 ++counters.absorbed;
                 return;
             }
+            // pi L / density is this point's estimate of the light's flux (the light's mean
+            // radiance x pi x area when its radiance is uniform).
+            power = glm::dvec3(area_radiance(source, sample.triangle, sample.piece)) *
+                    (kPi / (sample.density * emitter.probability));
             direction = cosine_direction(sample.normal, d);
             origin = offset_ray_origin(sample.point, sample.normal);
             break;

@@ -97,11 +97,10 @@ glm::dvec3 PathEstimator::direct_light(const glm::vec3& point, const glm::vec3& 
                 break;
             }
             case LightKind::Area: {
-                const double area = light.triangles.area();
-                if (!(area > 0.0)) {
+                const TriangleSampler::Sample sample = light.triangles.sample(random.next2());
+                if (!(sample.density > 0.0)) {
                     break;
                 }
-                const TriangleSampler::Sample sample = light.triangles.sample(random.next2());
                 const glm::vec3 to_light = sample.point - origin;
                 const double distance2 = glm::dot(glm::dvec3(to_light), glm::dvec3(to_light));
                 if (!(distance2 > 0.0)) {
@@ -120,9 +119,9 @@ glm::dvec3 PathEstimator::direct_light(const glm::vec3& point, const glm::vec3& 
                 if (rays.occluded(origin, target - origin, 1.0f)) {
                     break;
                 }
-                const double pdf_light = distance2 / (cos_light * area);  // per steradian
+                const double pdf_light = distance2 * sample.density / cos_light;  // per sr
                 const double pdf_bsdf = cosine / kPi;
-                irradiance += glm::dvec3(source.power) *
+                irradiance += glm::dvec3(area_radiance(source, sample.triangle, sample.piece)) *
                               (cosine / pdf_light * power_heuristic(pdf_light, pdf_bsdf));
                 break;
             }
@@ -153,20 +152,21 @@ void PathEstimator::trace(glm::vec3 origin, glm::vec3 direction, glm::dvec3 beta
                                     : any_diffuse ? Component::Indirect
                                                   : Component::Caustic;
         if (normals.front) {
-            if (const std::int32_t l = scene_->emitter_of(*hit); l >= 0) {
-                const ReferenceLight& light = scene_->lights()[static_cast<std::size_t>(l)];
+            if (const EmitterHit emitter = scene_->emitter_of(*hit); emitter.light >= 0) {
+                const ReferenceScene::Emission emission =
+                    scene_->emission_at(emitter, hit->position);
                 double weight = 1.0;
                 if (pdf > 0.0) {
                     // The previous diffuse vertex also sampled this light: weigh the two.
                     const double cos_light = -glm::dot(hit->geometric_normal, direction);
-                    const double area = light.triangles.area();
                     const double distance = hit->distance;
-                    const double pdf_light = cos_light > 0.0 && area > 0.0
-                                                 ? distance * distance / (cos_light * area)
-                                                 : std::numeric_limits<double>::infinity();
+                    const double pdf_light =
+                        cos_light > 0.0 && emission.density > 0.0
+                            ? distance * distance * emission.density / cos_light
+                            : std::numeric_limits<double>::infinity();
                     weight = std::isinf(pdf_light) ? 1.0 : power_heuristic(pdf, pdf_light);
                 }
-                add(out, component, beta * glm::dvec3(light.source.power) * weight, counters);
+                add(out, component, beta * glm::dvec3(emission.radiance) * weight, counters);
             }
         }
         const TraceMaterial& material = materials[hit->material];

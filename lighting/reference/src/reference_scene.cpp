@@ -11,53 +11,13 @@
 #include "luxel/lighting/core/illumination_maps.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
 #include "luxel/runtime/error.hpp"
+#include "luxel/scene/texel_coverage.hpp"
 
 namespace luxel::lighting::reference {
 namespace {
 
 glm::vec3 to_world(const glm::mat4& transform, const glm::vec3& p) {
     return glm::vec3(transform * glm::vec4(p, 1.0f));
-}
-
-/// The area of the part of triangle (a, b, c) (in page-texel units) inside the unit square at
-/// (x, y): Sutherland-Hodgman against the square's four edges, then the shoelace formula.
-double clipped_area(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c, int x, int y) {
-    std::vector<glm::dvec2> polygon{a, b, c};
-    std::vector<glm::dvec2> next;
-    const std::array<glm::dvec3, 4> planes{
-        glm::dvec3(1.0, 0.0, -static_cast<double>(x)),      // u >= x
-        glm::dvec3(-1.0, 0.0, static_cast<double>(x + 1)),  // u <= x + 1
-        glm::dvec3(0.0, 1.0, -static_cast<double>(y)),      // v >= y
-        glm::dvec3(0.0, -1.0, static_cast<double>(y + 1))};
-    for (const glm::dvec3& plane : planes) {
-        next.clear();
-        const std::size_t n = polygon.size();
-        for (std::size_t i = 0; i < n; ++i) {
-            const glm::dvec2& p = polygon[i];
-            const glm::dvec2& q = polygon[(i + 1) % n];
-            const double dp = plane.x * p.x + plane.y * p.y + plane.z;
-            const double dq = plane.x * q.x + plane.y * q.y + plane.z;
-            if (dp >= 0.0) {
-                next.push_back(p);
-            }
-            if ((dp >= 0.0) != (dq >= 0.0)) {
-                const double denominator = dp - dq;
-                const double t = denominator != 0.0 ? dp / denominator : 0.0;
-                next.push_back(p + t * (q - p));
-            }
-        }
-        polygon.swap(next);
-        if (polygon.size() < 3) {
-            return 0.0;
-        }
-    }
-    double twice = 0.0;
-    for (std::size_t i = 0; i < polygon.size(); ++i) {
-        const glm::dvec2& p = polygon[i];
-        const glm::dvec2& q = polygon[(i + 1) % polygon.size()];
-        twice += p.x * q.y - q.x * p.y;
-    }
-    return 0.5 * std::abs(twice);
 }
 
 /// Hash-grid key of a point quantised to `cell`.
@@ -106,7 +66,7 @@ ReferenceScene::ReferenceScene(const RayScene& rays, std::vector<TraceMaterial> 
     for (LightSource& source : lights) {
         ReferenceLight light;
         if (source.kind == LightKind::Area) {
-            light.triangles = TriangleSampler(source.triangles);
+            light.triangles = TriangleSampler(source.triangles, source.pieces);
         }
         light.intensity = intensity_of(source);
         light.source = std::move(source);
@@ -210,13 +170,24 @@ std::vector<double> ReferenceScene::texel_areas() const {
     return areas;
 }
 
-std::int32_t ReferenceScene::emitter_of(const RayHit& hit) const {
+EmitterHit ReferenceScene::emitter_of(const RayHit& hit) const {
     if (emitters_.empty()) {
-        return -1;
+        return {};
     }
     const auto found =
         emitters_.find((static_cast<std::uint64_t>(hit.object) << 32) | hit.triangle);
-    return found == emitters_.end() ? -1 : found->second;
+    return found == emitters_.end() ? EmitterHit{} : found->second;
+}
+
+ReferenceScene::Emission ReferenceScene::emission_at(const EmitterHit& emitter,
+                                                     const glm::vec3& point) const {
+    if (emitter.light < 0 || static_cast<std::size_t>(emitter.light) >= lights_.size()) {
+        return {};
+    }
+    const ReferenceLight& light = lights_[static_cast<std::size_t>(emitter.light)];
+    const std::uint32_t piece = light.triangles.piece_at(emitter.triangle, point);
+    return {area_radiance(light.source, emitter.triangle, piece),
+            light.triangles.density(emitter.triangle, piece)};
 }
 
 std::int64_t ReferenceScene::texel_at(std::int32_t surface, const glm::vec2& uv) const {
@@ -244,15 +215,17 @@ void ReferenceScene::find_emitters() {
     // triangle). They are matched by centroid in a hash grid whose cell is the tolerance, so
     // the float rounding of two different transform paths does not matter.
     const double tolerance = 1e-5 * std::max(static_cast<double>(bounds_.radius), 1e-6);
-    std::unordered_multimap<std::uint64_t, std::pair<glm::dvec3, std::int32_t>> centroids;
+    std::unordered_multimap<std::uint64_t, std::pair<glm::dvec3, EmitterHit>> centroids;
     for (std::size_t l = 0; l < lights_.size(); ++l) {
         const auto& vertices = lights_[l].triangles.vertices();
         for (std::size_t t = 0; t + 2 < vertices.size(); t += 3) {
             const glm::dvec3 centre = (glm::dvec3(vertices[t]) + glm::dvec3(vertices[t + 1]) +
                                        glm::dvec3(vertices[t + 2])) /
                                       3.0;
-            centroids.emplace(cell_key(centre, tolerance, glm::ivec3(0)),
-                              std::make_pair(centre, static_cast<std::int32_t>(l)));
+            centroids.emplace(
+                cell_key(centre, tolerance, glm::ivec3(0)),
+                std::make_pair(centre, EmitterHit{static_cast<std::int32_t>(l),
+                                                  static_cast<std::uint32_t>(t / 3)}));
         }
     }
     if (centroids.empty()) {
@@ -364,7 +337,7 @@ void ReferenceScene::measure_texels() {
                     if (found == lookup.end()) {
                         continue;
                     }
-                    const double inside = clipped_area(uv[0], uv[1], uv[2], x, y);
+                    const double inside = scene::triangle_area_in_texel(uv[0], uv[1], uv[2], x, y);
                     surface.texels[found->second - surface.first_texel].area += inside * scale;
                 }
             }

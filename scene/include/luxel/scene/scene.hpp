@@ -50,14 +50,18 @@ struct Material {
     int base_color_image = -1;  ///< index into Scene::images, sampled with TEXCOORD_0
     float metallic = 1.0f;      ///< glTF defaults
     float roughness = 1.0f;
-    glm::vec3 emissive{0.0f};        ///< emissiveFactor
+    glm::vec3 emissive{0.0f};  ///< emissiveFactor
+    /// emissiveTexture: index into Scene::images, sampled with TEXCOORD_0 and multiplied by
+    /// emissive (scene::triangle_emission integrates it per triangle for the lighting).
+    int emissive_image = -1;
     float emissive_strength = 1.0f;  ///< KHR_materials_emissive_strength
     float transmission = 0.0f;       ///< KHR_materials_transmission
     float ior = 1.5f;                ///< KHR_materials_ior
     bool double_sided = false;
 
     /// Emitted radiance in W/(m^2 sr): emissive * emissive_strength (luxel reads glTF's
-    /// unitless emissive as radiance, documented in docs/UNITS.md).
+    /// unitless emissive as radiance, documented in docs/UNITS.md); an emissive texture
+    /// multiplies it per point.
     [[nodiscard]] glm::vec3 emitted_radiance() const { return emissive * emissive_strength; }
     [[nodiscard]] bool is_emissive() const;
     /// Transmissive (transmission > 0), or a mirror (metallic 1, roughness < 0.1): the materials

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -73,6 +74,49 @@ void for_each_covered_texel(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, const Texe
             }
         }
     }
+}
+
+/// The area of the part of triangle (a, b, c) inside texel (x, y), the unit square
+/// [x, x+1] x [y, y+1]: Sutherland-Hodgman against the square's four edges, then the shoelace
+/// formula. Either winding; 0 for a triangle that misses the texel.
+[[nodiscard]] inline double triangle_area_in_texel(const glm::dvec2& a, const glm::dvec2& b,
+                                                   const glm::dvec2& c, int x, int y) {
+    std::vector<glm::dvec2> polygon{a, b, c};
+    std::vector<glm::dvec2> next;
+    const std::array<glm::dvec3, 4> planes{
+        glm::dvec3(1.0, 0.0, -static_cast<double>(x)),      // u >= x
+        glm::dvec3(-1.0, 0.0, static_cast<double>(x + 1)),  // u <= x + 1
+        glm::dvec3(0.0, 1.0, -static_cast<double>(y)),      // v >= y
+        glm::dvec3(0.0, -1.0, static_cast<double>(y + 1))};
+    for (const glm::dvec3& plane : planes) {
+        next.clear();
+        const std::size_t n = polygon.size();
+        for (std::size_t i = 0; i < n; ++i) {
+            const glm::dvec2& p = polygon[i];
+            const glm::dvec2& q = polygon[(i + 1) % n];
+            const double dp = plane.x * p.x + plane.y * p.y + plane.z;
+            const double dq = plane.x * q.x + plane.y * q.y + plane.z;
+            if (dp >= 0.0) {
+                next.push_back(p);
+            }
+            if ((dp >= 0.0) != (dq >= 0.0)) {
+                const double denominator = dp - dq;
+                const double t = denominator != 0.0 ? dp / denominator : 0.0;
+                next.push_back(p + t * (q - p));
+            }
+        }
+        polygon.swap(next);
+        if (polygon.size() < 3) {
+            return 0.0;
+        }
+    }
+    double twice = 0.0;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+        const glm::dvec2& p = polygon[i];
+        const glm::dvec2& q = polygon[(i + 1) % polygon.size()];
+        twice += p.x * q.y - q.x * p.y;
+    }
+    return 0.5 * std::abs(twice);
 }
 
 }  // namespace luxel::scene

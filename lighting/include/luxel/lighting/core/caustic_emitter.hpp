@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -84,6 +85,9 @@ class CausticEmitter {
     // Area: the generator and the light's triangles with their area CDF and unit normals.
     BoundingSphere generator_;
     TriangleSampler area_;  // area lights
+    // An area light's pieces when its radiance varies over it (LightSource::pieces).
+    std::shared_ptr<const EmissionPieces> pieces_;
+    float piece_scale_ = 1.0f;
 };
 
 }  // namespace luxel::lighting

@@ -1,9 +1,12 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "luxel/lighting/core/emission_pieces.hpp"
 
 /// Lights as the photon tracer sees them: world space, watts, and a mapping from QMC samples
 /// to emitted photons.
@@ -16,13 +19,23 @@ struct LightSource {
     glm::vec3 position{0.0f};
     glm::vec3 direction{0.0f, 0.0f, -1.0f};  ///< unit; spot axis / directional travel direction
     /// Point and spot: radiant flux in W (spot: into its whole outer cone, before falloff).
-    /// Directional: irradiance in W/m^2. Area: emitted radiance in W/(m^2 sr).
+    /// Directional: irradiance in W/m^2. Area: emitted radiance in W/(m^2 sr), the mean over
+    /// its area when `pieces` vary it.
     glm::vec3 power{0.0f};
     float inner_cone = 0.3f;  ///< spot, radians
     float outer_cone = 0.5f;  ///< spot, radians
     /// Area lights: world-space triangles, three vertices each, emitting on their front side.
     std::vector<glm::vec3> triangles;
+    /// Area lights: the radiance of each triangle's pieces (one per triangle in `triangles`'
+    /// order), times `piece_scale`; null: `power` everywhere.
+    std::shared_ptr<const EmissionPieces> pieces;
+    float piece_scale = 1.0f;  ///< the AreaLight's scale, which the shared pieces leave out
 };
+
+/// The radiance W/(m^2 sr) an area light emits from a piece of a triangle (`power` without
+/// pieces).
+[[nodiscard]] glm::vec3 area_radiance(const LightSource& light, std::size_t triangle,
+                                      std::uint32_t piece);
 
 /// One emitted photon.
 struct EmittedPhoton {
@@ -37,22 +50,34 @@ struct BoundingSphere {
     float radius = 1.0f;
 };
 
-/// Points on a set of triangles chosen in proportion to area: the emitting surface of an area
-/// light. Shared by global and caustic photon emission.
+/// Points on a set of triangles: the emitting surface of an area light. Without pieces, chosen
+/// in proportion to area; with EmissionPieces, in proportion to each piece's area times its
+/// radiance (channels summed), so the points follow the light's power and a dark piece is never
+/// chosen. Shared by global and caustic photon emission and the reference.
 class TriangleSampler {
   public:
     TriangleSampler() = default;
-    /// `triangles` holds three world-space vertices per triangle (throws luxel::Error if not).
-    explicit TriangleSampler(std::vector<glm::vec3> triangles);
+    /// `triangles` holds three world-space vertices per triangle (throws luxel::Error if not,
+    /// or if `pieces` describes another number of triangles).
+    explicit TriangleSampler(std::vector<glm::vec3> triangles,
+                             std::shared_ptr<const EmissionPieces> pieces = nullptr);
 
     struct Sample {
         glm::vec3 point{0.0f};
         glm::vec3 normal{0.0f};  ///< unit normal of the emitting side (zero for a degenerate one)
         std::size_t triangle = 0;
+        std::uint32_t piece = 0;
+        /// Probability density of this point per m^2 of the light (0: nothing to sample).
+        double density = 0.0;
     };
-    /// A point uniformly distributed over the total area: p.x picks the triangle by area and,
-    /// rescaled, joins p.y to place the point (folded into the triangle).
+    /// A point: p.x picks the triangle (or piece) and, rescaled, joins p.y to place the point
+    /// uniformly within it (folded into the triangle).
     [[nodiscard]] Sample sample(const glm::dvec2& p) const;
+    /// The density per m^2 with which sample() picks a point of `piece` of `triangle`.
+    [[nodiscard]] double density(std::size_t triangle, std::uint32_t piece) const;
+    /// The barycentric (s, q) of a point on `triangle` (projected onto its plane) and the piece
+    /// that holds it.
+    [[nodiscard]] std::uint32_t piece_at(std::size_t triangle, const glm::vec3& point) const;
     [[nodiscard]] double area() const { return area_; }
     [[nodiscard]] std::size_t size() const { return normals_.size(); }
     [[nodiscard]] const std::vector<glm::vec3>& vertices() const { return vertices_; }
@@ -61,13 +86,19 @@ class TriangleSampler {
   private:
     std::vector<glm::vec3> vertices_;
     std::vector<glm::vec3> normals_;
-    std::vector<double> cdf_;  // cumulative area, normalised to 1
+    std::vector<double> triangle_area_;
+    std::shared_ptr<const EmissionPieces> pieces_;
+    // Cumulative area (or, with pieces, area x radiance per piece), normalised to 1.
+    std::vector<double> cdf_;
+    std::vector<std::uint32_t> piece_triangle_;  // with pieces: the triangle of each piece
     double area_ = 0.0;
+    double weighted_area_ = 0.0;  // with pieces: sum of area x radiance
 };
 
 /// Maps QMC samples to photons for one light. Every photon of a light carries power
 /// total_power() / photon_count (times the spot falloff at its direction), so the photons of a
-/// light sum to its flux exactly.
+/// light sum to its flux exactly; an area light with pieces emits by power instead, each photon
+/// pi L / (density x photon_count), equal in every piece of one colour.
 class PhotonEmitter {
   public:
     PhotonEmitter(LightSource light, const BoundingSphere& scene_bounds);

@@ -57,6 +57,12 @@ struct ReferenceLight {
     [[nodiscard]] bool is_delta() const { return source.kind != LightKind::Area; }
 };
 
+/// Where a ray met an area light: the light and the triangle of its LightSource::triangles.
+struct EmitterHit {
+    std::int32_t light = -1;  ///< -1: not an emitter
+    std::uint32_t triangle = 0;
+};
+
 class ReferenceScene {
   public:
     /// `rays` must outlive the scene and stay unchanged (committed) while it is used.
@@ -86,8 +92,16 @@ class ReferenceScene {
     /// Every texel's area, in global texel order.
     [[nodiscard]] std::vector<double> texel_areas() const;
 
-    /// The light whose emitting triangle `hit` is (front or back), or -1.
-    [[nodiscard]] std::int32_t emitter_of(const RayHit& hit) const;
+    /// The light (and its triangle) whose emitting triangle `hit` is (front or back); light -1
+    /// when none.
+    [[nodiscard]] EmitterHit emitter_of(const RayHit& hit) const;
+    /// The radiance W/(m^2 sr) an area light emits at a hit on it, and the density per m^2 with
+    /// which its sampler picks that point (for weighing the two strategies).
+    struct Emission {
+        glm::vec3 radiance{0.0f};
+        double density = 0.0;
+    };
+    [[nodiscard]] Emission emission_at(const EmitterHit& emitter, const glm::vec3& point) const;
     /// The global texel a hit's light-map UV falls into, or -1 (surface without a light map,
     /// or a UV outside the surface's texels).
     [[nodiscard]] std::int64_t texel_at(std::int32_t surface, const glm::vec2& lightmap_uv) const;
@@ -111,7 +125,7 @@ class ReferenceScene {
     /// Per surface slot: page texel (y * size + x) -> global texel index.
     std::vector<std::unordered_map<std::int64_t, std::uint32_t>> texel_lookup_;
     /// (object << 32 | triangle) -> light index, for area lights' triangles.
-    std::unordered_map<std::uint64_t, std::int32_t> emitters_;
+    std::unordered_map<std::uint64_t, EmitterHit> emitters_;
     std::vector<BoundingSphere> specular_;
     BoundingSphere bounds_;
 };
