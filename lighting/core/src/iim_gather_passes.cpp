@@ -456,9 +456,13 @@ void IimGatherPasses::begin_filter(std::uint32_t surface) {
             noise.clear();
         }
     }
-    filters_[surface] =
+    auto filter =
         std::make_unique<IimPassFilter>(mapped.texels.texels, std::move(values), std::move(noise),
                                         settings_.iim_filter_radius, sigmas);
+    if (state.local) {
+        filter->restrict_to(state.subset);
+    }
+    filters_[surface] = std::move(filter);
     state.irradiance.clear();
     state.irradiance.shrink_to_fit();
 }
@@ -494,7 +498,11 @@ void IimGatherPasses::finish_pass(std::uint32_t surface, double now_seconds) {
             }
         }
     }
-    for (std::size_t i = 0; i < texels.size() && i < filtered.size(); ++i) {
+    // The filter's targets: every texel, or after a local pass the ones whose value moved.
+    for (const std::uint32_t i : filter.targets()) {
+        if (i >= texels.size() || i >= filtered.size()) {
+            continue;
+        }
         const glm::vec3 e = filtered[i];
         const glm::vec3 value = mapped.content == IimContent::Irradiance
                                     ? e
@@ -503,7 +511,10 @@ void IimGatherPasses::finish_pass(std::uint32_t surface, double now_seconds) {
     }
     // Fill the padding so bilinear lookups at the border hold.
     const int size = page.current.size;
-    for (std::size_t i = 0; i < texels.size(); ++i) {
+    for (const std::uint32_t i : filter.targets()) {
+        if (i >= texels.size()) {
+            continue;
+        }
         const SurfaceTexel& texel = texels[i];
         for (int dy = -1; dy <= 1; ++dy) {
             for (int dx = -1; dx <= 1; ++dx) {
@@ -518,10 +529,12 @@ void IimGatherPasses::finish_pass(std::uint32_t surface, double now_seconds) {
         }
     }
     const glm::ivec4 bounds = filter.bounds();
-    const int left = std::max(bounds.x - 1, 0);
-    const int top = std::max(bounds.y - 1, 0);
-    page.current.mark_changed(
-        {left, top, std::min(bounds.z + 2, size) - left, std::min(bounds.w + 2, size) - top});
+    if (bounds.z >= bounds.x) {
+        const int left = std::max(bounds.x - 1, 0);
+        const int top = std::max(bounds.y - 1, 0);
+        page.current.mark_changed(
+            {left, top, std::min(bounds.z + 2, size) - left, std::min(bounds.w + 2, size) - top});
+    }
     // Done refining or not, the means stay (fold_pass says why).
     refinement.passes_averaged = state.passes_when_done;
     state.in_progress = false;

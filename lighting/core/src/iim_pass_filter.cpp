@@ -37,13 +37,54 @@ IimPassFilter::IimPassFilter(const std::vector<SurfaceTexel>& texels, std::vecto
                static_cast<std::size_t>(positions_[i].x - x0_)] = static_cast<std::int32_t>(i);
     }
     filtered_.assign(count, glm::vec3(0.0f));
+    targets_.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        targets_[i] = static_cast<std::uint32_t>(i);
+    }
+    bounds_ = {x0_, y0_, x0_ + width_ - 1, y0_ + height_ - 1};
+}
+
+void IimPassFilter::restrict_to(const std::vector<std::uint32_t>& changed) {
+    std::vector<std::uint8_t> chosen(values_.size(), 0);
+    targets_.clear();
+    bounds_ = {0, 0, -1, -1};
+    for (const std::uint32_t i : changed) {
+        if (i >= positions_.size()) {
+            continue;
+        }
+        for (int dy = -radius_; dy <= radius_; ++dy) {
+            for (int dx = -radius_; dx <= radius_; ++dx) {
+                const int x = positions_[i].x - x0_ + dx;
+                const int y = positions_[i].y - y0_ + dy;
+                if (x < 0 || y < 0 || x >= width_ || y >= height_) {
+                    continue;
+                }
+                const std::int32_t j =
+                    index_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
+                           static_cast<std::size_t>(x)];
+                if (j < 0 || chosen[static_cast<std::size_t>(j)] != 0) {
+                    continue;
+                }
+                chosen[static_cast<std::size_t>(j)] = 1;
+                targets_.push_back(static_cast<std::uint32_t>(j));
+                const glm::ivec2 p = positions_[static_cast<std::size_t>(j)];
+                bounds_ = bounds_.z < bounds_.x
+                              ? glm::ivec4(p, p)
+                              : glm::ivec4(glm::min(glm::ivec2(bounds_), p),
+                                           glm::max(glm::ivec2(bounds_.z, bounds_.w), p));
+            }
+        }
+    }
+    std::sort(targets_.begin(), targets_.end());
+    cursor_ = 0;
 }
 
 std::size_t IimPassFilter::run(std::size_t max_texels) {
-    const std::size_t end = std::min(values_.size(), cursor_ + max_texels);
+    const std::size_t end = std::min(targets_.size(), cursor_ + max_texels);
     const bool noise_aware = !noise_.empty() && sigmas_ > 0.0;
     const int radius = radius_;
-    for (std::size_t i = cursor_; i < end; ++i) {
+    for (std::size_t t = cursor_; t < end; ++t) {
+        const std::size_t i = targets_[t];
         glm::dvec3 sum(0.0);
         double weights = 0.0;
         for (int dy = -radius; dy <= radius; ++dy) {

@@ -26,15 +26,23 @@ class IimPassFilter {
     IimPassFilter(const std::vector<SurfaceTexel>& texels, std::vector<glm::vec3> values,
                   std::vector<double> noise, int radius, double noise_sigmas);
 
+    /// Filters only the texels whose filtered value can differ from the last pass's: those of
+    /// `changed` (indices into the texels) and their neighbours within the radius. What a local
+    /// pass needs: the other texels' means did not change, so neither did their filtered
+    /// values, and filtering the whole of a large floor for a few hundred texels next to a
+    /// moved crate held the footprint dark for frames at a small budget (docs/RESULTS.md).
+    void restrict_to(const std::vector<std::uint32_t>& changed);
+    /// The texels filtered, in order: every texel, or those restrict_to() chose.
+    [[nodiscard]] const std::vector<std::uint32_t>& targets() const { return targets_; }
+
     /// Filters up to `max_texels` more texels; returns how many.
     std::size_t run(std::size_t max_texels);
-    [[nodiscard]] bool done() const { return cursor_ >= values_.size(); }
-    /// The filtered irradiance per texel (complete once done()).
+    [[nodiscard]] bool done() const { return cursor_ >= targets_.size(); }
+    /// The filtered irradiance per texel (complete for the targets once done()).
     [[nodiscard]] const std::vector<glm::vec3>& filtered() const { return filtered_; }
-    /// The texels' bounding rectangle on the page (x0, y0, x1, y1 inclusive).
-    [[nodiscard]] glm::ivec4 bounds() const {
-        return {x0_, y0_, x0_ + width_ - 1, y0_ + height_ - 1};
-    }
+    /// The targets' bounding rectangle on the page (x0, y0, x1, y1 inclusive; empty when
+    /// x1 < x0).
+    [[nodiscard]] glm::ivec4 bounds() const { return bounds_; }
 
   private:
     std::vector<glm::ivec2> positions_;  ///< texel (x, y) on the page
@@ -42,6 +50,8 @@ class IimPassFilter {
     std::vector<double> noise_;
     std::vector<std::int32_t> index_;  ///< texel index by position in the bounds; -1: none
     std::vector<glm::vec3> filtered_;
+    std::vector<std::uint32_t> targets_;
+    glm::ivec4 bounds_{0, 0, -1, -1};
     int x0_ = 0;
     int y0_ = 0;
     int width_ = 0;

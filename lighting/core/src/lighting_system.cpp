@@ -276,8 +276,17 @@ void LightingSystem::queue_map_units() {
             const GatherPassState& state = maps_->gather_state(request.surface);
             const bool local = state.in_progress ? state.local : state.changed_count > 0;
             head = head && local;
-            // A local pass gathers only its texels: one slice of it is usually all of it.
-            local_slices += head ? 1 : 0;
+            if (head) {
+                // All of a local pass's slices are boosted, and one more to finish its filter:
+                // boosting only its first (as before) left a pass of a few hundred texels
+                // behind the retraces for ten frames at 4 ms (docs/RESULTS.md).
+                const std::size_t left =
+                    state.in_progress
+                        ? (state.subset.size() > state.cursor ? state.subset.size() - state.cursor
+                                                              : 0)
+                        : state.changed_count;
+                local_slices += slices(left, texels_per_unit) + 1;
+            }
             gather_slices += count;
         }
     }
