@@ -44,6 +44,16 @@ IimPassFilter::IimPassFilter(const std::vector<SurfaceTexel>& texels, std::vecto
     bounds_ = {x0_, y0_, x0_ + width_ - 1, y0_ + height_ - 1};
 }
 
+std::int32_t IimPassFilter::neighbour(std::size_t i, int dx, int dy) const {
+    const int x = positions_[i].x - x0_ + dx;
+    const int y = positions_[i].y - y0_ + dy;
+    if (x < 0 || y < 0 || x >= width_ || y >= height_) {
+        return -1;
+    }
+    return index_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
+                  static_cast<std::size_t>(x)];
+}
+
 void IimPassFilter::restrict_to(const std::vector<std::uint32_t>& changed) {
     std::vector<std::uint8_t> chosen(values_.size(), 0);
     targets_.clear();
@@ -54,14 +64,7 @@ void IimPassFilter::restrict_to(const std::vector<std::uint32_t>& changed) {
         }
         for (int dy = -radius_; dy <= radius_; ++dy) {
             for (int dx = -radius_; dx <= radius_; ++dx) {
-                const int x = positions_[i].x - x0_ + dx;
-                const int y = positions_[i].y - y0_ + dy;
-                if (x < 0 || y < 0 || x >= width_ || y >= height_) {
-                    continue;
-                }
-                const std::int32_t j =
-                    index_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-                           static_cast<std::size_t>(x)];
+                const std::int32_t j = neighbour(i, dx, dy);
                 if (j < 0 || chosen[static_cast<std::size_t>(j)] != 0) {
                     continue;
                 }
@@ -89,29 +92,22 @@ std::size_t IimPassFilter::run(std::size_t max_texels) {
         double weights = 0.0;
         for (int dy = -radius; dy <= radius; ++dy) {
             for (int dx = -radius; dx <= radius; ++dx) {
-                const int x = positions_[i].x - x0_ + dx;
-                const int y = positions_[i].y - y0_ + dy;
-                if (x < 0 || y < 0 || x >= width_ || y >= height_) {
-                    continue;
-                }
-                const std::int32_t j =
-                    index_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-                           static_cast<std::size_t>(x)];
+                const std::int32_t j = neighbour(i, dx, dy);
                 if (j < 0) {
                     continue;
                 }
-                const auto neighbour = static_cast<std::size_t>(j);
+                const auto other = static_cast<std::size_t>(j);
                 double w =
                     static_cast<double>((radius + 1 - std::abs(dx)) * (radius + 1 - std::abs(dy)));
-                if (noise_aware && neighbour != i) {
-                    const glm::dvec3 d = glm::dvec3(values_[neighbour]) - glm::dvec3(values_[i]);
+                if (noise_aware && other != i) {
+                    const glm::dvec3 d = glm::dvec3(values_[other]) - glm::dvec3(values_[i]);
                     const double difference = glm::dot(d, d);
-                    const double spread = sigmas_ * sigmas_ * (noise_[i] + noise_[neighbour]);
+                    const double spread = sigmas_ * sigmas_ * (noise_[i] + noise_[other]);
                     // No noise at all (e.g. two black texels): any difference is real.
                     w *= spread > 0.0 ? std::exp(-0.5 * difference / spread)
                                       : (difference > 0.0 ? 0.0 : 1.0);
                 }
-                sum += w * glm::dvec3(values_[neighbour]);
+                sum += w * glm::dvec3(values_[other]);
                 weights += w;
             }
         }

@@ -45,6 +45,9 @@ class IimPassFilter {
     [[nodiscard]] glm::ivec4 bounds() const { return bounds_; }
 
   private:
+    /// The texel at (dx, dy) from texel i on the page, or -1 (none, or another surface's).
+    [[nodiscard]] std::int32_t neighbour(std::size_t i, int dx, int dy) const;
+
     std::vector<glm::ivec2> positions_;  ///< texel (x, y) on the page
     std::vector<glm::vec3> values_;
     std::vector<double> noise_;

@@ -23,9 +23,14 @@
 # Blender is Z up; its exporter turns the level into glTF's Y up. In glTF coordinates the room
 # spans x in [-2, 2], y in [0, 2.6], z in [-1.5, 1.5]; the sign lies in the plane z = -1.48,
 # x in [-0.6, 0.6], y in [1.0, 1.6], facing +z; the camera stands at (0, 1.75, 1.4).
+import os
 import sys
 
 import bpy
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                "support"))
+from blender_common import material, plane  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
 if len(argv) != 1:
@@ -62,32 +67,11 @@ def byte_image(name, width, height, texel):
     return image
 
 
-def material(name, rgb):
-    mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
-    bsdf = mat.node_tree.nodes["Principled BSDF"]
-    bsdf.inputs["Base Color"].default_value = (rgb[0], rgb[1], rgb[2], 1.0)
-    bsdf.inputs["Roughness"].default_value = 1.0
-    bsdf.inputs["Specular"].default_value = 0.0
-    return mat
-
-
 def image_node(mat, image, interpolation):
     node = mat.node_tree.nodes.new("ShaderNodeTexImage")
     node.image = image
     node.interpolation = interpolation
     return node
-
-
-def plane(name, size, location, rotation, mat):
-    bpy.ops.mesh.primitive_plane_add(size=1.0, location=location, rotation=rotation)
-    obj = bpy.context.active_object
-    obj.name = name
-    obj.data.name = name
-    obj.scale = (size[0], size[1], 1.0)
-    bpy.ops.object.transform_apply(location=False, rotation=True, scale=True)
-    obj.data.materials.append(mat)
-    return obj
 
 
 grey = material("grey plaster", (0.6, 0.6, 0.6))

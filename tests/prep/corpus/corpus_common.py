@@ -3,9 +3,14 @@
 # Each scene is made as a user would make it in Blender and written by Blender's own glTF
 # exporter, so luxel-prep is tested on meshes luxel did not write.
 import math
+import os
 import sys
 
 import bpy
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                "support"))
+from blender_common import material  # noqa: E402,F401
 
 
 def output_path(script):
@@ -16,16 +21,6 @@ def output_path(script):
         sys.exit(2)
     bpy.ops.wm.read_factory_settings(use_empty=True)
     return argv[0]
-
-
-def material(name, rgb):
-    mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
-    bsdf = mat.node_tree.nodes["Principled BSDF"]
-    bsdf.inputs["Base Color"].default_value = (rgb[0], rgb[1], rgb[2], 1.0)
-    bsdf.inputs["Roughness"].default_value = 1.0
-    bsdf.inputs["Specular"].default_value = 0.0
-    return mat
 
 
 def finish(obj, name, mat, smooth=False):

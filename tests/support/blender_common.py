@@ -1,0 +1,29 @@
+# Shared by every Blender script that makes a test level (tests/levels/blender/*.py) or a
+# luxel-prep corpus scene (tests/prep/corpus/corpus_common.py): a diffuse material and a plane,
+# made as a user makes them in Blender, so Blender's own glTF exporter writes what it writes for
+# anyone. Import it after putting tests/support on sys.path.
+import bpy
+
+
+def material(name, rgb):
+    # A Principled BSDF of base colour rgb, fully rough and without specular: diffuse.
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    bsdf = mat.node_tree.nodes["Principled BSDF"]
+    bsdf.inputs["Base Color"].default_value = (rgb[0], rgb[1], rgb[2], 1.0)
+    bsdf.inputs["Roughness"].default_value = 1.0
+    bsdf.inputs["Specular"].default_value = 0.0
+    return mat
+
+
+def plane(name, size, location, rotation, mat):
+    # A size[0] x size[1] plane, turned and placed, with its transform applied (the exporter
+    # then writes world-space vertices) and its material.
+    bpy.ops.mesh.primitive_plane_add(size=1.0, location=location, rotation=rotation)
+    obj = bpy.context.active_object
+    obj.name = name
+    obj.data.name = name
+    obj.scale = (size[0], size[1], 1.0)
+    bpy.ops.object.transform_apply(location=False, rotation=True, scale=True)
+    obj.data.materials.append(mat)
+    return obj
