@@ -18,20 +18,21 @@ std::int64_t wrap(std::int64_t value, std::int64_t size) {
     return r < 0 ? r + size : r;
 }
 
-/// The estimate for triangles too large to clip texel by texel: kMeanStrata^2 points of the R2
+/// The estimate for triangles too large to clip texel by texel: `points` points of the R2
 /// low-discrepancy sequence (Roberts' generalised golden ratio), folded into the triangle. Not a
 /// regular grid: a grid's spacing can alias with a texture repeated across the triangle (a
 /// tiled floor) and pick the same few texels in every tile.
 glm::vec3 stratified_mean(const LinearImage& image, const glm::dvec2& a, const glm::dvec2& b,
-                          const glm::dvec2& c) {
+                          const glm::dvec2& c, std::int64_t points) {
     constexpr double kPlastic = 1.32471795724474602596;  // x^3 = x + 1
     constexpr double kStepU = 1.0 / kPlastic;
     constexpr double kStepV = 1.0 / (kPlastic * kPlastic);
-    constexpr int kPoints = kMeanStrata * kMeanStrata;
+    const std::int64_t count = std::max<std::int64_t>(points, 1);
     glm::dvec3 sum(0.0);
-    for (int i = 0; i < kPoints; ++i) {
-        double s = std::fmod(0.5 + kStepU * i, 1.0);
-        double q = std::fmod(0.5 + kStepV * i, 1.0);
+    for (std::int64_t i = 0; i < count; ++i) {
+        const auto x = static_cast<double>(i);
+        double s = std::fmod(0.5 + kStepU * x, 1.0);
+        double q = std::fmod(0.5 + kStepV * x, 1.0);
         if (s + q > 1.0) {
             s = 1.0 - s;
             q = 1.0 - q;
@@ -40,7 +41,7 @@ glm::vec3 stratified_mean(const LinearImage& image, const glm::dvec2& a, const g
         sum += glm::dvec3(image.wrapped(static_cast<std::int64_t>(std::floor(uv.x)),
                                         static_cast<std::int64_t>(std::floor(uv.y))));
     }
-    return glm::vec3(sum / static_cast<double>(kPoints));
+    return glm::vec3(sum / static_cast<double>(count));
 }
 
 /// The linear value of each 8-bit sRGB code, computed once.
@@ -88,8 +89,14 @@ glm::vec3 LinearImage::wrapped(std::int64_t x, std::int64_t y) const {
     return {table[texel[0]], table[texel[1]], table[texel[2]]};
 }
 
-glm::vec3 mean_over_uv_triangle(const LinearImage& image, glm::dvec2 a, glm::dvec2 b,
-                                glm::dvec2 c) {
+std::int64_t texels_per_triangle(std::size_t triangles) {
+    const auto share =
+        kMaxTexelsPerCall / static_cast<std::int64_t>(std::max<std::size_t>(triangles, 1));
+    return std::clamp(share, kMinTexelsPerTriangle, kMaxExactTexels);
+}
+
+glm::vec3 mean_over_uv_triangle(const LinearImage& image, glm::dvec2 a, glm::dvec2 b, glm::dvec2 c,
+                                std::int64_t budget) {
     if (image.empty()) {
         return glm::vec3(0.0f);
     }
@@ -110,8 +117,8 @@ glm::vec3 mean_over_uv_triangle(const LinearImage& image, glm::dvec2 a, glm::dve
     }
     const double columns = std::floor(high.x) - std::floor(low.x) + 1.0;
     const double rows = std::floor(high.y) - std::floor(low.y) + 1.0;
-    if (columns * rows > static_cast<double>(kMaxExactTexels)) {
-        return stratified_mean(image, a, b, c);
+    if (columns * rows > static_cast<double>(std::max<std::int64_t>(budget, 1))) {
+        return stratified_mean(image, a, b, c, budget);
     }
     // The texel squares are taken relative to the triangle's first texel, so the clipping
     // stays exact far from the origin (UVs of a tiled surface can be large).
@@ -163,11 +170,12 @@ std::vector<glm::vec3> triangle_emission(const Primitive& primitive, const Mater
     if (texels.empty() || primitive.texcoords0.size() != primitive.positions.size()) {
         return out;
     }
+    const std::int64_t budget = texels_per_triangle(out.size());
     for (std::size_t t = 0; t < out.size(); ++t) {
         const auto uv = [&](std::size_t k) {
             return glm::dvec2(primitive.texcoords0[primitive.indices[3 * t + k]]);
         };
-        out[t] = radiance * mean_over_uv_triangle(texels, uv(0), uv(1), uv(2));
+        out[t] = radiance * mean_over_uv_triangle(texels, uv(0), uv(1), uv(2), budget);
     }
     return out;
 }

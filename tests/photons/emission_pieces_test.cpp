@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <random>
 #include <vector>
@@ -14,6 +16,8 @@
 #include "luxel/lighting/core/emission_pieces.hpp"
 #include "luxel/lighting/core/light_source.hpp"
 #include "luxel/runtime/error.hpp"
+#include "luxel/runtime/image.hpp"
+#include "temp_dir.hpp"
 
 namespace {
 
@@ -116,6 +120,65 @@ TEST(EmissionPieces, SamplerDensityIsZeroOnDarkPiecesAndIntegratesToOne) {
     EXPECT_THROW(TriangleSampler({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}},
                                  light.pieces),
                  luxel::Error);
+}
+
+/// A 64 x 64 PNG checker of 8 x 8 black and white blocks: half white.
+std::vector<std::uint8_t> checker_png() {
+    luxel::testing::TempDir dir("luxel-pieces");
+    luxel::Image image(64, 64, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    for (int y = 0; y < 64; ++y) {
+        for (int x = 0; x < 64; ++x) {
+            if (((x / 8) + (y / 8)) % 2 == 0) {
+                image.set_pixel(x, y, glm::vec4(1.0f));
+            }
+        }
+    }
+    luxel::write_png(dir / "checker.png", image);
+    std::ifstream stream(dir / "checker.png", std::ios::binary);
+    return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
+}
+
+TEST(EmissionPieces, HostileUvsOnManyTrianglesStayWithinThePieceBudget) {
+    // 20,000 triangles whose UVs each tile the texture a million times: every one wants the
+    // finest level. The pieces stay within kMaxPieces, each piece's mean within its share of
+    // the work (nothing here may take long: the test's own timeout is the guard), and the
+    // radiance stays finite and within the texture's range.
+    luxel::scene::Scene scene;
+    scene.images.push_back({"checker", "image/png", checker_png()});
+    luxel::scene::Material material;
+    material.emissive = glm::vec3(1.0f);
+    material.emissive_image = 0;
+    scene.materials.push_back(material);
+    luxel::scene::Primitive primitive;
+    primitive.material = 0;
+    constexpr std::uint32_t kTriangles = 20000;
+    for (std::uint32_t t = 0; t < kTriangles; ++t) {
+        const auto x = static_cast<float>(t);
+        primitive.positions.insert(primitive.positions.end(),
+                                   {{x, 0.0f, 0.0f}, {x + 1.0f, 0.0f, 0.0f}, {x, 1.0f, 0.0f}});
+        primitive.texcoords0.insert(primitive.texcoords0.end(),
+                                    {{0.0f, 0.0f}, {1000.0f, 0.0f}, {0.0f, 1000.0f}});
+        primitive.indices.insert(primitive.indices.end(), {3 * t, 3 * t + 1, 3 * t + 2});
+    }
+    scene.meshes.push_back({"hostile", {primitive}});
+    const EmissionPieces pieces = EmissionPieces::of_mesh(scene, scene.meshes[0]);
+    ASSERT_EQ(pieces.triangle_count(), kTriangles);
+    EXPECT_LE(pieces.piece_count(), EmissionPieces::kMaxPieces);
+    double sum = 0.0;
+    for (std::size_t t = 0; t < pieces.triangle_count(); ++t) {
+        for (std::uint32_t k = 0; k < pieces.level(t) * pieces.level(t); ++k) {
+            const glm::vec3& r = pieces.radiance(t, k);
+            for (int c = 0; c < 3; ++c) {
+                ASSERT_TRUE(std::isfinite(r[c]));
+                ASSERT_GE(r[c], 0.0f);
+                ASSERT_LE(r[c], 1.0f);
+            }
+            sum += r.x;
+        }
+    }
+    // On average the texture's mean, 1/2, within what a few dozen points per piece estimate.
+    const double mean = sum / static_cast<double>(pieces.piece_count());
+    EXPECT_NEAR(mean, 0.5, 0.15);
 }
 
 }  // namespace

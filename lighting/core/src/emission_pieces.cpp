@@ -79,10 +79,9 @@ EmissionPieces EmissionPieces::of_mesh(const scene::Scene& scene, const scene::M
         const scene::Primitive* primitive;
         const scene::Material* material;
         scene::LinearImage texels;
-        std::vector<double> texel_area;  // per triangle, in texel squares (textured only)
     };
     std::vector<Part> parts;
-    double wanted = 0.0;
+    std::vector<std::uint32_t> levels;  // wanted, per emissive triangle in order
     for (const scene::Primitive& primitive : mesh.primitives) {
         if (primitive.material < 0) {
             continue;
@@ -92,7 +91,7 @@ EmissionPieces EmissionPieces::of_mesh(const scene::Scene& scene, const scene::M
         if (!material.is_emissive()) {
             continue;
         }
-        Part part{&primitive, &material, {}, {}};
+        Part part{&primitive, &material, {}};
         if (primitive.texcoords0.size() == primitive.positions.size()) {
             part.texels = scene::emissive_texels(scene, material);
         }
@@ -109,28 +108,39 @@ EmissionPieces EmissionPieces::of_mesh(const scene::Scene& scene, const scene::M
                 if (!std::isfinite(texels)) {
                     texels = 0.0;
                 }
-                part.texel_area.push_back(texels);
             }
-            const double level = wanted_level(texels);
-            wanted += level * level;
+            levels.push_back(static_cast<std::uint32_t>(wanted_level(texels)));
         }
         parts.push_back(std::move(part));
     }
-    // Over the budget every textured triangle's pieces grow by the same factor.
-    const double shrink =
-        wanted > static_cast<double>(kMaxPieces) ? static_cast<double>(kMaxPieces) / wanted : 1.0;
+    // Over kMaxPieces the finest triangles are cut less: the largest cap on the level that
+    // keeps the sum of level^2 within it (one piece per triangle at least, whatever it costs).
+    const auto total_at = [&levels](std::uint32_t cap) {
+        std::size_t total = 0;
+        for (const std::uint32_t level : levels) {
+            const std::size_t n = std::min(level, cap);
+            total += n * n;
+        }
+        return total;
+    };
+    std::uint32_t cap = kMaxLevel;
+    while (cap > 1 && total_at(cap) > kMaxPieces) {
+        cap = std::max<std::uint32_t>(1, cap * 3 / 4);
+    }
+    // Each piece's mean gets its share of the work budget (scene/texture_mean.hpp).
+    const std::int64_t budget = scene::texels_per_triangle(total_at(cap));
     EmissionPieces pieces;
+    std::size_t next = 0;
     std::vector<glm::vec3> radiance;
     for (const Part& part : parts) {
         const scene::Primitive& primitive = *part.primitive;
         const glm::vec3 factor = part.material->emitted_radiance();
         for (std::size_t t = 0; t < primitive.triangle_count(); ++t) {
+            const std::uint32_t level = std::min(levels[next++], cap);
             if (part.texels.empty()) {
                 pieces.add(1, {factor});
                 continue;
             }
-            const auto level =
-                static_cast<std::uint32_t>(wanted_level(part.texel_area[t] * shrink));
             const glm::dvec2 a = glm::dvec2(primitive.texcoords0[primitive.indices[3 * t]]);
             const glm::dvec2 b = glm::dvec2(primitive.texcoords0[primitive.indices[3 * t + 1]]);
             const glm::dvec2 c = glm::dvec2(primitive.texcoords0[primitive.indices[3 * t + 2]]);
@@ -141,7 +151,7 @@ EmissionPieces EmissionPieces::of_mesh(const scene::Scene& scene, const scene::M
                     return a + p.x * (b - a) + p.y * (c - a);
                 };
                 radiance[k] = factor * scene::mean_over_uv_triangle(part.texels, uv(sq[0]),
-                                                                    uv(sq[1]), uv(sq[2]));
+                                                                    uv(sq[1]), uv(sq[2]), budget);
             }
             pieces.add(level, radiance);
         }

@@ -34,19 +34,27 @@ class LinearImage {
     std::vector<glm::vec3> linear_;  // only for the values constructor
 };
 
-/// Over this many texel squares a triangle's mean is estimated from kMeanStrata^2 low-discrepancy
-/// points instead of clipped exactly: a triangle whose UVs tile a texture many times costs no
-/// more than a small one, whatever a file's UVs say.
+/// The most texel lookups one mean_over_uv_triangle call makes by default: a triangle whose
+/// bounding box spans more texel squares than its budget (a floor tiling a texture many times)
+/// is estimated from that many low-discrepancy points instead of clipped exactly, so the cost
+/// per triangle is bounded whatever a file's UVs say.
 inline constexpr std::int64_t kMaxExactTexels = 4096;
-inline constexpr int kMeanStrata = 64;
+/// What all the triangles of one call to triangle_emission (or one emitter's pieces) may cost
+/// together, in texel lookups: each gets its share, at least kMinTexelsPerTriangle.
+inline constexpr std::int64_t kMaxTexelsPerCall = std::int64_t{1} << 22;
+inline constexpr std::int64_t kMinTexelsPerTriangle = 64;
+
+/// The per-triangle budget for `triangles` triangles sharing kMaxTexelsPerCall.
+[[nodiscard]] std::int64_t texels_per_triangle(std::size_t triangles);
 
 /// The mean of `image` over the triangle with UVs (a, b, c), each texel constant over its
 /// square (the renderer filters between texels, which over a region wider than a texel changes
 /// nothing on average): the texels' values weighted by the triangle's area in each
-/// (triangle_area_in_texel), with REPEAT wrap. A triangle with no UV area: the texel under a.
-/// Non-finite UVs: 0.
+/// (triangle_area_in_texel), with REPEAT wrap, when its bounding box spans at most `budget`
+/// texel squares; else the mean of `budget` low-discrepancy points over it. A triangle with no
+/// UV area: the texel under a. Non-finite UVs: 0.
 [[nodiscard]] glm::vec3 mean_over_uv_triangle(const LinearImage& image, glm::dvec2 a, glm::dvec2 b,
-                                              glm::dvec2 c);
+                                              glm::dvec2 c, std::int64_t budget = kMaxExactTexels);
 
 /// The image a material's emissive texture samples, linear; empty when it has none. Throws
 /// luxel::Error naming the scene's file, the material and the image if it does not decode.
