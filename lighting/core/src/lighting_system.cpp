@@ -276,17 +276,12 @@ void LightingSystem::queue_map_units() {
             const GatherPassState& state = maps_->gather_state(request.surface);
             const bool local = state.in_progress ? state.local : state.changed_count > 0;
             head = head && local;
-            if (head) {
-                // All of a local pass's slices are boosted, and one more to finish its filter:
-                // boosting only its first (as before) left a pass of a few hundred texels
-                // behind the retraces for ten frames at 4 ms (docs/RESULTS.md).
-                const std::size_t left =
-                    state.in_progress
-                        ? (state.subset.size() > state.cursor ? state.subset.size() - state.cursor
-                                                              : 0)
-                        : state.changed_count;
-                local_slices += slices(left, texels_per_unit) + 1;
-            }
+            // A local pass gathers only its texels: one slice of it is usually all of it. Boosting
+            // every slice of a local pass was tried (it showed crate-footprint's pass a few frames
+            // sooner at 4 ms) and reverted: a level whose objects keep moving keeps local passes
+            // queued, and on a slow machine (the sanitizer build, or a 0.3 ms budget) their
+            // boosted units took every frame's budget and no photon was traced in 60 frames.
+            local_slices += head ? 1 : 0;
             gather_slices += count;
         }
     }
