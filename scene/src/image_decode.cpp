@@ -178,16 +178,24 @@ DecodedImage decode_image(const Image& image, int index) {
     return out;
 }
 
+const std::array<float, 256>& srgb8_to_linear() {
+    static const std::array<float, 256> table = [] {
+        std::array<float, 256> t{};
+        for (std::size_t v = 0; v < t.size(); ++v) {
+            t[v] = srgb_to_linear(static_cast<float>(v) / 255.0f);
+        }
+        return t;
+    }();
+    return table;
+}
+
 glm::vec3 mean_linear_color(const DecodedImage& image) {
     const std::size_t texels = static_cast<std::size_t>(std::max(image.width, 0)) *
                                static_cast<std::size_t>(std::max(image.height, 0));
     if (texels == 0 || image.rgba.size() < texels * 4) {
         return glm::vec3(0.0f);
     }
-    std::array<double, 256> linear{};
-    for (std::size_t v = 0; v < linear.size(); ++v) {
-        linear[v] = srgb_to_linear(static_cast<float>(v) / 255.0f);
-    }
+    const std::array<float, 256>& linear = srgb8_to_linear();
     // Sums per row, then over rows: a 16384^2 image adds 2^28 terms, more than a float keeps
     // exactly, and the per-row split keeps each partial sum small even in double.
     glm::dvec3 total(0.0);

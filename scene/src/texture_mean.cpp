@@ -7,7 +7,6 @@
 #include <utility>
 
 #include "luxel/runtime/error.hpp"
-#include "luxel/runtime/tone_map.hpp"
 #include "luxel/scene/texel_coverage.hpp"
 
 namespace luxel::scene {
@@ -44,18 +43,6 @@ glm::vec3 stratified_mean(const LinearImage& image, const glm::dvec2& a, const g
     return glm::vec3(sum / static_cast<double>(count));
 }
 
-/// The linear value of each 8-bit sRGB code, computed once.
-const std::array<float, 256>& srgb_table() {
-    static const std::array<float, 256> table = [] {
-        std::array<float, 256> t{};
-        for (std::size_t v = 0; v < t.size(); ++v) {
-            t[v] = srgb_to_linear(static_cast<float>(v) / 255.0f);
-        }
-        return t;
-    }();
-    return table;
-}
-
 }  // namespace
 
 LinearImage::LinearImage(DecodedImage image) : image_(std::move(image)) {
@@ -84,7 +71,7 @@ glm::vec3 LinearImage::wrapped(std::int64_t x, std::int64_t y) const {
     if (!linear_.empty()) {
         return linear_[index];
     }
-    const std::array<float, 256>& table = srgb_table();
+    const std::array<float, 256>& table = srgb8_to_linear();
     const std::uint8_t* texel = image_.rgba.data() + 4 * index;
     return {table[texel[0]], table[texel[1]], table[texel[2]]};
 }

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -52,6 +53,10 @@ struct ImageSize {
 /// problem for empty data, bytes that are neither PNG nor JPEG, undecodable or truncated data,
 /// and sizes outside 1..kMaxImageEdge per edge.
 [[nodiscard]] DecodedImage decode_image(const Image& image, int index = -1);
+
+/// The linear value of each 8-bit sRGB code (IEC 61966-2-1), computed once: what
+/// mean_linear_color and scene::LinearImage read texels through.
+[[nodiscard]] const std::array<float, 256>& srgb8_to_linear();
 
 /// The mean linear colour: every texel's sRGB-encoded RGB decoded to linear (IEC 61966-2-1),
 /// then averaged. Alpha is ignored: luxel draws every material opaque. An empty image: 0.
