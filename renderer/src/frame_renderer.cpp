@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "fill_budget.hpp"
 #include "frame_lights.hpp"
 #include "frame_targets.hpp"
 #include "light_batches.hpp"
@@ -18,6 +19,7 @@
 #include "luxel/lighting/gpu/lightmap_textures.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/gl_state_guard.hpp"
+#include "luxel/runtime/log.hpp"
 #include "luxel/runtime/render_target.hpp"
 #include "luxel/runtime/shader_library.hpp"
 #include "mesh_cache.hpp"
@@ -85,6 +87,7 @@ struct FrameRenderer::Impl {
     MeshCache meshes;
     DrawList draws;
     ShadowMaps shadows;
+    std::uint64_t gbuffer_skipped = 0;  ///< draws the G-buffer's FillBudget left out, in all
     lighting::LightmapTextures lightmaps;
     SpecularCubeMaps cube_maps;
     PassTimer timer;
@@ -196,19 +199,22 @@ struct FrameRenderer::Impl {
         glDepthMask(GL_TRUE);
         const gl::Program& program = gbuffer_program;
         program.use();
-        program.set("u_view_projection", camera.projection * camera.view);
+        const glm::mat4 view_projection = camera.projection * camera.view;
+        program.set("u_view_projection", view_projection);
         program.set("u_camera", camera.position);
         std::size_t drawn = 0;
-        for (const DrawItem& item : draws.items) {
-            program.set("u_model", item.model);
-            program.set("u_normal_matrix", item.normal_matrix);
-            glBindVertexArray(item.mesh->vertex_array.id());
-            for (std::size_t i = item.first; i < item.first + item.count; ++i) {
-                const DrawPrimitive& primitive = draws.primitives[i];
-                const GpuPrimitive& range = *primitive.range;
-                if (range.index_count == 0) {
-                    continue;
-                }
+        // Geometry stacked on itself is left out past the budget, as in the shadow maps
+        // (fill_budget.hpp): a real level covers the frame a few times, not thousands.
+        FillBudget budget(static_cast<double>(targets.width) * static_cast<double>(targets.height));
+        draw_in_view(
+            draws, view_projection, targets.width, targets.height, budget,
+            [](const DrawItem&) { return true; },
+            [&](const DrawItem& item) {
+                program.set("u_model", item.model);
+                program.set("u_normal_matrix", item.normal_matrix);
+                glBindVertexArray(item.mesh->vertex_array.id());
+            },
+            [&](const DrawItem& item, const DrawPrimitive& primitive) {
                 const DrawMaterial& m = primitive.material;
                 cull_as_material(item, m);
                 program.set("u_albedo", m.albedo);
@@ -219,14 +225,17 @@ struct FrameRenderer::Impl {
                 program.set("u_specular", m.specular);
                 program.set("u_lightmap", m.lightmap);
                 program.set("u_double_sided", m.double_sided ? 1 : 0);
-                glDrawElementsBaseVertex(GL_TRIANGLES, range.index_count, GL_UNSIGNED_INT,
-                                         reinterpret_cast<const void*>(static_cast<std::uintptr_t>(
-                                             range.first_index * sizeof(std::uint32_t))),
-                                         range.base_vertex);
+                draw_primitive(*primitive.range);
                 ++drawn;
-            }
-        }
+            });
         counters.draws = drawn;
+        if (budget.skipped() > 0 && gbuffer_skipped == 0) {
+            log::warn("the frame's draws would cover about ", budget.wanted(), " of its ",
+                      targets.width * targets.height, " pixels (", FillBudget::kLayers,
+                      " layers allowed): the level stacks geometry on itself; ", budget.skipped(),
+                      " primitives are left out of the frame");
+        }
+        gbuffer_skipped += budget.skipped();
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_CULL_FACE);
         glFrontFace(GL_CCW);
@@ -393,6 +402,8 @@ struct FrameRenderer::Impl {
         previous_page_uploads = lightmaps.uploads();
         counters.specular_cube_maps = cube_maps.count();
         counters.specular_faces = cube_maps.faces_rendered();
+        counters.draws_over_fill_budget =
+            shadows.skipped_casters() + cube_maps.skipped_draws() + gbuffer_skipped;
         sync_own_caustics();
         const CausticInput external = caustics;
         if (terms.caustics && (caustic_stage || (caustics.texture == 0 && own_caustics))) {

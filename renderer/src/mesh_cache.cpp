@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 
 namespace luxel::renderer {
 namespace {
@@ -31,6 +32,39 @@ std::shared_ptr<const gl::Texture> texture_of(const std::shared_ptr<const scene:
         return nullptr;
     }
     return textures.get(source, image);
+}
+
+/// Sum of the primitive's triangle areas (object space, m^2).
+double triangle_area(const scene::Primitive& primitive) {
+    double area = 0.0;
+    const std::size_t count = primitive.positions.size();
+    for (std::size_t t = 0; t + 2 < primitive.indices.size(); t += 3) {
+        const std::uint32_t a = primitive.indices[t];
+        const std::uint32_t b = primitive.indices[t + 1];
+        const std::uint32_t c = primitive.indices[t + 2];
+        if (a >= count || b >= count || c >= count) {
+            continue;  // validated at load; never trusted for an index
+        }
+        const glm::dvec3 pa(primitive.positions[a]);
+        area += 0.5 * glm::length(glm::cross(glm::dvec3(primitive.positions[b]) - pa,
+                                             glm::dvec3(primitive.positions[c]) - pa));
+    }
+    return area;
+}
+
+/// GpuPrimitive::layers for every primitive, once the mesh's box is known.
+void set_layers(const scene::Mesh& mesh, GpuMesh& gpu) {
+    const glm::dvec3 extent = gpu.bounds.empty()
+                                  ? glm::dvec3(0.0)
+                                  : glm::dvec3(gpu.bounds.hi) - glm::dvec3(gpu.bounds.lo);
+    const double face = std::max({extent.x * extent.y, extent.y * extent.z, extent.z * extent.x});
+    for (std::size_t p = 0; p < gpu.primitives.size(); ++p) {
+        const double area = triangle_area(mesh.primitives[p]);
+        // A box with no face (a line, a point) holds only slivers: count each triangle once.
+        const double layers =
+            face > 1e-12 ? area / face : static_cast<double>(mesh.primitives[p].indices.size() / 3);
+        gpu.primitives[p].layers = static_cast<float>(std::min(layers, 1e30));
+    }
 }
 
 GpuMesh upload(const std::shared_ptr<const scene::Scene>& source, const scene::Mesh& mesh,
@@ -63,6 +97,7 @@ GpuMesh upload(const std::shared_ptr<const scene::Scene>& source, const scene::M
         indices.insert(indices.end(), primitive.indices.begin(), primitive.indices.end());
         gpu.primitives.push_back(range);
     }
+    set_layers(mesh, gpu);
     // Buffers need at least one byte; an empty mesh draws nothing.
     gpu.vertices = gl::Buffer::create(std::max<std::size_t>(vertices.size(), 1) * sizeof(Vertex),
                                       vertices.empty() ? nullptr : vertices.data(), 0);
@@ -90,6 +125,13 @@ GpuMesh upload(const std::shared_ptr<const scene::Scene>& source, const scene::M
 }
 
 }  // namespace
+
+void draw_primitive(const GpuPrimitive& range) {
+    glDrawElementsBaseVertex(GL_TRIANGLES, range.index_count, GL_UNSIGNED_INT,
+                             reinterpret_cast<const void*>(static_cast<std::uintptr_t>(
+                                 range.first_index * sizeof(std::uint32_t))),
+                             range.base_vertex);
+}
 
 Bounds Bounds::transformed(const glm::mat4& matrix) const {
     Bounds out;

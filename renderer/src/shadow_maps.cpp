@@ -1,6 +1,8 @@
 #include "shadow_maps.hpp"
 
 #include "cube_faces.hpp"
+#include "fill_budget.hpp"
+#include "luxel/runtime/log.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -73,24 +75,23 @@ Placement place(const FrameLight& light, const Bounds& scene, int size) {
     return p;
 }
 
-void draw_casters(const DrawList& draws, const gl::Program& program, const ShadowMap& map) {
-    for (const DrawItem& item : draws.items) {
-        if (map.kind != ShadowKind::Ortho && !item.bounds.touches_sphere(map.origin, map.far)) {
-            continue;  // out of the light's reach: casts nothing it can see
-        }
-        program.set("u_model", item.model);
-        glBindVertexArray(item.mesh->vertex_array.id());
-        for (std::size_t i = item.first; i < item.first + item.count; ++i) {
-            const GpuPrimitive& range = *draws.primitives[i].range;
-            if (range.index_count == 0) {
-                continue;
-            }
-            glDrawElementsBaseVertex(GL_TRIANGLES, range.index_count, GL_UNSIGNED_INT,
-                                     reinterpret_cast<const void*>(static_cast<std::uintptr_t>(
-                                         range.first_index * sizeof(std::uint32_t))),
-                                     range.base_vertex);
-        }
-    }
+/// Draws every caster in reach into one view (a 2D map or a cube face) whose world-to-clip
+/// matrix is `view_projection`, within that view's FillBudget; returns the budget spent.
+FillBudget draw_casters(const DrawList& draws, const gl::Program& program, const ShadowMap& map,
+                        const glm::mat4& view_projection) {
+    FillBudget budget(static_cast<double>(map.size) * static_cast<double>(map.size));
+    draw_in_view(
+        draws, view_projection, map.size, map.size, budget,
+        [&](const DrawItem& item) {
+            // Out of the light's reach: casts nothing it can see.
+            return map.kind == ShadowKind::Ortho || item.bounds.touches_sphere(map.origin, map.far);
+        },
+        [&](const DrawItem& item) {
+            program.set("u_model", item.model);
+            glBindVertexArray(item.mesh->vertex_array.id());
+        },
+        [](const DrawItem&, const DrawPrimitive& primitive) { draw_primitive(*primitive.range); });
+    return budget;
 }
 
 }  // namespace
@@ -130,7 +131,21 @@ ShadowMap ShadowMaps::allocate(ShadowKind kind) const {
     return map;
 }
 
-void ShadowMaps::render(ShadowMap& map, const DrawList& draws, const gl::Program& program) const {
+void ShadowMaps::note_budget(ShadowMap& map, const FillBudget& budget) {
+    if (budget.skipped() == 0) {
+        return;
+    }
+    skipped_casters_ += budget.skipped();
+    if (!map.warned) {
+        map.warned = true;
+        log::warn("a shadow map's casters would cover about ", budget.wanted(), " texels of one ",
+                  map.size, "x", map.size, " view (", FillBudget::kLayers,
+                  " layers allowed): the level stacks geometry on itself; ", budget.skipped(),
+                  " primitives are left out of this light's shadow");
+    }
+}
+
+void ShadowMaps::render(ShadowMap& map, const DrawList& draws, const gl::Program& program) {
     const GLuint fbo = map.framebuffer.id();
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
     glViewport(0, 0, map.size, map.size);
@@ -144,7 +159,7 @@ void ShadowMaps::render(ShadowMap& map, const DrawList& draws, const gl::Program
         map.framebuffer.check_complete("shadow map");
         glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &clear_depth);
         program.set("u_view_projection", map.matrix);
-        draw_casters(draws, program, map);
+        note_budget(map, draw_casters(draws, program, map, map.matrix));
         map.valid = true;
         return;
     }
@@ -155,8 +170,9 @@ void ShadowMaps::render(ShadowMap& map, const DrawList& draws, const gl::Program
         glNamedFramebufferTextureLayer(fbo, GL_DEPTH_ATTACHMENT, map.depth.id(), 0, face);
         map.framebuffer.check_complete("shadow cube face");
         glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &clear_depth);
-        program.set("u_view_projection", projection * cube_face_view(map.origin, face));
-        draw_casters(draws, program, map);
+        const glm::mat4 view_projection = projection * cube_face_view(map.origin, face);
+        program.set("u_view_projection", view_projection);
+        note_budget(map, draw_casters(draws, program, map, view_projection));
     }
     map.valid = true;
 }

@@ -23,10 +23,13 @@ struct ShadowMap {
     glm::vec3 origin{0.0f};  ///< the light (ortho: the map's plane origin)
     glm::vec3 direction{0.0f, 0.0f, -1.0f};
     float outer_cone = 0.0f;
-    float far = 1.0f;    ///< metres that depth 1 stands for
-    float texel = 0.0f;  ///< texel size per metre of distance (ortho: metres)
-    bool valid = false;  ///< rendered for the current light state and casters
+    float far = 1.0f;     ///< metres that depth 1 stands for
+    float texel = 0.0f;   ///< texel size per metre of distance (ortho: metres)
+    bool valid = false;   ///< rendered for the current light state and casters
+    bool warned = false;  ///< its casters have overrun a FillBudget once (said once a map)
 };
+
+class FillBudget;
 
 /// Shadow maps for the enabled punctual lights (linear depth, shaders/render/shadow.frag).
 ///
@@ -54,15 +57,19 @@ class ShadowMaps {
     /// position for ortho maps).
     static void describe(const ShadowMap& map, GpuLight& light);
     [[nodiscard]] std::size_t count() const { return maps_.size(); }
+    /// Caster primitives left out of a view by its FillBudget, since construction.
+    [[nodiscard]] std::uint64_t skipped_casters() const { return skipped_casters_; }
 
   private:
     ShadowMap allocate(ShadowKind kind) const;
-    void render(ShadowMap& map, const DrawList& draws, const gl::Program& program) const;
+    void render(ShadowMap& map, const DrawList& draws, const gl::Program& program);
+    void note_budget(ShadowMap& map, const FillBudget& budget);
 
     int cube_size_;
     int map_size_;
     bool filtered_;
     std::map<ecs::Entity, ShadowMap> maps_;
+    std::uint64_t skipped_casters_ = 0;
 };
 
 }  // namespace luxel::renderer

@@ -9,21 +9,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cube_faces.hpp"
+#include "fill_budget.hpp"
+#include "luxel/runtime/log.hpp"
 #include "luxel/runtime/shader_library.hpp"
 #include "material_textures.hpp"
 
 namespace luxel::renderer {
-namespace {
-
-void draw_range(const GpuPrimitive& range) {
-    glDrawElementsBaseVertex(GL_TRIANGLES, range.index_count, GL_UNSIGNED_INT,
-                             reinterpret_cast<const void*>(static_cast<std::uintptr_t>(
-                                 range.first_index * sizeof(std::uint32_t))),
-                             range.base_vertex);
-}
-
-}  // namespace
-
 SpecularCubeMaps::SpecularCubeMaps(const ShaderLibrary& shaders, int size, int faces_per_frame)
     : face_program_(shaders.build(
           {{ShaderStage::Vertex, "render/mesh.vert"},
@@ -72,32 +63,40 @@ void SpecularCubeMaps::render_face(CubeMap& cube_map, int face, const DrawList& 
     const float far = std::max(glm::length(draws.bounds.hi - draws.bounds.lo) * 2.0f, 1.0f);
     const glm::mat4 projection = glm::perspective(glm::half_pi<float>(), 1.0f, 0.01f, far);
     const gl::Program& program = face_program_;
-    program.set("u_view_projection", projection * cube_face_view(cube_map.centre, face));
+    const glm::mat4 view_projection = projection * cube_face_view(cube_map.centre, face);
+    program.set("u_view_projection", view_projection);
     program.set("u_camera", cube_map.centre);
-    for (const DrawItem& item : draws.items) {
-        if (item.specular) {
-            continue;  // no mirror sees another (or itself): one bounce of specular
-        }
-        program.set("u_model", item.model);
-        program.set("u_normal_matrix", item.normal_matrix);
-        glBindVertexArray(item.mesh->vertex_array.id());
-        for (std::size_t i = item.first; i < item.first + item.count; ++i) {
-            const DrawPrimitive& primitive = draws.primitives[i];
-            if (primitive.range->index_count == 0) {
-                continue;
-            }
+    // The face covers what it sees as a shadow map does: geometry stacked on itself is left
+    // out past the budget (fill_budget.hpp says why).
+    FillBudget budget(static_cast<double>(size_) * static_cast<double>(size_));
+    draw_in_view(
+        draws, view_projection, size_, size_, budget,
+        // No mirror sees another (or itself): one bounce of specular.
+        [](const DrawItem& item) { return !item.specular; },
+        [&](const DrawItem& item) {
+            program.set("u_model", item.model);
+            program.set("u_normal_matrix", item.normal_matrix);
+            glBindVertexArray(item.mesh->vertex_array.id());
+        },
+        [&](const DrawItem& item, const DrawPrimitive& primitive) {
             cull_as_material(item, primitive.material);
             program.set("u_albedo", primitive.material.albedo);
             glBindTextureUnit(kBaseColorTextureUnit, primitive.material.base_color_texture);
             glBindTextureUnit(kEmissiveTextureUnit, primitive.material.emissive_texture);
             program.set("u_emission", primitive.material.emission);
             program.set("u_lightmap", primitive.material.lightmap);
-            draw_range(*primitive.range);
-        }
-    }
+            draw_primitive(*primitive.range);
+        });
     glDisable(GL_CULL_FACE);
     glFrontFace(GL_CCW);
     ++faces_rendered_;
+    if (budget.skipped() > 0 && skipped_draws_ == 0) {
+        log::warn("a specular cube map face's draws would cover about ", budget.wanted(),
+                  " texels of one ", size_, "x", size_, " face (", FillBudget::kLayers,
+                  " layers allowed): the level stacks geometry on itself; ", budget.skipped(),
+                  " primitives are left out of the reflections");
+    }
+    skipped_draws_ += budget.skipped();
 }
 
 void SpecularCubeMaps::draw_term(const DrawList& draws, const FrameTargets& targets,
@@ -131,7 +130,7 @@ void SpecularCubeMaps::draw_term(const DrawList& draws, const FrameTargets& targ
             }
             program.set("u_specular", primitive.material.specular);
             program.set("u_ior", primitive.material.ior);
-            draw_range(*primitive.range);
+            draw_primitive(*primitive.range);
         }
     }
     glDepthMask(GL_TRUE);

@@ -48,6 +48,8 @@ class SpecularCubeMaps {
 
     [[nodiscard]] std::size_t count() const { return cube_maps_.size(); }
     [[nodiscard]] std::uint64_t faces_rendered() const { return faces_rendered_; }
+    /// Draws a face's FillBudget left out, since construction.
+    [[nodiscard]] std::uint64_t skipped_draws() const { return skipped_draws_; }
 
   private:
     struct CubeMap {
@@ -70,6 +72,7 @@ class SpecularCubeMaps {
     int faces_per_frame_;
     std::map<ecs::Entity, CubeMap> cube_maps_;
     std::uint64_t faces_rendered_ = 0;
+    std::uint64_t skipped_draws_ = 0;
 };
 
 }  // namespace luxel::renderer

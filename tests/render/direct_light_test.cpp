@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
@@ -47,22 +49,26 @@ glm::vec3 analytic(const glm::vec3& p) {
     return kAlbedo / glm::pi<float>() * intensity * cos_theta / d2;
 }
 
-/// A world with the plane, the light and optionally the blocker, lit once.
+/// A world with the plane, the light and optionally the blocker, lit once. The blocker's
+/// triangles are drawn `layers` times over (the same two triangles repeated in its index list).
 struct PlaneScene {
     test::RenderWorld world;
     ecs::Entity light;
     ecs::Entity blocker;
 
-    explicit PlaneScene(bool with_blocker) {
+    explicit PlaneScene(bool with_blocker, int layers = 1) {
         world.add_mesh(
             test::single_mesh_scene(test::horizontal_square(glm::vec3(0.0f), 2.0f), kAlbedo));
         if (with_blocker) {
             // A 0.4 m square halfway up: its umbra on the plane is the 0.8 m square around
             // the origin.
-            blocker =
-                world.add_mesh(test::single_mesh_scene(
-                                   test::horizontal_square(glm::vec3(0.0f), 0.2f), glm::vec3(0.5f)),
-                               glm::vec3(0.0f, 0.75f, 0.0f));
+            scene::Primitive square = test::horizontal_square(glm::vec3(0.0f), 0.2f);
+            const std::vector<std::uint32_t> once = square.indices;
+            for (int layer = 1; layer < layers; ++layer) {
+                square.indices.insert(square.indices.end(), once.begin(), once.end());
+            }
+            blocker = world.add_mesh(test::single_mesh_scene(std::move(square), glm::vec3(0.5f)),
+                                     glm::vec3(0.0f, 0.75f, 0.0f));
         }
         light = world.add_point_light(kLight, kPower);
         world.start();
@@ -154,6 +160,78 @@ TEST_F(DirectLight, BlockerShadowsItsUmbraAndNothingElse) {
         EXPECT_GT(umbra, 100) << "the umbra should be in view";
         EXPECT_GT(outside, 2000);
     }
+}
+
+/// Counts, over the plane's pixels of `direct`, those inside the blocker's umbra (extent < 0.3 m)
+/// that are dark, and checks every lit pixel far outside it against the analytic radiance.
+struct UmbraCount {
+    int umbra = 0;
+    int dark = 0;
+    int lit = 0;
+};
+UmbraCount count_umbra(const Image& direct, const std::vector<glm::vec4>& positions) {
+    UmbraCount count;
+    for (int y = 0; y < kSize; ++y) {
+        for (int x = 0; x < kSize; ++x) {
+            const glm::vec4 p = positions[static_cast<std::size_t>((kSize - 1 - y) * kSize + x)];
+            if (p.w == 0.0f || p.y > 1e-3f) {
+                continue;  // the blocker itself, or nothing
+            }
+            const float extent = std::max(std::abs(p.x), std::abs(p.z));
+            const glm::vec3 expected = analytic(glm::vec3(p));
+            const glm::vec4 got = direct.pixel(x, y);
+            if (extent < 0.3f) {
+                ++count.umbra;
+                count.dark += got.g < 0.01f * expected.g ? 1 : 0;
+            } else if (extent > 0.55f) {
+                ++count.lit;
+                EXPECT_NEAR(got.g, expected.g, 0.02f * expected.g) << "pixel " << x << "," << y;
+            }
+        }
+    }
+    return count;
+}
+
+// A level within every load limit can stack geometry on itself: 40,000 coincident quads took
+// 7.5 s to draw into one cube shadow map on llvmpipe, 10M coincident triangles over a minute
+// in a 64 x 48 G-buffer. Each view has a fill budget (renderer/src/fill_budget.hpp): a blocker
+// drawn 10 times over is drawn in full, one drawn 100,000 times over is left out of the
+// shadow map and the frame (with a warning), and the rest of the level is still drawn right.
+TEST_F(DirectLight, GeometryStackedOnItselfIsLeftOutPastTheFillBudget) {
+    {
+        PlaneScene scene(true, 10);
+        renderer::FrameRenderer renderer(scene.world.registry, *scene.world.lighting,
+                                         test_settings());
+        renderer.render(test_camera(), scene.world.time);
+        EXPECT_EQ(renderer.counters().draws_over_fill_budget, 0u) << "10 layers fit the budget";
+        const UmbraCount count =
+            count_umbra(renderer.read(renderer::FrameImage::Direct),
+                        test::read_texture(renderer.position_texture(), kSize, kSize));
+        EXPECT_GT(count.umbra, 100);
+        EXPECT_EQ(count.dark, count.umbra) << "the blocker casts its shadow";
+        EXPECT_GT(count.lit, 2000);
+    }
+    PlaneScene scene(true, 100000);
+    renderer::FrameRenderer renderer(scene.world.registry, *scene.world.lighting, test_settings());
+    renderer.render(test_camera(), scene.world.time);
+    // Left out of the shadow map and of the G-buffer, each once.
+    EXPECT_EQ(renderer.counters().draws_over_fill_budget, 2u);
+    const Image direct = renderer.read(renderer::FrameImage::Direct);
+    const UmbraCount count =
+        count_umbra(direct, test::read_texture(renderer.position_texture(), kSize, kSize));
+    EXPECT_GT(count.umbra, 100) << "the blocker is not in the frame: the plane under it shows";
+    EXPECT_EQ(count.dark, 0) << "and it casts no shadow";
+    EXPECT_GT(count.lit, 2000);
+    for (int y = 0; y < kSize; ++y) {
+        for (int x = 0; x < kSize; ++x) {
+            const glm::vec4 pixel = direct.pixel(x, y);
+            ASSERT_TRUE(std::isfinite(pixel.r) && std::isfinite(pixel.g) && std::isfinite(pixel.b))
+                << "pixel " << x << "," << y;
+        }
+    }
+    renderer.render(test_camera(), scene.world.time);
+    EXPECT_EQ(renderer.counters().draws_over_fill_budget, 3u)
+        << "the G-buffer is drawn every frame; the shadow map only when something moved";
 }
 
 TEST_F(DirectLight, ShadowMapsAreRedrawnOnlyWhenLightOrCasterMoves) {

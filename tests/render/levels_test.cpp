@@ -118,6 +118,8 @@ TEST_P(BuiltInLevels, FramesHoldNoNanInfOrNegative) {
 
     const renderer::FrameCounters& counters = renderer.counters();
     EXPECT_EQ(counters.shadow_maps, counters.lights) << "one shadow map per enabled light";
+    EXPECT_EQ(counters.draws_over_fill_budget, 0u)
+        << "a real level covers each view a few times over, far within the fill budget";
     if (world.lighting->plan().specular()) {
         EXPECT_GT(counters.specular_cube_maps, 0u) << "specular materials get cube maps";
     }

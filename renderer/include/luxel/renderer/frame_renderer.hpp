@@ -82,6 +82,9 @@ struct FrameCounters {
     std::uint64_t texels_uploaded = 0;     ///< IIM texels uploaded, since construction
     std::size_t specular_cube_maps = 0;    ///< specular cube maps allocated now
     std::uint64_t specular_faces = 0;      ///< specular cube faces rendered, since construction
+    /// Primitives left out of a shadow map or a specular cube face because the view was
+    /// already covered many times over (geometry stacked on itself), since construction.
+    std::uint64_t draws_over_fill_budget = 0;
 };
 
 /// A caustic term produced elsewhere (the caustic splat/filter pass): a texture of the frame's
