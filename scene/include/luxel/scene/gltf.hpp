@@ -33,8 +33,10 @@ struct LoadOptions {
     /// triangle per node in half-edge form (about 500 bytes a triangle at its peak): checked
     /// before the copies are made.
     std::uint64_t max_prep_triangles = std::uint64_t{1} << 22;
-    /// Light-map texels over every page the layouts name (the maps keep several values each).
-    std::uint64_t max_lightmap_texels = std::uint64_t{1} << 26;
+    /// Light-map texels over every page the layouts name. The real-time maps with their GL
+    /// textures take about 210 bytes a texel in luxel-sandbox (one 4096^2 page, 16M texels:
+    /// 3.5 GB resident on llvmpipe), so the default, 8M, keeps them near 1.7 GB.
+    std::uint64_t max_lightmap_texels = std::uint64_t{1} << 23;
     /// Bytes the reference integrator (luxel-ref, luxel-bench's reference) keeps for every
     /// light-map texel together: its per-texel state is several times the real-time maps', so
     /// a level within lightmap-texels can still need more memory than the machine has. Checked

@@ -43,7 +43,7 @@ struct PrepOptions {
     /// padded charts and on the packed pages: the loaders' lightmap-texels limit (luxel-prep
     /// sets it from `--limit lightmap-texels`), so luxel-prep never writes a level they refuse;
     /// beyond it luxel-prep stops with an error naming --texel-size.
-    std::size_t max_total_texels = std::size_t{1} << 26;
+    std::size_t max_total_texels = std::size_t{1} << 23;  // scene::LoadOptions default
     /// Triangles luxel-prep copies, every mesh node's triangles once per node (`--limit
     /// prep-triangles`), checked before any copy is made.
     std::uint64_t max_triangles = std::uint64_t{1} << 22;
