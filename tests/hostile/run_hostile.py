@@ -6,7 +6,8 @@ execve(), and asserts for every (case, tool):
   OK-success  exit 0, the output exists and holds only finite values
   OK-error    exit 1 with one "<tool>: error: ..." line naming the level file
 
-and reports as defects: SIGNAL, TIMEOUT, OOM (bad_alloc or "out of memory", even when caught:
+and reports as defects: SIGNAL, SANITIZER (a report from ASan or UBSan in a sanitized build),
+TIMEOUT, OOM (bad_alloc or "out of memory", even when caught:
 the file got the tool to exhaust the limit), EXIT-OTHER, UNNAMED (exit 1 whose message does
 not name the file), NONFINITE, NO-OUTPUT, ESCAPE (a file opened outside the level's folder and
 the tool's own installation, or a case's forbidden target), EXEC (a process spawned), WROTE
@@ -42,12 +43,16 @@ sys.path.insert(0, HERE)
 import hostile_checks as checks  # noqa: E402
 
 EXE = {"prep": "luxel-prep", "sandbox": "luxel-sandbox", "ref": "luxel-ref"}
-DEFECTS = ("SIGNAL", "TIMEOUT", "OOM", "EXIT-OTHER", "UNNAMED", "NONFINITE", "NO-OUTPUT",
-           "ESCAPE", "EXEC", "WROTE", "REJECTED-VALID", "NOT-RUN")
+DEFECTS = ("SIGNAL", "SANITIZER", "TIMEOUT", "OOM", "EXIT-OTHER", "UNNAMED", "NONFINITE",
+           "NO-OUTPUT", "ESCAPE", "EXEC", "WROTE", "REJECTED-VALID", "NOT-RUN")
 # Process groups of the runs in flight, killed if the runner itself is interrupted.
 LIVE = set()
 OOM_HINT = re.compile(r"bad_alloc|out[ _]of[ _]memory|cannot allocate memory|length_error|"
-                      r"vector::_M_|larger than max_size", re.I)
+                      r"vector::_M_|larger than max_size|hard rss limit exhausted", re.I)
+# A report from AddressSanitizer or UndefinedBehaviorSanitizer (sanitized tools): a defect
+# whatever the exit status, since UBSan's findings exit 1 like a clean error would.
+SANITIZER_REPORT = re.compile(r"^(==\d+==ERROR: (Address|Leak)Sanitizer|SUMMARY: \w+Sanitizer|"
+                              r".*: runtime error: )", re.M)
 
 
 def command(tool, exe, level, out, threads, extra):
@@ -181,10 +186,40 @@ def run_one(entry, tool, args):
 
 
 def _limits(memory_bytes):
+    """RLIMIT_AS for a plain build; none for a sanitized one (memory_bytes 0), whose shadow
+    memory alone reserves terabytes of address space: sanitizer_environment() bounds it."""
     def apply():
-        resource.setrlimit(resource.RLIMIT_AS, (memory_bytes, memory_bytes))
+        if memory_bytes:
+            resource.setrlimit(resource.RLIMIT_AS, (memory_bytes, memory_bytes))
         resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
     return apply
+
+
+def sanitizer_environment(environ, memory_mb, strace):
+    """The memory limit of a sanitized run, set through AddressSanitizer: one allocation larger
+    than the limit returns null (so operator new throws bad_alloc, as it would under RLIMIT_AS),
+    and a resident set larger than the limit ends the run with a report read as OOM.
+    LeakSanitizer cannot run under ptrace (strace), so leaks are left to the test suite then.
+    The options are appended to the caller's: later options win."""
+    asan = ["allocator_may_return_null=1", "max_allocation_size_mb=%d" % memory_mb,
+            "hard_rss_limit_mb=%d" % memory_mb]
+    if strace:
+        asan.append("detect_leaks=0")
+    env = dict(environ)
+    env["ASAN_OPTIONS"] = ":".join(o for o in [environ.get("ASAN_OPTIONS", "")] + asan if o)
+    env["UBSAN_OPTIONS"] = ":".join(
+        o for o in [environ.get("UBSAN_OPTIONS", ""), "print_stacktrace=1", "halt_on_error=1"]
+        if o)
+    return env
+
+
+def is_sanitized(exe):
+    """Whether the tool links AddressSanitizer's runtime (GCC links libasan dynamically)."""
+    try:
+        out = subprocess.run(["ldd", exe], capture_output=True, text=True, timeout=30).stdout
+    except (OSError, subprocess.TimeoutExpired):
+        return False
+    return "libasan" in out
 
 
 def _run_in(entry, tool, args, level, case_dir, out):
@@ -198,6 +233,8 @@ def _run_in(entry, tool, args, level, case_dir, out):
     # besides Mesa's shader cache they may write.
     env = dict(os.environ, EGL_PLATFORM="surfaceless", XDG_CACHE_HOME=args.cache_home,
                LUXEL_CACHE_DIR=os.path.join(out, "prep-cache"))
+    if args.sanitized:
+        env = sanitizer_environment(env, args.memory_mb, args.strace)
     before = snapshot(case_dir)
     started = time.monotonic()
     with open(os.path.join(out, "stdout"), "wb") as so, open(os.path.join(out, "stderr"),
@@ -205,7 +242,8 @@ def _run_in(entry, tool, args, level, case_dir, out):
         try:
             proc = subprocess.Popen(cmd, cwd=out, env=env, stdout=so, stderr=se,
                                     stdin=subprocess.DEVNULL, start_new_session=True,
-                                    preexec_fn=_limits(args.memory_mb << 20))
+                                    preexec_fn=_limits(
+                                        0 if args.sanitized else args.memory_mb << 20))
         except OSError as e:  # the tool is missing or not executable (being relinked)
             return {"case": entry["name"], "class": entry["class"], "tool": tool, "rc": None,
                     "seconds": 0.0, "peak_mb": 0, "defects": ["NOT-RUN"], "note": str(e),
@@ -245,6 +283,9 @@ def _run_in(entry, tool, args, level, case_dir, out):
         # The tool could not be started (being relinked, missing): no verdict on the case.
         defects.append("NOT-RUN")
         result["note"] = "the tool did not start"
+    elif SANITIZER_REPORT.search(stderr) and not re.search("hard rss limit exhausted", stderr):
+        defects.append("SANITIZER")
+        result["note"] = SANITIZER_REPORT.search(stderr).group(0).strip()[:200]
     elif timed_out.is_set():
         defects.append("TIMEOUT")
         result["note"] = "killed after %d s" % args.timeout
@@ -349,7 +390,11 @@ def parse_args(argv):
     p.add_argument("--case", help="only cases whose name matches this regex")
     p.add_argument("--class", dest="cls", help="only classes matching this regex")
     p.add_argument("--timeout", type=float, default=30.0, help="seconds per run")
-    p.add_argument("--memory-mb", type=int, default=4096, help="address-space limit per run")
+    p.add_argument("--memory-mb", type=int, default=4096,
+                   help="memory limit per run: address space, or for sanitized tools the "
+                        "largest allocation and the resident set")
+    p.add_argument("--sanitized", choices=("auto", "yes", "no"), default="auto",
+                   help="whether the tools are built with ASan and UBSan (auto: ask ldd)")
     p.add_argument("--threads", type=int, default=1, help="--threads given to every tool")
     p.add_argument("--jobs", type=int, default=1, help="runs at once")
     p.add_argument("--json", help="write every result here")
@@ -371,6 +416,10 @@ def parse_args(argv):
     if args.work_dir:
         args.work_dir = os.path.abspath(args.work_dir)
         os.makedirs(args.work_dir, exist_ok=True)
+    if args.sanitized == "auto":
+        args.sanitized = any(is_sanitized(os.path.join(args.bin, EXE[t])) for t in args.tools)
+    else:
+        args.sanitized = args.sanitized == "yes"
     args.strace = None if args.no_strace else shutil.which("strace")
     if not args.no_strace and not args.strace:
         print("run_hostile.py: strace not found; escapes are not watched", file=sys.stderr)
@@ -429,6 +478,7 @@ def main(argv):
     if args.json:
         with open(args.json, "w") as f:
             json.dump({"timeout": args.timeout, "memory_mb": args.memory_mb,
+                       "sanitized": args.sanitized,
                        "binaries": {EXE[t]: time.strftime("%Y-%m-%dT%H:%M:%S",
                                                           time.gmtime(stamp[t]))
                                     for t in args.tools},
