@@ -200,9 +200,13 @@ def sanitizer_environment(environ, memory_mb, strace):
     than the limit returns null (so operator new throws bad_alloc, as it would under RLIMIT_AS),
     and a resident set larger than the limit ends the run with a report read as OOM.
     LeakSanitizer cannot run under ptrace (strace), so leaks are left to the test suite then.
+    Allocations are traced with the fast unwinder: the test suite's fast_unwind_on_malloc=0
+    deadlocks when llvmpipe compiles a shader (LLVM registers the JIT's unwind tables, libgcc
+    takes its object lock to sort them and allocates under it, and ASan's slow unwinder inside
+    that malloc waits for the same lock; every sandbox run on a cold shader cache hung).
     The options are appended to the caller's: later options win."""
     asan = ["allocator_may_return_null=1", "max_allocation_size_mb=%d" % memory_mb,
-            "hard_rss_limit_mb=%d" % memory_mb]
+            "hard_rss_limit_mb=%d" % memory_mb, "fast_unwind_on_malloc=1"]
     if strace:
         asan.append("detect_leaks=0")
     env = dict(environ)
