@@ -4,6 +4,8 @@
 // and the pixels every image will decode to. Each is a small count in a small file that would
 // otherwise become gigabytes in luxel-prep, the ray scene or the light maps.
 
+#include <algorithm>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <vector>
@@ -44,7 +46,8 @@ void check_instanced_triangles(const ImportContext& context) {
 void check_lightmap_texels(const ImportContext& context) {
     const Scene& scene = context.scene();
     std::optional<int> page_size;
-    int pages = 0;
+    // 64 bits: a page index may be INT_MAX, and the count is one more.
+    std::int64_t pages = 0;
     for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
         const Node& node = scene.nodes[i];
         const std::string where = label("node", i, node.name);
@@ -68,7 +71,7 @@ void check_lightmap_texels(const ImportContext& context) {
         }
         page_size = layout->page_size;
         for (const LightmapSurface& surface : layout->surfaces) {
-            pages = std::max(pages, surface.page + 1);
+            pages = std::max(pages, std::int64_t{surface.page} + 1);
         }
     }
     if (!page_size) {

@@ -241,6 +241,12 @@ TEST(GltfHostileValues, LimitsOnHowThePartsCombine) {
                                                                    {"texels", 1}}}}};
     message = load_error(file.text());
     EXPECT_NE(message.find("64 pages of 4096^2 texels"), std::string::npos) << message;
+    // The last page index an int holds: its count, one more, is counted in 64 bits (UBSan
+    // reported the overflow in the hostile corpus's lm-pages-far-apart).
+    file.document["nodes"][0]["extras"]["luxel"]["lightmap"]["surfaces"][0]["page"] = 2147483647;
+    message = load_error(file.text());
+    EXPECT_NE(message.find("2147483648 pages of 4096^2 texels"), std::string::npos) << message;
+    file.document["nodes"][0]["extras"]["luxel"]["lightmap"]["surfaces"][0]["page"] = 63;
     file.document["nodes"][0]["extras"]["luxel"]["lightmap"]["page_size"] = 65536;
     message = load_error(file.text());
     EXPECT_NE(message.find("floor"), std::string::npos) << message;
