@@ -106,14 +106,19 @@ def watch_opens(events, case_dir, out, entry, args):
     forbidden = forbidden_paths(entry, args.corpus)
     escapes, execs, attempts = [], [], []
     first_exec = True
+    # A file the level names can only be opened once the level has been read: before the
+    # first open inside the case's folder, a forbidden target is the process's own doing (the
+    # sanitizer runtime reads /proc/self/environ before main), not the level's.
+    level_read = False
     for call, requested, real, ok in events:
         if call == "execve":
             if ok and not first_exec:
                 execs.append(requested)
             first_exec = first_exec and not ok
             continue
-        hit = [f for f in forbidden if checks.inside(requested, f) or
-               (real and checks.inside(real, os.path.realpath(f)))]
+        level_read = level_read or checks.inside(real or os.path.realpath(requested), case_real)
+        hit = [f for f in forbidden if level_read and (
+            checks.inside(requested, f) or (real and checks.inside(real, os.path.realpath(f))))]
         if not ok:
             if hit:
                 attempts.append(requested)
