@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "luxel/runtime/error.hpp"
 #include "luxel/scene/texture_mean.hpp"
@@ -78,8 +79,12 @@ EmissionPieces EmissionPieces::of_mesh(const scene::Scene& scene, const scene::M
     struct Part {
         const scene::Primitive* primitive;
         const scene::Material* material;
-        scene::LinearImage texels;
+        const scene::LinearImage* texels;
     };
+    // Each image decoded once: a mesh's primitives often share one emissive texture, and a
+    // large one takes tens of milliseconds to decode. The map's nodes do not move.
+    const scene::LinearImage none;
+    std::map<int, scene::LinearImage> decoded;
     std::vector<Part> parts;
     std::vector<std::uint32_t> levels;  // wanted, per emissive triangle in order
     for (const scene::Primitive& primitive : mesh.primitives) {
@@ -91,14 +96,22 @@ EmissionPieces EmissionPieces::of_mesh(const scene::Scene& scene, const scene::M
         if (!material.is_emissive()) {
             continue;
         }
-        Part part{&primitive, &material, {}};
-        if (primitive.texcoords0.size() == primitive.positions.size()) {
-            part.texels = scene::emissive_texels(scene, material);
+        Part part{&primitive, &material, &none};
+        if (material.emissive_image >= 0 &&
+            primitive.texcoords0.size() == primitive.positions.size()) {
+            auto found = decoded.find(material.emissive_image);
+            if (found == decoded.end()) {
+                found =
+                    decoded
+                        .emplace(material.emissive_image, scene::emissive_texels(scene, material))
+                        .first;
+            }
+            part.texels = &found->second;
         }
-        const auto size = glm::dvec2(part.texels.width(), part.texels.height());
+        const auto size = glm::dvec2(part.texels->width(), part.texels->height());
         for (std::size_t t = 0; t < primitive.triangle_count(); ++t) {
             double texels = 0.0;
-            if (!part.texels.empty()) {
+            if (!part.texels->empty()) {
                 const glm::dvec2 a = glm::dvec2(primitive.texcoords0[primitive.indices[3 * t]]);
                 const glm::dvec2 b = glm::dvec2(primitive.texcoords0[primitive.indices[3 * t + 1]]);
                 const glm::dvec2 c = glm::dvec2(primitive.texcoords0[primitive.indices[3 * t + 2]]);
@@ -137,7 +150,7 @@ EmissionPieces EmissionPieces::of_mesh(const scene::Scene& scene, const scene::M
         const glm::vec3 factor = part.material->emitted_radiance();
         for (std::size_t t = 0; t < primitive.triangle_count(); ++t) {
             const std::uint32_t level = std::min(levels[next++], cap);
-            if (part.texels.empty()) {
+            if (part.texels->empty()) {
                 pieces.add(1, {factor});
                 continue;
             }
@@ -150,7 +163,7 @@ EmissionPieces EmissionPieces::of_mesh(const scene::Scene& scene, const scene::M
                 const auto uv = [&](const glm::dvec2& p) {
                     return a + p.x * (b - a) + p.y * (c - a);
                 };
-                radiance[k] = factor * scene::mean_over_uv_triangle(part.texels, uv(sq[0]),
+                radiance[k] = factor * scene::mean_over_uv_triangle(*part.texels, uv(sq[0]),
                                                                     uv(sq[1]), uv(sq[2]), budget);
             }
             pieces.add(level, radiance);
