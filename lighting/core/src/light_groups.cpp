@@ -115,23 +115,9 @@ const LightGroups::PiecesCache& LightGroups::emission_pieces(ecs::Entity entity,
 
 glm::vec3 LightGroups::mean_radiance(const LightSource& light) {
     // Area-weighted over the world-space triangles: pi x this x area is the light's flux.
-    glm::dvec3 sum(0.0);
-    double total = 0.0;
-    for (std::size_t t = 0; 3 * t + 2 < light.triangles.size(); ++t) {
-        const glm::vec3* v = &light.triangles[3 * t];
-        const double area = 0.5 * glm::length(glm::dvec3(glm::cross(v[1] - v[0], v[2] - v[0])));
-        if (!(area > 0.0) || !std::isfinite(area)) {
-            continue;
-        }
-        glm::dvec3 pieces(0.0);
-        const std::uint32_t level = light.pieces != nullptr ? light.pieces->level(t) : 1;
-        for (std::uint32_t k = 0; k < level * level; ++k) {
-            pieces += glm::dvec3(area_radiance(light, t, k));
-        }
-        sum += pieces / (static_cast<double>(level) * level) * area;
-        total += area;
-    }
-    return total > 0.0 ? glm::vec3(sum / total) : glm::vec3(0.0f);
+    const AreaRadiance integral = integrate_area_radiance(light);
+    return integral.area > 0.0 ? glm::vec3(integral.radiance_times_area / integral.area)
+                               : glm::vec3(0.0f);
 }
 
 void LightGroups::remove(ecs::Entity entity) {

@@ -37,6 +37,27 @@ glm::vec3 area_radiance(const LightSource& light, std::size_t triangle, std::uin
     return light.pieces->radiance(triangle, piece) * light.piece_scale;
 }
 
+AreaRadiance integrate_area_radiance(const LightSource& light) {
+    AreaRadiance out;
+    for (std::size_t t = 0; 3 * t + 2 < light.triangles.size(); ++t) {
+        const glm::vec3* v = &light.triangles[3 * t];
+        const double area = 0.5 * glm::length(glm::dvec3(glm::cross(v[1] - v[0], v[2] - v[0])));
+        if (!(area > 0.0) || !std::isfinite(area)) {
+            continue;
+        }
+        const std::uint32_t level = light.pieces != nullptr && t < light.pieces->triangle_count()
+                                        ? light.pieces->level(t)
+                                        : 1;
+        glm::dvec3 sum(0.0);
+        for (std::uint32_t k = 0; k < level * level; ++k) {
+            sum += glm::dvec3(area_radiance(light, t, k));
+        }
+        out.radiance_times_area += sum * (area / (static_cast<double>(level) * level));
+        out.area += area;
+    }
+    return out;
+}
+
 TriangleSampler::TriangleSampler(std::vector<glm::vec3> triangles,
                                  std::shared_ptr<const EmissionPieces> pieces)
     : vertices_(std::move(triangles)), pieces_(std::move(pieces)) {
@@ -202,23 +223,8 @@ PhotonEmitter::PhotonEmitter(LightSource light, const BoundingSphere& scene_boun
                 total_power_ = light_.power * (pi * static_cast<float>(area_.area()));
                 break;
             }
-            // pi x the sum of every piece's radiance x area.
-            glm::dvec3 flux(0.0);
-            const EmissionPieces& pieces = *light_.pieces;
-            for (std::size_t t = 0; t < pieces.triangle_count(); ++t) {
-                const glm::vec3* v = &light_.triangles[3 * t];
-                const double area =
-                    0.5 * glm::length(glm::dvec3(glm::cross(v[1] - v[0], v[2] - v[0])));
-                const std::uint32_t level = pieces.level(t);
-                glm::dvec3 sum(0.0);
-                for (std::uint32_t k = 0; k < level * level; ++k) {
-                    sum += glm::dvec3(area_radiance(light_, t, k));
-                }
-                if (std::isfinite(area)) {
-                    flux += sum * (area / (static_cast<double>(level) * level));
-                }
-            }
-            total_power_ = glm::vec3(flux * glm::pi<double>());
+            total_power_ =
+                glm::vec3(integrate_area_radiance(light_).radiance_times_area * glm::pi<double>());
             break;
         }
     }

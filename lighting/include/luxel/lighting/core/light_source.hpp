@@ -37,6 +37,15 @@ struct LightSource {
 [[nodiscard]] glm::vec3 area_radiance(const LightSource& light, std::size_t triangle,
                                       std::uint32_t piece);
 
+/// An area light's radiance integrated over its triangles: the sum of each triangle's area
+/// times its pieces' mean radiance (pi times it is the light's flux, W), and the area summed
+/// (m^2). Degenerate and non-finite triangles count for nothing.
+struct AreaRadiance {
+    glm::dvec3 radiance_times_area{0.0};
+    double area = 0.0;
+};
+[[nodiscard]] AreaRadiance integrate_area_radiance(const LightSource& light);
+
 /// One emitted photon.
 struct EmittedPhoton {
     glm::vec3 origin{0.0f};
