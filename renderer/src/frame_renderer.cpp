@@ -26,6 +26,7 @@
 #include "pass_timer.hpp"
 #include "scene_draws.hpp"
 #include "shadow_maps.hpp"
+#include "sky_texture.hpp"
 #include "specular_cube_maps.hpp"
 
 namespace luxel::renderer {
@@ -89,6 +90,7 @@ struct FrameRenderer::Impl {
     ShadowMaps shadows;
     std::uint64_t gbuffer_skipped = 0;  ///< draws the G-buffer's FillBudget left out, in all
     lighting::LightmapTextures lightmaps;
+    SkyTexture sky;  ///< the lighting system's skies, behind everything drawn
     SpecularCubeMaps cube_maps;
     PassTimer timer;
     FrameTimings timings;
@@ -275,7 +277,7 @@ struct FrameRenderer::Impl {
         draw_fullscreen();
     }
 
-    void composite_pass(bool direct, bool indirect, bool specular) {
+    void composite_pass(const FrameCamera& camera, bool direct, bool indirect, bool specular) {
         const GLuint fbo = targets.frame_target.id();
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
         glViewport(0, 0, targets.width, targets.height);
@@ -285,6 +287,14 @@ struct FrameRenderer::Impl {
                                                    caustic ? 1.0f : 0.0f, specular ? 1.0f : 0.0f));
         composite_program.set("u_emission_on", terms.emission ? 1.0f : 0.0f);
         composite_program.set("u_caustics_irradiance", caustics.irradiance ? 1 : 0);
+        const bool sky_on = sky.sync(lighting.maps().aim());
+        composite_program.set("u_sky_on", sky_on ? 1 : 0);
+        composite_program.set("u_inverse_view_projection",
+                              glm::inverse(camera.projection * camera.view));
+        composite_program.set("u_camera", camera.position);
+        composite_program.set("u_viewport", glm::vec2(static_cast<float>(targets.width),
+                                                      static_cast<float>(targets.height)));
+        glBindTextureUnit(9, sky_on ? sky.id() : black.id());
         glBindTextureUnit(0, targets.albedo.id());
         glBindTextureUnit(2, targets.position.id());
         glBindTextureUnit(4, targets.emission.id());
@@ -419,7 +429,7 @@ struct FrameRenderer::Impl {
         glBindVertexArray(fullscreen.id());
 
         timer.begin(RenderPass::Composite);
-        composite_pass(direct, indirect, specular);
+        composite_pass(camera, direct, indirect, specular);
         timer.end(RenderPass::Composite);
         if (!caustic_stage) {
             caustics = external;  // the own pass's texture is not an external term

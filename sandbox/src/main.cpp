@@ -25,6 +25,7 @@
 #include "luxel/runtime/shader_library.hpp"
 #include "luxel/runtime/tool_main.hpp"
 #include "luxel/scene/load_limits_flag.hpp"
+#include "luxel/scene/sky_flag.hpp"
 #include "runs.hpp"
 #include "sandbox_level.hpp"
 
@@ -157,6 +158,7 @@ int run(int argc, char** argv) {
     luxel::cli::add_threads(app, options.app.threads);
     luxel::cli::add_log_level(app);
     luxel::cli::add_load_limits(app, options.app.load_limits);
+    luxel::cli::add_sky(app, options.app.sky);
     luxel::prep::add_auto_prep_flags(app, options.app.auto_prep);
     if (!luxel::cli::parse(app, argc, argv)) {
         return 0;

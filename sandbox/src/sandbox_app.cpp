@@ -52,7 +52,9 @@ SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const Shade
     prep::PlayableLevel playable{settings.load_limits, {}, settings.auto_prep};
     playable.check.uses_camera = level_name_ != "sandbox";
     scene_ = prep::load_playable(level_file_, playable, jobs);
-    instance_ = world::instantiate(registry_, scene_);
+    world::InstantiateOptions instantiate;
+    instantiate.sky = settings.sky;
+    instance_ = world::instantiate(registry_, scene_, instantiate);
     const std::size_t bounces = add_bounces(registry_, instance_, *scene_);
     // The pose the first frame shows, before anything is lit: the animations and light switches
     // at t = 0 and the game's bounce at its start. Without it the loading screen lit the glTF

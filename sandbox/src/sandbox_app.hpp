@@ -28,8 +28,9 @@ struct AppSettings {
     int threads = 0;
     /// Wall-time limit of the lighting warm-up at load (0: none, start dark).
     double warm_up_ms = 20'000.0;
-    scene::LoadOptions load_limits;    ///< --limit
-    prep::AutoPrepSettings auto_prep;  ///< --no-auto-prep, --prep-cache
+    scene::LoadOptions load_limits;     ///< --limit
+    std::optional<scene::SkySpec> sky;  ///< --sky: instead of the level's
+    prep::AutoPrepSettings auto_prep;   ///< --no-auto-prep, --prep-cache
 };
 
 /// The game: a level in an ECS registry, the game systems that move it, the lighting system and

@@ -226,6 +226,27 @@ void check_required_extensions(const tinygltf::Model& model, const ImportContext
     }
 }
 
+/// The scene's extras.luxel.sky, if it has one (docs/LEVELS.md, "Sky").
+void read_scene_sky(ImportContext& context, const tinygltf::Scene& source, int index) {
+    const nlohmann::json extras = gltf_detail::parse_kept_json(source.extras_json_string);
+    if (!extras.is_object()) {
+        return;
+    }
+    const auto luxel = extras.find("luxel");
+    if (luxel == extras.end() || !luxel->is_object()) {
+        return;
+    }
+    const auto sky = luxel->find("sky");
+    if (sky == luxel->end()) {
+        return;
+    }
+    try {
+        context.scene().sky = read_sky_extras(*sky);
+    } catch (const Error& e) {
+        context.fail("scene " + std::to_string(index) + ": " + e.what());
+    }
+}
+
 void collect_roots(ImportContext& context) {
     const tinygltf::Model& model = context.model();
     Scene& scene = context.scene();
@@ -248,6 +269,7 @@ void collect_roots(ImportContext& context) {
     }
     const tinygltf::Scene& source = model.scenes[static_cast<std::size_t>(chosen)];
     scene.name = source.name;
+    read_scene_sky(context, source, chosen);
     for (const int root : source.nodes) {
         if (root < 0 || static_cast<std::size_t>(root) >= scene.nodes.size()) {
             context.fail("scene " + std::to_string(chosen) + ": node " + std::to_string(root) +

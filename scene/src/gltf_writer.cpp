@@ -149,6 +149,9 @@ class DocumentWriter {
         if (!scene_.roots.empty()) {
             scene["nodes"] = scene_.roots;
         }
+        if (json sky = sky_extras(scene_.sky); !sky.is_null()) {
+            scene["extras"]["luxel"]["sky"] = std::move(sky);
+        }
         document_["scenes"] = json::array({scene});
         document_["scene"] = 0;
         if (!buffer_.views().empty()) {

@@ -29,7 +29,7 @@ void frame(benchmark::State& state, bool moving) {
     world::instantiate(
         world.registry,
         std::make_shared<scene::Scene>(scene::load_gltf(test::prepared_level("cornell"))),
-        world::InstantiateOptions{false});
+        world::InstantiateOptions{.play_animations = false, .sky = std::nullopt});
     world.start();
     // Lit and gathered, so every pass has its real input.
     for (int i = 0; i < 20; ++i) {

@@ -16,6 +16,7 @@
 #include "luxel/runtime/jobs.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/scene_instance.hpp"
+#include "map_test_scenes.hpp"
 
 namespace {
 
@@ -43,27 +44,13 @@ struct Furnace {
         for (auto [entity, light] : registry.view<lighting::AreaLight>()) {
             emitter = entity;
         }
-        lighting::LightingConfig config;
-        config.photons.selective.groups = 77;  // the paper's 77 x 40
-        config.photons.selective.per_group = 40;
-        config.gather.rays_per_texel = 64;
-        config.texels_per_gather_unit = 1u << 20;
-        config.texels_per_aim_unit = 1u << 20;
-        lighting = std::make_unique<lighting::LightingSystem>(registry, jobs, config);
+        // The paper's 77 x 40 photons.
+        lighting = std::make_unique<lighting::LightingSystem>(
+            registry, jobs, luxel::testing::closed_form_config(77, 40));
     }
 
     /// Unlimited budget until converged; the frames it took.
-    int converge() {
-        for (int i = 1; i <= 100; ++i) {
-            time += 1.0 / 30.0;
-            transforms.update();
-            lighting->update(1e9, time);
-            if (lighting->plan().census().converged) {
-                return i;
-            }
-        }
-        return 101;
-    }
+    int converge() { return luxel::testing::converge(transforms, *lighting, time); }
 
     /// Mean and largest green IIM value over every owned texel.
     [[nodiscard]] std::pair<double, double> iim() const {

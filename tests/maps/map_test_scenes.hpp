@@ -15,6 +15,7 @@
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/components.hpp"
 #include "luxel/lighting/core/illumination_maps.hpp"
+#include "luxel/lighting/core/lighting_system.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
 
 namespace luxel::testing {
@@ -51,6 +52,33 @@ inline std::shared_ptr<const scene::Scene> lightmapped_plane(float side, int cel
     }
     s->meshes.push_back({"plane", {p}});
     return s;
+}
+
+/// A lighting configuration for closed-form checks: `groups` x `per_group` photons, 64 gather
+/// rays, and units so large that one unlimited frame does all the map work there is.
+inline lighting::LightingConfig closed_form_config(std::uint32_t groups, std::uint32_t per_group) {
+    lighting::LightingConfig config;
+    config.photons.selective.groups = groups;
+    config.photons.selective.per_group = per_group;
+    config.gather.rays_per_texel = 64;
+    config.texels_per_gather_unit = 1u << 20;
+    config.texels_per_aim_unit = 1u << 20;
+    return config;
+}
+
+/// Frames of 1/30 s with an unlimited budget until the plan says converged (every group
+/// probed: per_group frames at least); the frames it took, or max_frames + 1.
+inline int converge(ecs::TransformSystem& transforms, lighting::LightingSystem& lighting,
+                    double& time, int max_frames = 100) {
+    for (int i = 1; i <= max_frames; ++i) {
+        time += 1.0 / 30.0;
+        transforms.update();
+        lighting.update(1e9, time);
+        if (lighting.plan().census().converged) {
+            return i;
+        }
+    }
+    return max_frames + 1;
 }
 
 /// A registry holding one light-mapped plane entity, a PhotonWorld without lights (the test

@@ -28,6 +28,7 @@ inline void expect_near(const glm::vec3& a, const glm::vec3& b, const std::strin
 
 inline void expect_same_scene(const scene::Scene& a, const scene::Scene& b) {
     EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.sky, b.sky);
     EXPECT_EQ(a.roots, b.roots);
 
     ASSERT_EQ(a.nodes.size(), b.nodes.size());

@@ -52,8 +52,9 @@ struct ImageSpec {
 
 struct Options {
     std::string level;
-    scene::LoadOptions load_limits;    ///< --limit
-    prep::AutoPrepSettings auto_prep;  ///< --no-auto-prep, --prep-cache
+    scene::LoadOptions load_limits;     ///< --limit
+    std::optional<scene::SkySpec> sky;  ///< --sky: instead of the level's
+    prep::AutoPrepSettings auto_prep;   ///< --no-auto-prep, --prep-cache
     std::vector<double> budgets{1.0, 2.0, 4.0, 8.0};
     std::uint32_t frames = 150;  ///< static frames per configuration
     std::uint32_t after = 90;    ///< frames after the scripted change

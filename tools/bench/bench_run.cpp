@@ -57,6 +57,14 @@ Bench::Bench(const Options& options, const std::filesystem::path& level_file)
     std::ostringstream pose;
     pose << "level=" << level_file.filename().string()
          << ";bytes=" << std::filesystem::file_size(level_file) << ";time=" << options.time;
+    if (options.sky) {
+        // Another sky is another level to the references.
+        pose << ";sky=" << scene::describe(*options.sky);
+        if (options.sky->kind == scene::SkySpec::Kind::Map) {
+            std::error_code error;
+            pose << ",bytes=" << std::filesystem::file_size(options.sky->map, error);
+        }
+    }
     pose_ = pose.str();
     if (options.image.enabled || sweeps_gpu_backend(options)) {
         gl_ = make_headless_context();

@@ -93,10 +93,11 @@ void apply(const Change& change, ecs::Registry& registry, ecs::Entity entity,
 /// The level instantiated with its animations posed at `time` (as luxel-ref poses it), then
 /// frozen: only the scripted change moves.
 world::SceneInstance posed_instance(ecs::Registry& registry,
-                                    const std::shared_ptr<const scene::Scene>& source,
-                                    double time) {
+                                    const std::shared_ptr<const scene::Scene>& source, double time,
+                                    const std::optional<scene::SkySpec>& sky) {
     world::InstantiateOptions instantiate_options;
     instantiate_options.play_animations = true;
+    instantiate_options.sky = sky;
     world::SceneInstance instance = world::instantiate(registry, source, instantiate_options);
     world::update_animations(registry, time);
     world::update_light_switches(registry, time);
@@ -108,7 +109,8 @@ world::SceneInstance posed_instance(ecs::Registry& registry,
 ConfigRun::ConfigRun(const LevelRunContext& context, const BenchConfig& config)
     : context_(context),
       options_(*context.options),
-      instance_(posed_instance(registry_, context.source, context.options->time)) {
+      instance_(
+          posed_instance(registry_, context.source, context.options->time, context.options->sky)) {
     result_.config = config;
     transforms_ = std::make_unique<ecs::TransformSystem>(registry_);
     transforms_->update();

@@ -26,6 +26,7 @@
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/tool_main.hpp"
 #include "luxel/scene/load_limits_flag.hpp"
+#include "luxel/scene/sky_flag.hpp"
 #include "report.hpp"
 
 namespace {
@@ -128,6 +129,7 @@ int run(int argc, char** argv) {
                  "also write every run's per-texel light maps and reference to OUT/maps/");
     cli::add_threads(app, options.threads);
     cli::add_load_limits(app, options.load_limits);
+    cli::add_sky(app, options.sky);
     prep::add_auto_prep_flags(app, options.auto_prep);
     if (!cli::parse(app, argc, argv)) {
         return 0;

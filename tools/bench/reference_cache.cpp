@@ -1,5 +1,6 @@
 #include "reference_cache.hpp"
 
+#include <algorithm>
 #include <cinttypes>
 #include <cstdio>
 #include <fstream>
@@ -99,6 +100,9 @@ lighting::reference::ReferenceSettings reference_settings(const ReferenceSpec& s
     settings.caustics.seed = spec.seed;
     settings.indirect = IndirectMethod::Photons;
     settings.indirect_photons.seed = spec.seed;
+    // The light maps are compared with what the IIM should hold, which includes the direct
+    // light of area lights and skies (the renderer adds only delta lights' direct light).
+    settings.paths.gathered_as_indirect = true;
     return settings;
 }
 
@@ -112,6 +116,14 @@ ReferenceMaps reference_for(const std::filesystem::path& cache_dir, const std::s
                ";caustic_photons=" + std::to_string(spec.caustic_photons) +
                ";spp=" + std::to_string(spec.spp) + ";seed=" + std::to_string(spec.seed) +
                ";texels=" + std::to_string(scene.texel_count()) + ";reference=v2";
+    // Area lights' and skies' direct light counts as indirect (reference_settings): a level
+    // that has them gets a new entry; one lit by delta lights alone keeps its reference.
+    const auto lights = scene.lights();
+    if (std::any_of(
+            lights.begin(), lights.end(),
+            [](const lighting::reference::ReferenceLight& light) { return !light.is_delta(); })) {
+        maps.key += ";gathered=indirect";
+    }
     maps.hash = cache_hash(maps.key);
     const std::filesystem::path file = cache_dir / (maps.hash + ".json");
     if (load(file, maps, scene.texel_count())) {

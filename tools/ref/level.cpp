@@ -62,6 +62,7 @@ void check_reference_memory(const std::filesystem::path& file, std::uint64_t tex
 }
 
 std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file, double time,
+                                        const std::optional<scene::SkySpec>& sky,
                                         const prep::PlayableLevel& playable, JobSystem& jobs) {
     auto level = std::make_unique<LoadedLevel>();
     const scene::LoadOptions& limits = playable.limits;
@@ -69,6 +70,7 @@ std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file, doubl
     const std::shared_ptr<const scene::Scene> source = prep::load_playable(file, playable, jobs);
     world::InstantiateOptions options;
     options.play_animations = true;
+    options.sky = sky;
     level->instance = world::instantiate(level->registry, source, options);
     // Every animation and light switch at `time` (a zero step still poses time 0).
     world::update_animations(level->registry, time);

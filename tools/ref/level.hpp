@@ -40,9 +40,11 @@ void check_reference_memory(const std::filesystem::path& file, std::uint64_t tex
                             const scene::LoadOptions& limits);
 
 /// Loads `file` (prep::load_playable: its warnings, and prepared at load if luxel-prep never
-/// did) and poses it at `time` seconds (animations and light switches advanced).
+/// did) and poses it at `time` seconds (animations and light switches advanced), under `sky`
+/// instead of its own sky when set.
 [[nodiscard]] std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file,
                                                       double time,
+                                                      const std::optional<scene::SkySpec>& sky,
                                                       const prep::PlayableLevel& playable,
                                                       JobSystem& jobs);
 

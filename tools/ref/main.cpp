@@ -27,6 +27,7 @@
 #include "luxel/runtime/tool_main.hpp"
 #include "luxel/scene/level_check.hpp"
 #include "luxel/scene/load_limits_flag.hpp"
+#include "luxel/scene/sky_flag.hpp"
 #include "options.hpp"
 
 namespace {
@@ -72,6 +73,7 @@ void add_flags(CLI::App& app, ref::Options& options, std::string& camera_text) {
         ->capture_default_str();
     cli::add_threads(app, options.threads);
     cli::add_load_limits(app, options.load_limits);
+    cli::add_sky(app, options.sky);
     prep::add_auto_prep_flags(app, options.auto_prep);
     app.add_option("-o,--output", options.image, "the frame as OpenEXR (linear RGB radiance)");
     app.add_option("--png", options.preview, "also a tone-mapped PNG preview of the frame");
@@ -199,7 +201,7 @@ int run(int argc, char** argv) {
     // through the level's camera), and the level prepared at load if luxel-prep never did.
     prep::PlayableLevel playable{options.load_limits, {}, options.auto_prep};
     playable.check.uses_camera = !options.image.empty() && !options.camera;
-    const auto level = ref::load_level(file, options.time, playable, jobs);
+    const auto level = ref::load_level(file, options.time, options.sky, playable, jobs);
     const ReferenceScene& scene = *level->scene;
     std::fprintf(stderr,
                  "luxel-ref: %s at t = %.3f s: %zu light-mapped surfaces, %zu texels, %zu "

@@ -41,6 +41,7 @@ struct Options {
     std::string indirect = "photons";
     std::uint64_t indirect_photons = 20'000'000;  ///< in all, over the passes
     scene::LoadOptions load_limits;               ///< --limit
+    std::optional<scene::SkySpec> sky;            ///< --sky: instead of the level's
     prep::AutoPrepSettings auto_prep;             ///< --no-auto-prep, --prep-cache
 };
 

@@ -9,6 +9,7 @@
 #include "luxel/runtime/error.hpp"
 #include "luxel/scene/lightmap_layout.hpp"
 #include "luxel/world/animation_system.hpp"
+#include "luxel/world/sky.hpp"
 
 namespace luxel::world {
 namespace {
@@ -165,6 +166,7 @@ SceneInstance instantiate(ecs::Registry& registry, std::shared_ptr<const scene::
         registry.emplace<AnimationPlayer>(entity, std::move(player));
         instance.animations.push_back(entity);
     }
+    instance.sky = add_sky(registry, *scene, options.sky.value_or(scene->sky));
     return instance;
 }
 

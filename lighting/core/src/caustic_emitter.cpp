@@ -135,6 +135,18 @@ CausticEmitter::CausticEmitter(const LightSource& light, const BoundingSphere& g
             power_scale_ = light.power * static_cast<float>(area);
             break;
         }
+        case LightKind::Sky: {
+            // A directional beam onto the generator's disc per sampled sky direction, started
+            // behind everything in the scene whatever the direction.
+            sky_ = light.sky;
+            sky_scale_ = light.sky_scale;
+            generator_ = generator;
+            beam_radius_ = generator.radius;
+            beam_back_ = glm::length(generator.centre - scene.centre) + scene.radius +
+                         2.0f * generator.radius;
+            reaches_ = sky_ != nullptr && !sky_->black() && sky_scale_ > 0.0f;
+            break;
+        }
     }
 }
 
@@ -196,6 +208,28 @@ EmittedPhoton CausticEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
                 photon.power = power_scale_ * static_cast<float>(static_cast<double>(cosine) *
                                                                  toward.solid_angle() * share);
             }
+            break;
+        }
+        case LightKind::Sky: {
+            const SkyRadiance::Sample from = sky_->sample(d);
+            if (!(from.pdf > 0.0)) {
+                break;
+            }
+            const glm::vec3 travel = -from.direction;
+            glm::vec3 tangent;
+            glm::vec3 bitangent;
+            orthonormal_basis(travel, tangent, bitangent);
+            const double r = static_cast<double>(beam_radius_) * std::sqrt(p.x);
+            const double phi = kTwoPi * p.y;
+            photon.origin = generator_.centre - beam_back_ * travel +
+                            static_cast<float>(r * std::cos(phi)) * tangent +
+                            static_cast<float>(r * std::sin(phi)) * bitangent;
+            photon.direction = travel;
+            // L pi r^2 / (pdf N) through the generator's disc.
+            const double disc =
+                kPi * static_cast<double>(beam_radius_) * static_cast<double>(beam_radius_);
+            photon.power = glm::vec3(glm::dvec3(from.radiance) *
+                                     (static_cast<double>(sky_scale_) * disc * share / from.pdf));
             break;
         }
     }

@@ -128,7 +128,8 @@ glm::vec3 CpuGatherer::trace(glm::vec3 origin, glm::vec3 direction, std::uint32_
     for (std::uint32_t interaction = 0; interaction <= settings_.max_specular; ++interaction) {
         const auto hit = scene_->intersect(origin, direction, settings_.max_distance);
         if (!hit) {
-            return glm::vec3(0.0f);
+            // Left the level: the sky (black without one).
+            return atlas_->skies.empty() ? glm::vec3(0.0f) : weight * atlas_->sky(direction);
         }
         const TraceMaterial* material = materials_ != nullptr && hit->material < materials_->size()
                                             ? &(*materials_)[hit->material]

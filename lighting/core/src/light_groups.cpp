@@ -42,6 +42,17 @@ void LightGroups::refresh(ecs::Entity entity, const BoundingSphere& scene) {
         source.power = sun->irradiance;
         enabled = sun->enabled;
         directional = true;
+    } else if (const auto* sky = registry_.try_get<SkyLight>(entity)) {
+        // Emitted from the disc of the scene's sphere, as a directional light is.
+        source.kind = LightKind::Sky;
+        source.sky = sky->radiance;
+        source.sky_scale = sky->effective_scale();
+        // Its integral over the sphere (W/m^2): what "has power" means for a sky.
+        source.power = sky->radiance != nullptr
+                           ? glm::vec3(sky->radiance->integral()) * source.sky_scale
+                           : glm::vec3(0.0f);
+        enabled = sky->enabled && sky->radiance != nullptr && !sky->radiance->black();
+        directional = true;
     } else if (const auto* area = registry_.try_get<AreaLight>(entity);
                area != nullptr && registry_.has<scene::MeshInstance>(entity)) {
         source.kind = LightKind::Area;

@@ -37,6 +37,13 @@ glm::vec3 area_radiance(const LightSource& light, std::size_t triangle, std::uin
     return light.pieces->radiance(triangle, piece) * light.piece_scale;
 }
 
+glm::vec3 sky_radiance(const LightSource& light, const glm::vec3& towards_sky) {
+    if (light.kind != LightKind::Sky || light.sky == nullptr) {
+        return glm::vec3(0.0f);
+    }
+    return light.sky->radiance(towards_sky) * light.sky_scale;
+}
+
 AreaRadiance integrate_area_radiance(const LightSource& light) {
     AreaRadiance out;
     for (std::size_t t = 0; 3 * t + 2 < light.triangles.size(); ++t) {
@@ -206,6 +213,17 @@ float spot_falloff(const LightSource& light, double cos_axis) {
         cos_axis);
 }
 
+glm::vec3 scene_disc_origin(const BoundingSphere& scene, const glm::vec3& travel,
+                            const glm::dvec2& u) {
+    glm::vec3 t;
+    glm::vec3 b;
+    orthonormal_basis(travel, t, b);
+    const double r = static_cast<double>(scene.radius) * std::sqrt(u.x);
+    const double phi = kTwoPi * u.y;
+    return scene.centre + static_cast<float>(r * std::cos(phi)) * t +
+           static_cast<float>(r * std::sin(phi)) * b - 2.0f * scene.radius * travel;
+}
+
 PhotonEmitter::PhotonEmitter(LightSource light, const BoundingSphere& scene_bounds)
     : light_(std::move(light)), bounds_(scene_bounds) {
     constexpr float pi = glm::pi<float>();
@@ -227,6 +245,15 @@ PhotonEmitter::PhotonEmitter(LightSource light, const BoundingSphere& scene_boun
                 glm::vec3(integrate_area_radiance(light_).radiance_times_area * glm::pi<double>());
             break;
         }
+        case LightKind::Sky:
+            total_power_ =
+                light_.sky != nullptr
+                    ? glm::vec3(light_.sky->integral() *
+                                (glm::pi<double>() * static_cast<double>(bounds_.radius) *
+                                 static_cast<double>(bounds_.radius) *
+                                 static_cast<double>(light_.sky_scale)))
+                    : glm::vec3(0.0f);
+            break;
     }
 }
 
@@ -254,16 +281,8 @@ EmittedPhoton PhotonEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
             break;
         }
         case LightKind::Directional: {
-            // A point on the disc of the scene's bounding sphere facing the light, moved back
-            // behind the sphere so every photon starts outside the scene.
-            glm::vec3 t;
-            glm::vec3 b;
-            orthonormal_basis(light_.direction, t, b);
-            const double r = static_cast<double>(bounds_.radius) * std::sqrt(d.x);
-            const double phi = kTwoPi * d.y;
-            photon.origin = bounds_.centre + static_cast<float>(r * std::cos(phi)) * t +
-                            static_cast<float>(r * std::sin(phi)) * b -
-                            2.0f * bounds_.radius * light_.direction;
+            // One direction: d places the photon on the scene's disc.
+            photon.origin = scene_disc_origin(bounds_, light_.direction, d);
             photon.direction = light_.direction;
             break;
         }
@@ -282,6 +301,28 @@ EmittedPhoton PhotonEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
                                                                         on_light.piece)) *
                                                (glm::pi<double>() / weight))
                                    : glm::vec3(0.0f);
+            }
+            break;
+        }
+        case LightKind::Sky: {
+            // d picks the direction the sky sends the photon from (so the groups are regions
+            // of the sky), p a point on the disc of the scene's sphere facing it, moved back
+            // outside the sphere as for a directional light.
+            photon.power = glm::vec3(0.0f);
+            if (light_.sky == nullptr) {
+                break;
+            }
+            const SkyRadiance::Sample from = light_.sky->sample(d);
+            const glm::vec3 travel = -from.direction;
+            photon.origin = scene_disc_origin(bounds_, travel, p);
+            photon.direction = travel;
+            // L pi R^2 / (pdf N): the flux through the disc from a direction chosen by pdf.
+            const double weight = from.pdf * static_cast<double>(photon_count);
+            if (weight > 0.0) {
+                const double disc = glm::pi<double>() * static_cast<double>(bounds_.radius) *
+                                    static_cast<double>(bounds_.radius);
+                photon.power = glm::vec3(glm::dvec3(from.radiance) *
+                                         (disc * static_cast<double>(light_.sky_scale) / weight));
             }
             break;
         }

@@ -29,7 +29,8 @@ MapRegistry::MapRegistry(ecs::Registry& registry, const PhotonWorld& world)
     : registry_(registry),
       world_(world),
       moves_(registry.observe<ecs::WorldTransform>()),
-      area_changes_(registry.observe<AreaLight>()) {}
+      area_changes_(registry.observe<AreaLight>()),
+      sky_changes_(registry.observe<SkyLight>(ecs::ObserverStart::WithExisting)) {}
 
 bool MapRegistry::live(std::uint32_t s) const {
     const MapSurface& mapped = surfaces_.at(s);
@@ -181,6 +182,25 @@ void MapRegistry::find_nearby_changes() {
     }
 }
 
+bool MapRegistry::refresh_skies() {
+    std::vector<RadianceAtlas::Sky> skies;
+    for (auto [entity, sky] : registry_.view<SkyLight>()) {
+        if (sky.enabled && sky.radiance != nullptr && !sky.radiance->black() &&
+            sky.effective_scale() > 0.0f) {
+            skies.push_back({sky.radiance, sky.effective_scale()});
+        }
+    }
+    const bool same = std::equal(skies.begin(), skies.end(), aim_.skies.begin(), aim_.skies.end(),
+                                 [](const RadianceAtlas::Sky& a, const RadianceAtlas::Sky& b) {
+                                     return a.radiance == b.radiance && a.scale == b.scale;
+                                 });
+    if (same) {
+        return false;
+    }
+    aim_.skies = std::move(skies);
+    return true;
+}
+
 void MapRegistry::sync() {
     for (auto s = static_cast<std::uint32_t>(surfaces_.size()); s < world_.surfaces().size(); ++s) {
         add_surface(s);
@@ -196,6 +216,13 @@ void MapRegistry::sync() {
             }
         }
     });
+    bool sky_touched = false;
+    sky_changes_.consume([&](ecs::Entity, ecs::ChangeKind) { sky_touched = true; });
+    // A sky's direct light on every surface comes from the gathers, as an area light's does:
+    // a changed sky re-gathers them all.
+    if (sky_touched && refresh_skies()) {
+        ++emission_version_;
+    }
     moves_.consume([&](ecs::Entity entity, ecs::ChangeKind kind) {
         if (kind == ecs::ChangeKind::Destroyed) {
             return;

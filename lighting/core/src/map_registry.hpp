@@ -76,6 +76,8 @@ class MapRegistry {
     /// Sets aim_.surface_emission[surface] from its material and its entity's AreaLight;
     /// returns whether it changed.
     bool refresh_emission(std::uint32_t surface);
+    /// Sets aim_.skies from the enabled SkyLights; returns whether they changed.
+    bool refresh_skies();
     std::int32_t page_index(const scene::Scene* source, int page, int page_size);
     /// Collects nearby_changes_ from the photon world's geometry changes.
     void find_nearby_changes();
@@ -99,6 +101,7 @@ class MapRegistry {
     std::map<ecs::Entity, std::vector<std::uint32_t>> surfaces_of_;
     ecs::Observer<ecs::WorldTransform> moves_;
     ecs::Observer<AreaLight> area_changes_;
+    ecs::Observer<SkyLight> sky_changes_;
     std::uint64_t emission_version_ = 0;
 };
 

@@ -23,6 +23,7 @@ PhotonWorld::PhotonWorld(ecs::Registry& registry, PhotonWorldSettings settings)
       spot_changes_(registry.observe<SpotLight>(ecs::ObserverStart::WithExisting)),
       directional_changes_(registry.observe<DirectionalLight>(ecs::ObserverStart::WithExisting)),
       area_changes_(registry.observe<AreaLight>(ecs::ObserverStart::WithExisting)),
+      sky_changes_(registry.observe<SkyLight>(ecs::ObserverStart::WithExisting)),
       generator_changes_(registry.observe<CausticGenerator>(ecs::ObserverStart::WithExisting)) {}
 
 PhotonWorld::~PhotonWorld() = default;
@@ -45,6 +46,7 @@ void PhotonWorld::sync() {
     collect(spot_changes_);
     collect(directional_changes_);
     collect(area_changes_);
+    collect(sky_changes_);
     geometry_->commit();
 
     sync_lights(light_touched);
@@ -143,12 +145,13 @@ void PhotonWorld::sync_lights(std::vector<ecs::Entity>& light_touched) {
     for (ecs::Entity entity : light_touched) {
         if (lights_->contains(entity) ||
             (registry_.valid(entity) &&
-             registry_.has_any<PointLight, SpotLight, DirectionalLight, AreaLight>(entity))) {
+             registry_.has_any<PointLight, SpotLight, DirectionalLight, AreaLight, SkyLight>(
+                 entity))) {
             ++last_sync_.lights_refreshed;
         }
         const bool is_light =
             registry_.valid(entity) &&
-            (registry_.has_any<PointLight, SpotLight, DirectionalLight>(entity) ||
+            (registry_.has_any<PointLight, SpotLight, DirectionalLight, SkyLight>(entity) ||
              (registry_.has<AreaLight>(entity) && registry_.has<scene::MeshInstance>(entity)));
         if (is_light) {
             lights_->refresh(entity, scene);

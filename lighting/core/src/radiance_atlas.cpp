@@ -87,4 +87,14 @@ glm::vec3 RadianceAtlas::sample(std::int32_t surface, const glm::vec2& uv) const
     return radiance;
 }
 
+glm::vec3 RadianceAtlas::sky(const glm::vec3& towards_sky) const {
+    glm::vec3 radiance(0.0f);
+    for (const Sky& one : skies) {
+        if (one.radiance != nullptr) {
+            radiance += one.radiance->radiance(towards_sky) * one.scale;
+        }
+    }
+    return radiance;
+}
+
 }  // namespace luxel::lighting

@@ -13,6 +13,7 @@
 #include "luxel/lighting/gpu/hemi_plane_geometry.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/gl_state_guard.hpp"
+#include "luxel/runtime/log.hpp"
 #include "luxel/runtime/program.hpp"
 #include "luxel/runtime/shader_library.hpp"
 #include "radiance_texture.hpp"
@@ -110,6 +111,7 @@ int fit_batch(int batch, int resolution) {
 struct HemiPlaneGatherer::Impl {
     const RayScene* scene;
     const RadianceAtlas* atlas;
+    bool warned_sky = false;
     HemiPlaneSettings settings;
     HemiPlaneStats stats;
     double coverage = 0.0;
@@ -227,6 +229,14 @@ struct HemiPlaneGatherer::Impl {
         geometry.sync(*scene);
         const std::uint64_t pages_before = radiance.page_uploads();
         radiance.sync(*atlas);
+        if (!atlas->skies.empty() && !warned_sky) {
+            // Its background is black: a sky's direct light is missing from its IIM (the CPU
+            // gather sees it, docs/METHOD.md §6.11).
+            log::warn(
+                "the GPU gather does not see the sky yet: its light maps leave out the "
+                "sky's direct light (the CPU gather, the default, includes it)");
+            warned_sky = true;
+        }
         stats.page_uploads += radiance.page_uploads() - pages_before;
         stats.object_uploads = geometry.uploads();
         reserve(count);

@@ -76,7 +76,8 @@ CausticDiscEmitter::CausticDiscEmitter(const ReferenceLight& light, const Boundi
             return;
         }
         case LightKind::Area:
-            return;  // area-light caustics are path traced (PathEstimator)
+        case LightKind::Sky:
+            return;  // area-light and sky caustics are path traced (PathEstimator)
     }
 }
 

@@ -58,6 +58,14 @@ IndirectPhotons::IndirectPhotons(const ReferenceScene& scene, IndirectPhotonSett
             case LightKind::Area:
                 flux = glm::dvec3(source.power) * (kPi * lights[l].triangles.area());
                 break;
+            case LightKind::Sky: {
+                const double r = scene.bounds().radius;
+                flux = source.sky != nullptr
+                           ? source.sky->integral() *
+                                 (kPi * r * r * static_cast<double>(source.sky_scale))
+                           : glm::dvec3(0.0);
+                break;
+            }
         }
         if (channel_sum(flux) > 0.0 && std::isfinite(channel_sum(flux))) {
             emitters_.push_back({l, channel_sum(flux), 0.0, flux});
@@ -105,16 +113,8 @@ void IndirectPhotons::trace(std::uint64_t index, std::vector<Deposit>& out,
             break;
         }
         case LightKind::Directional: {
-            const BoundingSphere bounds = scene_->bounds();
             direction = glm::normalize(source.direction);
-            const double r = bounds.radius * std::sqrt(d.x);
-            glm::vec3 tangent;
-            glm::vec3 bitangent;
-            orthonormal_basis(direction, tangent, bitangent);
-            const double phi = 2.0 * kPi * d.y;
-            origin = bounds.centre - direction * (2.0f * bounds.radius) +
-                     glm::vec3(glm::dvec3(tangent) * (r * std::cos(phi)) +
-                               glm::dvec3(bitangent) * (r * std::sin(phi)));
+            origin = scene_disc_origin(scene_->bounds(), direction, d);
             break;
         }
         case LightKind::Area: {
@@ -129,6 +129,23 @@ void IndirectPhotons::trace(std::uint64_t index, std::vector<Deposit>& out,
                     (kPi / (sample.density * emitter.probability));
             direction = cosine_direction(sample.normal, d);
             origin = offset_ray_origin(sample.point, sample.normal);
+            break;
+        }
+        case LightKind::Sky: {
+            // A direction by the sky's own distribution, then a point on the scene disc
+            // facing it: L pi R^2 / pdf is this photon's estimate of the sky's flux.
+            const SkyRadiance::Sample from = source.sky->sample(d);
+            if (!(from.pdf > 0.0)) {
+                ++counters.absorbed;
+                return;
+            }
+            const BoundingSphere bounds = scene_->bounds();
+            direction = -from.direction;
+            origin = scene_disc_origin(bounds, direction, random.next2());
+            const double disc =
+                kPi * static_cast<double>(bounds.radius) * static_cast<double>(bounds.radius);
+            power = glm::dvec3(from.radiance) * (static_cast<double>(source.sky_scale) * disc /
+                                                 (from.pdf * emitter.probability));
             break;
         }
     }

@@ -48,12 +48,16 @@ PathEstimator::PathEstimator(const ReferenceScene& scene, PathSettings settings,
                              std::span<const glm::dvec3> caustic_irradiance)
     : scene_(&scene), settings_(settings), caustics_(caustic_irradiance) {}
 
-glm::dvec3 PathEstimator::direct_light(const glm::vec3& point, const glm::vec3& normal,
-                                       const glm::vec3& geometric, SampleStream& random,
-                                       PathCounters& counters) const {
+PathEstimator::DirectLight PathEstimator::direct_light(const glm::vec3& point,
+                                                       const glm::vec3& normal,
+                                                       const glm::vec3& geometric,
+                                                       SampleStream& random,
+                                                       PathCounters& counters) const {
     const RayScene& rays = scene_->rays();
     const glm::vec3 origin = offset_ray_origin(point, geometric);
-    glm::dvec3 irradiance(0.0);
+    DirectLight out;
+    glm::dvec3& irradiance = out.delta;
+    glm::dvec3& gathered = out.gathered;
     for (const ReferenceLight& light : scene_->lights()) {
         const LightSource& source = light.source;
         switch (source.kind) {
@@ -121,13 +125,49 @@ glm::dvec3 PathEstimator::direct_light(const glm::vec3& point, const glm::vec3& 
                 }
                 const double pdf_light = distance2 * sample.density / cos_light;  // per sr
                 const double pdf_bsdf = cosine / kPi;
-                irradiance += glm::dvec3(area_radiance(source, sample.triangle, sample.piece)) *
-                              (cosine / pdf_light * power_heuristic(pdf_light, pdf_bsdf));
+                gathered += glm::dvec3(area_radiance(source, sample.triangle, sample.piece)) *
+                            (cosine / pdf_light * power_heuristic(pdf_light, pdf_bsdf));
+                break;
+            }
+            case LightKind::Sky: {
+                // A direction by the sky's distribution, weighed against the cosine-sampled
+                // continuation that may leave the scene the same way (trace()'s escape).
+                if (source.sky == nullptr) {
+                    break;
+                }
+                const SkyRadiance::Sample from = source.sky->sample(random.next2());
+                const glm::vec3& w = from.direction;
+                const double cosine = glm::dot(normal, w);
+                if (!(from.pdf > 0.0) || cosine <= 0.0 || glm::dot(geometric, w) <= 0.0f) {
+                    break;
+                }
+                ++counters.rays;
+                if (rays.occluded(origin, w, std::numeric_limits<float>::infinity())) {
+                    break;
+                }
+                gathered += glm::dvec3(from.radiance) *
+                            (static_cast<double>(source.sky_scale) * cosine / from.pdf *
+                             power_heuristic(from.pdf, cosine / kPi));
                 break;
             }
         }
     }
-    return irradiance;
+    return out;
+}
+
+glm::dvec3 PathEstimator::escaped(const glm::vec3& direction, double pdf) const {
+    glm::dvec3 radiance(0.0);
+    for (const ReferenceLight& light : scene_->lights()) {
+        if (light.source.kind != LightKind::Sky || light.source.sky == nullptr) {
+            continue;
+        }
+        const glm::dvec3 sky(sky_radiance(light.source, direction));
+        // After a diffuse vertex its next-event estimate also sampled this sky: weigh the two.
+        const double weight =
+            pdf > 0.0 ? power_heuristic(pdf, light.source.sky->pdf(direction)) : 1.0;
+        radiance += sky * weight;
+    }
+    return radiance;
 }
 
 void PathEstimator::trace(glm::vec3 origin, glm::vec3 direction, glm::dvec3 beta, double pdf,
@@ -144,13 +184,15 @@ void PathEstimator::trace(glm::vec3 origin, glm::vec3 direction, glm::dvec3 beta
         }
         ++counters.rays;
         const auto hit = rays.intersect(origin, direction);
-        if (!hit) {
-            return;  // no environment light: what leaves the scene is lost
-        }
-        const FacingNormals normals = facing_normals(*hit, direction);
-        const Component component = first_segment ? Component::Direct
+        const Component component = first_segment ? gathered_direct()
                                     : any_diffuse ? Component::Indirect
                                                   : Component::Caustic;
+        if (!hit) {
+            // Left the scene: the sky, if it has one.
+            add(out, component, beta * escaped(direction, pdf), counters);
+            return;
+        }
+        const FacingNormals normals = facing_normals(*hit, direction);
         if (normals.front) {
             if (const EmitterHit emitter = scene_->emitter_of(*hit); emitter.light >= 0) {
                 const ReferenceScene::Emission emission =
@@ -199,8 +241,8 @@ void PathEstimator::trace(glm::vec3 origin, glm::vec3 direction, glm::dvec3 beta
                     counters);
             }
         }
-        add(out, Component::Indirect, reflect * direct_light(hit->position, n, n, random, counters),
-            counters);
+        const DirectLight next = direct_light(hit->position, n, n, random, counters);
+        add(out, Component::Indirect, reflect * (next.delta + next.gathered), counters);
         const double survival = std::min(glm::max(albedo.x, glm::max(albedo.y, albedo.z)), 1.0);
         if (!(survival > 0.0) || random.next() >= survival) {
             return;
@@ -218,8 +260,10 @@ void PathEstimator::trace(glm::vec3 origin, glm::vec3 direction, glm::dvec3 beta
 Components PathEstimator::irradiance(const ReferenceTexel& texel, SampleStream& random,
                                      PathCounters& counters) const {
     Components out;
-    add(out, Component::Direct,
-        direct_light(texel.position, texel.normal, texel.geometric, random, counters), counters);
+    const DirectLight direct =
+        direct_light(texel.position, texel.normal, texel.geometric, random, counters);
+    add(out, Component::Direct, direct.delta, counters);
+    add(out, gathered_direct(), direct.gathered, counters);
     const glm::vec3 direction = cosine_direction(texel.normal, random.next2());
     const double cosine = glm::dot(texel.normal, direction);
     // A direction below the face would leave through the surface: it carries nothing (its

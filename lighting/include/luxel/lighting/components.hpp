@@ -5,6 +5,7 @@
 
 #include <glm/glm.hpp>
 
+#include "luxel/lighting/core/sky_radiance.hpp"
 #include "luxel/scene/components.hpp"
 #include "luxel/scene/lightmap_layout.hpp"
 #include "luxel/scene/scene.hpp"
@@ -46,6 +47,23 @@ struct DirectionalLight {
 struct AreaLight {
     float scale = 1.0f;
     bool enabled = true;
+};
+
+/// Light from the sky at infinity: `radiance` (SkyRadiance::uniform, an environment map, a
+/// daylight sky) times `scale`. It lights the level through photons (which carry its light into
+/// every bounce) and through the gathers, whose rays that leave the level read it (so the IIM
+/// holds its direct light, with soft shadows, as for an area light); views that leave the level
+/// show it. The entity's transform is not used; several enabled skies add up, as lights do.
+struct SkyLight {
+    std::shared_ptr<const SkyRadiance> radiance;  ///< null: black
+    float scale = 1.0f;
+    bool enabled = true;
+
+    /// The scale the lighting system uses: 0 for a negative or non-finite one, at most 1e6 (with
+    /// SkyRadiance's own cap every product stays finite in float).
+    [[nodiscard]] float effective_scale() const {
+        return scale >= 0.0f && scale <= 1e6f ? scale : (scale > 1e6f ? 1e6f : 0.0f);
+    }
 };
 
 /// Marks an entity whose specular surfaces (reflective or refractive) focus light into

@@ -12,6 +12,7 @@
 
 #include "luxel/scene/animation.hpp"
 #include "luxel/scene/light.hpp"
+#include "luxel/scene/sky.hpp"
 
 /// The engine-side scene: what a glTF 2.0 file holds, in luxel's units and conventions, with
 /// every index checked. Loaders produce it, writers consume it, and the lighting module turns it
@@ -126,6 +127,8 @@ struct Scene {
     std::vector<Light> lights;
     std::vector<Camera> cameras;
     std::vector<Animation> animations;
+    /// The level's sky, from the glTF scene's extras.luxel.sky (None without one).
+    SkySpec sky;
     LoadReport report;
     /// The file the scene was loaded from, as the loader names it in its errors; empty for a
     /// scene built in code. Errors found after loading (an image that does not decode, a

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "luxel/ecs/registry.hpp"
@@ -14,6 +15,7 @@ struct SceneInstance {
     std::shared_ptr<const scene::Scene> source;
     std::vector<ecs::Entity> nodes;
     std::vector<ecs::Entity> animations;
+    ecs::Entity sky = ecs::null_entity;  ///< the level's sky (world/sky.hpp), if it has one
 
     /// The entity of the first node with this name, or null_entity.
     [[nodiscard]] ecs::Entity find(const std::string& node_name) const;
@@ -21,6 +23,8 @@ struct SceneInstance {
 
 struct InstantiateOptions {
     bool play_animations = true;  ///< start every animation playing, looped
+    /// The sky instead of the level's own (--sky; Kind::None removes it), when set.
+    std::optional<scene::SkySpec> sky;
 };
 
 /// Turns a loaded scene into entities and components:
@@ -32,7 +36,8 @@ struct InstantiateOptions {
 ///   enabled unless extras.luxel.enabled is false; a `switch` object adds a LightSwitch;
 /// - a camera: CameraComponent;
 /// - Dynamic when scene.is_dynamic(node);
-/// - each animation: an entity with an AnimationPlayer whose channels target the node entities.
+/// - each animation: an entity with an AnimationPlayer whose channels target the node entities;
+/// - the level's sky (or options.sky): an entity with a SkyLight (world/sky.hpp).
 /// The scene is shared, not copied: MeshInstance and AnimationPlayer keep it alive. Throws
 /// luxel::Error naming the node when its light-map layout is malformed or names a primitive
 /// without TEXCOORD_1.

@@ -88,6 +88,11 @@ class CausticEmitter {
     // An area light's pieces when its radiance varies over it (LightSource::pieces).
     std::shared_ptr<const EmissionPieces> pieces_;
     float piece_scale_ = 1.0f;
+    // Sky: its radiance and scale; beams from sampled directions onto the generator's disc,
+    // started beam_back_ behind its centre (outside the scene).
+    std::shared_ptr<const SkyRadiance> sky_;
+    float sky_scale_ = 1.0f;
+    float beam_back_ = 0.0f;
 };
 
 }  // namespace luxel::lighting

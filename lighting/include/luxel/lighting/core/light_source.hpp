@@ -7,12 +7,13 @@
 #include <glm/glm.hpp>
 
 #include "luxel/lighting/core/emission_pieces.hpp"
+#include "luxel/lighting/core/sky_radiance.hpp"
 
 /// Lights as the photon tracer sees them: world space, watts, and a mapping from QMC samples
 /// to emitted photons.
 namespace luxel::lighting {
 
-enum class LightKind { Point, Spot, Directional, Area };
+enum class LightKind { Point, Spot, Directional, Area, Sky };
 
 struct LightSource {
     LightKind kind = LightKind::Point;
@@ -30,7 +31,13 @@ struct LightSource {
     /// order), times `piece_scale`; null: `power` everywhere.
     std::shared_ptr<const EmissionPieces> pieces;
     float piece_scale = 1.0f;  ///< the AreaLight's scale, which the shared pieces leave out
+    /// Sky: the radiance at infinity (null: black), times `sky_scale`.
+    std::shared_ptr<const SkyRadiance> sky;
+    float sky_scale = 1.0f;
 };
+
+/// The radiance a sky light sends from direction `towards_sky` (0 for other kinds).
+[[nodiscard]] glm::vec3 sky_radiance(const LightSource& light, const glm::vec3& towards_sky);
 
 /// The radiance W/(m^2 sr) an area light emits from a piece of a triangle (`power` without
 /// pieces).
@@ -53,11 +60,17 @@ struct EmittedPhoton {
     glm::vec3 power{0.0f};
 };
 
-/// The scene's bounding sphere: directional lights emit from a disc that covers it.
+/// The scene's bounding sphere: directional and sky lights emit from a disc that covers it.
 struct BoundingSphere {
     glm::vec3 centre{0.0f};
     float radius = 1.0f;
 };
+
+/// Where a photon of a light at infinity (directional, sky) starts: a point on the disc of the
+/// scene's bounding sphere facing `travel` (unit), moved 2R back so that it starts outside the
+/// scene. u.x picks the radius (uniformly over the disc's area), u.y the angle.
+[[nodiscard]] glm::vec3 scene_disc_origin(const BoundingSphere& scene, const glm::vec3& travel,
+                                          const glm::dvec2& u);
 
 /// Points on a set of triangles: the emitting surface of an area light. Without pieces, chosen
 /// in proportion to area; with EmissionPieces, in proportion to each piece's area times its
@@ -113,7 +126,8 @@ class PhotonEmitter {
     PhotonEmitter(LightSource light, const BoundingSphere& scene_bounds);
 
     /// Total flux leaving the light in W per channel (area: pi * L * area; directional:
-    /// E * pi * R^2 over the scene disc).
+    /// E * pi * R^2 over the scene disc; sky: pi * R^2 times its radiance integrated over the
+    /// sphere).
     [[nodiscard]] glm::vec3 total_power() const { return total_power_; }
     [[nodiscard]] const LightSource& light() const { return light_; }
 

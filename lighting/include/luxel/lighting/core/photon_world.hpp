@@ -167,6 +167,7 @@ class PhotonWorld {
     ecs::Observer<SpotLight> spot_changes_;
     ecs::Observer<DirectionalLight> directional_changes_;
     ecs::Observer<AreaLight> area_changes_;
+    ecs::Observer<SkyLight> sky_changes_;
     ecs::Observer<CausticGenerator> generator_changes_;
 };
 

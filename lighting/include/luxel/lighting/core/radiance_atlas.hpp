@@ -7,6 +7,9 @@
 
 #include <glm/glm.hpp>
 
+#include <memory>
+
+#include "luxel/lighting/core/sky_radiance.hpp"
 #include "luxel/scene/lightmap_layout.hpp"
 
 /// Light-map pages of RGB float values: the AIM (radiance leaving each texel) that both gather
@@ -83,6 +86,16 @@ struct RadianceAtlas {
     /// Radiance leaving the front of `surface` at light-map UV `uv`: the AIM (zero for
     /// surfaces without a page) plus the surface's emission.
     [[nodiscard]] glm::vec3 sample(std::int32_t surface, const glm::vec2& uv) const;
+
+    /// The enabled skies and their scales: what a gather ray that leaves the level sees, so the
+    /// IIM holds the sky's direct light as it holds an area light's.
+    struct Sky {
+        std::shared_ptr<const SkyRadiance> radiance;
+        float scale = 1.0f;
+    };
+    std::vector<Sky> skies;
+    /// The radiance arriving from direction `towards_sky` from every sky (0 without one).
+    [[nodiscard]] glm::vec3 sky(const glm::vec3& towards_sky) const;
 };
 
 }  // namespace luxel::lighting

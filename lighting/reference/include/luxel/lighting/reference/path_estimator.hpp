@@ -43,6 +43,12 @@ struct PathSettings {
     /// the direct component and area-light caustics: ReferenceIntegrator turns it off when
     /// IndirectPhotons estimate the indirect component.
     bool indirect = true;
+    /// Whether the direct light of area lights and skies at a texel counts as indirect. luxel's
+    /// IIM holds it (the gathers see emitters and the sky, docs/METHOD.md §6.7, §6.11) while
+    /// the renderer draws only delta lights' direct light per pixel: on, the indirect
+    /// component is what the IIM should hold, and the direct component what the renderer
+    /// adds. luxel-bench compares the light maps so.
+    bool gathered_as_indirect = false;
 };
 
 /// Counters of the estimator (summed by the caller; the estimator itself is const).
@@ -80,12 +86,24 @@ class PathEstimator {
                                       SampleStream& random, PathCounters& counters) const;
 
   private:
+    /// The radiance of every sky from `direction` for a ray that left the scene, each weighed
+    /// against its next-event estimate when the ray was cosine-sampled with density `pdf` (0:
+    /// not sampled so, weight 1).
+    [[nodiscard]] glm::dvec3 escaped(const glm::vec3& direction, double pdf) const;
     /// Irradiance at a point from every light by next-event estimation, MIS-weighted against
-    /// cosine sampling around `normal` for area lights. `geometric` rejects directions into
-    /// the surface.
-    [[nodiscard]] glm::dvec3 direct_light(const glm::vec3& point, const glm::vec3& normal,
-                                          const glm::vec3& geometric, SampleStream& random,
-                                          PathCounters& counters) const;
+    /// cosine sampling around `normal` for area lights and skies. `geometric` rejects
+    /// directions into the surface.
+    struct DirectLight {
+        glm::dvec3 delta{0.0};     ///< point, spot and directional lights
+        glm::dvec3 gathered{0.0};  ///< area lights and skies (what luxel's gathers see)
+    };
+    [[nodiscard]] DirectLight direct_light(const glm::vec3& point, const glm::vec3& normal,
+                                           const glm::vec3& geometric, SampleStream& random,
+                                           PathCounters& counters) const;
+    /// Where light that reached a texel straight from an area light or the sky is counted.
+    [[nodiscard]] Component gathered_direct() const {
+        return settings_.gathered_as_indirect ? Component::Indirect : Component::Direct;
+    }
     /// Follows a path from `origin` along `direction` with throughput `beta`, adding what it
     /// finds to `out`. `pdf`: solid-angle density of `direction` if a diffuse vertex sampled it
     /// (for MIS), 0 if it is a camera or specular direction. `from_texel`: the first segment

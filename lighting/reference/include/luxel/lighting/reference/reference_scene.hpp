@@ -54,7 +54,11 @@ struct ReferenceLight {
     /// Point and spot: radiant intensity on the axis, W/sr (spot: before the falloff).
     glm::vec3 intensity{0.0f};
 
-    [[nodiscard]] bool is_delta() const { return source.kind != LightKind::Area; }
+    /// Point, spot and directional lights: no path can hit them, so their caustics come from
+    /// photons (CausticReference). Area lights and skies are hit and path traced.
+    [[nodiscard]] bool is_delta() const {
+        return source.kind != LightKind::Area && source.kind != LightKind::Sky;
+    }
 };
 
 /// Where a ray met an area light: the light and the triangle of its LightSource::triangles.

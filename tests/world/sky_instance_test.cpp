@@ -1,0 +1,130 @@
+// A level's sky becomes an entity with a SkyLight (world/sky.hpp): the level's own, or the one
+// --sky gives in its place; a daylight sky's sun is the level's brightest directional light.
+
+#include <cmath>
+#include <fstream>
+#include <memory>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/quaternion.hpp>
+
+#include "luxel/lighting/components.hpp"
+#include "luxel/runtime/error.hpp"
+#include "luxel/runtime/image.hpp"
+#include "luxel/world/scene_instance.hpp"
+#include "luxel/world/sky.hpp"
+#include "temp_dir.hpp"
+
+namespace {
+
+using namespace luxel;
+
+/// A scene of two directional lights: a dim one straight down and a bright one whose node is
+/// turned so it shines down along -z tilted 60 degrees from the vertical.
+std::shared_ptr<scene::Scene> two_suns(bool bright_enabled = true) {
+    auto s = std::make_shared<scene::Scene>();
+    s->lights.push_back(scene::Light::directional_from_irradiance(glm::vec3(0.5f)));
+    s->lights.push_back(scene::Light::directional_from_irradiance(glm::vec3(3.0f)));
+    scene::Node down;
+    down.name = "dim sun";
+    down.light = 0;
+    down.rotation = glm::angleAxis(glm::radians(-90.0f), glm::vec3(1, 0, 0));  // -z -> -y
+    scene::Node tilted;
+    tilted.name = "sun";
+    tilted.light = 1;
+    tilted.rotation = glm::angleAxis(glm::radians(-30.0f), glm::vec3(1, 0, 0));
+    tilted.flags.light_enabled = bright_enabled;
+    s->nodes = {down, tilted};
+    s->roots = {0, 1};
+    return s;
+}
+
+const lighting::SkyLight* sky_of(const ecs::Registry& registry, const world::SceneInstance& i) {
+    return i.sky == ecs::null_entity ? nullptr : registry.try_get<lighting::SkyLight>(i.sky);
+}
+
+TEST(SkyInstance, TheLevelsSkyOrTheOneGivenInItsPlace) {
+    auto level = two_suns();
+    level->sky = scene::parse_sky("uniform:0.5");
+    level->sky.scale = 2.0f;
+    {
+        ecs::Registry registry;
+        const world::SceneInstance instance = world::instantiate(registry, level);
+        const lighting::SkyLight* sky = sky_of(registry, instance);
+        ASSERT_NE(sky, nullptr);
+        EXPECT_EQ(sky->scale, 2.0f);
+        EXPECT_EQ(sky->radiance->radiance({0.0f, 1.0f, 0.0f}), glm::vec3(0.5f));
+    }
+    {
+        ecs::Registry registry;
+        world::InstantiateOptions options;
+        options.sky = scene::parse_sky("uniform:0.1,0.2,0.3");
+        const world::SceneInstance instance = world::instantiate(registry, level, options);
+        const lighting::SkyLight* sky = sky_of(registry, instance);
+        ASSERT_NE(sky, nullptr);
+        EXPECT_EQ(sky->scale, 1.0f);
+        EXPECT_EQ(sky->radiance->radiance({0.0f, 1.0f, 0.0f}), glm::vec3(0.1f, 0.2f, 0.3f));
+    }
+    {
+        ecs::Registry registry;
+        world::InstantiateOptions options;
+        options.sky = scene::parse_sky("none");
+        const world::SceneInstance instance = world::instantiate(registry, level, options);
+        EXPECT_EQ(instance.sky, ecs::null_entity);
+        EXPECT_EQ(registry.size<lighting::SkyLight>(), 0u);
+    }
+}
+
+TEST(SkyInstance, ADaylightSkyFollowsTheBrightestEnabledSun) {
+    const glm::vec3 towards = world::sun_direction(*two_suns());
+    // The bright sun's node turned -30 degrees about x: its +z axis (towards the sun) is
+    // (0, sin 30, cos 30).
+    EXPECT_NEAR(towards.x, 0.0f, 1e-5f);
+    EXPECT_NEAR(towards.y, 0.5f, 1e-5f);
+    EXPECT_NEAR(towards.z, std::sqrt(0.75f), 1e-5f);
+    // Switched off, it is not the sun: the dim one (straight down, so the sun at the zenith).
+    EXPECT_NEAR(world::sun_direction(*two_suns(false)).y, 1.0f, 1e-5f);
+    // Without a directional light: 45 degrees up.
+    EXPECT_NEAR(world::sun_direction(scene::Scene{}).y, std::sqrt(0.5f), 1e-5f);
+
+    auto level = two_suns();
+    level->sky = scene::parse_sky("daylight:1.5");
+    ecs::Registry registry;
+    const world::SceneInstance instance = world::instantiate(registry, level);
+    const lighting::SkyLight* sky = sky_of(registry, instance);
+    ASSERT_NE(sky, nullptr);
+    // Brighter near the sun than on the other side of the sky at the same height.
+    const glm::vec3 near_sun = sky->radiance->radiance(glm::vec3(0.0f, 0.6f, 0.8f));
+    const glm::vec3 away = sky->radiance->radiance(glm::vec3(0.0f, 0.6f, -0.8f));
+    EXPECT_GT(near_sun.g, 2.0f * away.g);
+}
+
+TEST(SkyInstance, AnEnvironmentMapIsReadAndABadOneIsRefusedNamingTheFile) {
+    luxel::testing::TempDir dir;
+    Image image(8, 4, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    image.set_pixel(3, 0, glm::vec4(5.0f, 4.0f, 3.0f, 1.0f));  // a bright cell at the zenith
+    write_exr(dir / "sky.exr", image);
+    const auto sky = world::make_sky_radiance(scene::parse_sky((dir / "sky.exr").string()), {});
+    ASSERT_NE(sky, nullptr);
+    EXPECT_EQ(sky->width(), 8);
+    EXPECT_EQ(sky->height(), 4);
+    // Row 0 is the zenith's, column 3 azimuths 135 to 180 degrees from +x towards +z.
+    const float phi = glm::radians(157.5f);
+    EXPECT_EQ(sky->radiance(glm::vec3(0.3f * std::cos(phi), 1.0f, 0.3f * std::sin(phi))),
+              glm::vec3(5.0f, 4.0f, 3.0f));
+    EXPECT_EQ(sky->radiance(glm::vec3(0.0f, -1.0f, 0.0f)), glm::vec3(0.0f));
+
+    for (const char* bad : {"absent.exr", "not-an-image.exr"}) {
+        if (std::string(bad) == "not-an-image.exr") {
+            std::ofstream(dir / bad) << "plain text";
+        }
+        try {
+            (void)world::make_sky_radiance(scene::parse_sky((dir / bad).string()), {});
+            ADD_FAILURE() << bad << " was read";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+        }
+    }
+}
+
+}  // namespace
