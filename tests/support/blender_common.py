@@ -2,7 +2,21 @@
 # luxel-prep corpus scene (tests/prep/corpus/corpus_common.py): a diffuse material and a plane,
 # made as a user makes them in Blender, so Blender's own glTF exporter writes what it writes for
 # anyone. Import it after putting tests/support on sys.path.
+import sys
+
 import bpy
+
+
+def output_path(script):
+    # The OUT.glb after "--" on the command line (usage and exit 2 without one), and an empty
+    # factory scene to build in.
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    if len(argv) != 1:
+        sys.stderr.write("usage: blender --background --factory-startup --python %s -- OUT.glb\n"
+                         % script)
+        sys.exit(2)
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    return argv[0]
 
 
 def material(name, rgb):

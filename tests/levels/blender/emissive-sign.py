@@ -30,15 +30,10 @@ import bpy
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
                                 "support"))
-from blender_common import material, plane  # noqa: E402
+from blender_common import material, output_path, plane  # noqa: E402
 
-argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-if len(argv) != 1:
-    sys.stderr.write("usage: blender --background --python emissive-sign.py -- OUT.glb\n")
-    sys.exit(2)
-out_path = argv[0]
+out_path = output_path("emissive-sign.py")
 
-bpy.ops.wm.read_factory_settings(use_empty=True)
 scene = bpy.context.scene
 scene.render.resolution_x = 1920
 scene.render.resolution_y = 1080

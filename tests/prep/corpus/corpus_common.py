@@ -10,17 +10,7 @@ import bpy
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
                                 "support"))
-from blender_common import material  # noqa: E402,F401
-
-
-def output_path(script):
-    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    if len(argv) != 1:
-        sys.stderr.write("usage: blender --background --factory-startup --python %s -- OUT.glb\n"
-                         % script)
-        sys.exit(2)
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    return argv[0]
+from blender_common import material, output_path  # noqa: E402,F401
 
 
 def finish(obj, name, mat, smooth=False):

@@ -1,0 +1,135 @@
+// A room lit through a window by a sky, in a level Blender's exporter wrote
+// (tests/levels/blender/sky-window.py, issue 20): the sky comes from the scene's custom property
+// as Blender writes it; with the sun off, the room receives the sky's light only through the
+// window; with the window shut it receives none at all, neither photons nor gathered light.
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include <gtest/gtest.h>
+
+#include "luxel/ecs/transform_system.hpp"
+#include "luxel/lighting/components.hpp"
+#include "luxel/lighting/core/lighting_system.hpp"
+#include "luxel/runtime/jobs.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/scene_instance.hpp"
+#include "map_test_scenes.hpp"
+
+namespace {
+
+using namespace luxel;
+
+std::shared_ptr<const scene::Scene> sky_window() {
+    return std::make_shared<scene::Scene>(
+        scene::load_gltf(std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" / "levels" /
+                         "prepared" / "sky-window.glb"));
+}
+
+/// A pane filling the window's 1.2 x 1.0 m opening edge to edge, in the wall's plane, facing out
+/// of the room (glTF space: the back wall is the plane z = -2, the opening x in [-0.6, 0.6],
+/// y in [1, 2]). In the plane, not in front of it: grazing rays would slip through a gap.
+std::shared_ptr<const scene::Scene> shutter() {
+    auto s = std::make_shared<scene::Scene>();
+    s->materials.emplace_back();
+    scene::Primitive p;
+    p.material = 0;
+    const float z = -2.0f;
+    p.positions = {{-0.6f, 1.0f, z}, {0.6f, 1.0f, z}, {0.6f, 2.0f, z}, {-0.6f, 2.0f, z}};
+    p.normals.assign(4, glm::vec3(0.0f, 0.0f, -1.0f));
+    // Counter-clockwise seen from -z (outside).
+    p.indices = {0, 2, 1, 0, 3, 2};
+    s->meshes.push_back({"shutter", {p}});
+    return s;
+}
+
+struct Room {
+    ecs::Registry registry;
+    ecs::TransformSystem transforms{registry};
+    JobSystem jobs{2};
+    std::unique_ptr<lighting::LightingSystem> lighting;
+    double time = 0.0;
+
+    explicit Room(bool shut) {
+        const world::SceneInstance instance = world::instantiate(registry, sky_window());
+        EXPECT_NE(instance.sky, ecs::null_entity);
+        // The sky alone: the sun off.
+        for (auto [entity, sun] : registry.view<lighting::DirectionalLight>()) {
+            sun.enabled = false;
+        }
+        if (shut) {
+            const ecs::Entity pane = registry.create();
+            registry.emplace<scene::MeshInstance>(pane, shutter(), 0);
+            registry.emplace<ecs::Transform>(pane, ecs::Transform{});
+        }
+        transforms.update();
+        // 8,192 photons; converged once every group has been probed (32 frames).
+        lighting = std::make_unique<lighting::LightingSystem>(
+            registry, jobs, luxel::testing::closed_form_config(256, 32));
+    }
+
+    int converge() { return luxel::testing::converge(transforms, *lighting, time); }
+
+    /// Summed over every light-mapped texel: the AIM's and the IIM's green, and the photon hits
+    /// stored on the room's surfaces.
+    struct Totals {
+        double aim = 0.0;
+        double iim = 0.0;
+        std::size_t texels = 0;
+    };
+    [[nodiscard]] Totals totals() const {
+        const auto& maps = lighting->maps();
+        Totals out;
+        for (std::uint32_t s = 0; s < maps.surfaces().size(); ++s) {
+            const std::int32_t page = maps.aim().surface_page[s];
+            if (page < 0) {
+                continue;
+            }
+            const auto& aim = maps.aim().pages[static_cast<std::size_t>(page)];
+            const auto& iim = maps.iim_pages()[static_cast<std::size_t>(page)].current;
+            for (const auto& texel : maps.surfaces()[s].texels.texels) {
+                out.aim += aim.at(texel.x, texel.y).g;
+                out.iim += iim.at(texel.x, texel.y).g;
+                ++out.texels;
+            }
+        }
+        return out;
+    }
+};
+
+TEST(SkyWindow, BlendersSceneCustomPropertyIsTheLevelsSky) {
+    const auto level = sky_window();
+    EXPECT_EQ(level->sky.kind, scene::SkySpec::Kind::Daylight);
+    EXPECT_EQ(level->sky.irradiance, 1.0f);
+    EXPECT_EQ(level->sky.turbidity, 3.0f);
+}
+
+TEST(SkyWindow, TheSkyLightsTheRoomThroughTheWindowAndNotAtAllWhenItIsShut) {
+    Room open(false);
+    ASSERT_LE(open.converge(), 100);
+    const Room::Totals lit = open.totals();
+    const std::size_t hits = open.lighting->photons().photon_map().stored_hit_count();
+    Room shut(true);
+    ASSERT_LE(shut.converge(), 100);
+    const Room::Totals dark = shut.totals();
+    const std::size_t shut_hits = shut.lighting->photons().photon_map().stored_hit_count();
+    std::printf(
+        "[ figures  ] sky-window, sky only: open %zu photon hits, AIM sum %.3f, IIM sum "
+        "%.3f over %zu texels; shut %zu hits, AIM %.3g, IIM %.3g\n",
+        hits, lit.aim, lit.iim, lit.texels, shut_hits, dark.aim, dark.iim);
+    EXPECT_GT(lit.texels, 1000u);
+    EXPECT_GT(hits, 100u);
+    EXPECT_GT(lit.aim, 0.0);
+    EXPECT_GT(lit.iim, 0.0);
+    // Shut: not one photon inside (the room is closed and one-sided; the pane's outside and
+    // the walls' backs take them all). A few gather rays still find the sky: the walls are
+    // separate meshes whose node translations the exporter rounded (the ceiling at
+    // 2.5999999 m, a wall's top at 2.5999999523), and a ray along a corner slips through a
+    // crack of 1e-7 m. Measured: 2e-6 of the open room's gathered light; 1e-5 allowed.
+    EXPECT_EQ(dark.texels, lit.texels);
+    EXPECT_EQ(dark.aim, 0.0);
+    EXPECT_LT(dark.iim, 1e-5 * lit.iim);
+}
+
+}  // namespace
