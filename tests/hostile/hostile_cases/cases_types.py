@@ -117,6 +117,34 @@ for _name, _value, _node in _LUXEL_VALUES:
         patched(luxel_extras(_value, _node)))
 
 
+def sky_extras(value):
+    def mutate(j, ids):
+        j["scenes"][0]["extras"] = {"luxel": {"sky": value}}
+    return mutate
+
+
+# The scene's sky (docs/LEVELS.md, "Sky"): a wrong one fails the load with the field's name; a
+# valid one at the edge of float loads, and its radiance stays finite.
+_SKY_VALUES = [
+    ("type-sky-number", 5, "error"),
+    ("type-sky-kind-missing", {"radiance": [1, 1, 1]}, "error"),
+    ("type-sky-kind-unknown", {"kind": "map", "file": "../../../etc/passwd"}, "error"),
+    ("type-sky-radiance-string", {"kind": "uniform", "radiance": "blue"}, "error"),
+    ("type-sky-radiance-two", {"kind": "uniform", "radiance": [1, 2]}, "error"),
+    ("type-sky-radiance-negative", {"kind": "uniform", "radiance": [1, -1e308, 1]}, "error"),
+    ("type-sky-radiance-1e300", {"kind": "uniform", "radiance": [1e300, 1, 1]}, "error"),
+    ("type-sky-turbidity-null", {"kind": "daylight", "turbidity": None}, "error"),
+    ("type-sky-radiance-big", {"kind": "uniform", "radiance": [BIG, BIG, BIG], "scale": BIG},
+     "success"),
+    ("type-sky-daylight-big", {"kind": "daylight", "irradiance": BIG, "turbidity": BIG},
+     "success"),
+    ("type-sky-daylight-zero", {"kind": "daylight", "irradiance": 0, "turbidity": 0}, "success"),
+]
+for _name, _value, _expect in _SKY_VALUES:
+    types(_name, "scene with extras.luxel.sky = %s" % kit.dumps(_value)[:120], expect=_expect)(
+        patched(sky_extras(_value), lightmapped=True))
+
+
 @types("type-luxel-lightmap-primitive-missing", "light map surface naming primitive 7 of a "
        "one-primitive mesh")
 def _(c):
