@@ -16,6 +16,7 @@
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/scene_instance.hpp"
 #include "map_test_scenes.hpp"
+#include "texel_visit.hpp"
 
 namespace {
 
@@ -71,29 +72,20 @@ struct Room {
 
     int converge() { return luxel::testing::converge(transforms, *lighting, time); }
 
-    /// Summed over every light-mapped texel: the AIM's and the IIM's green, and the photon hits
-    /// stored on the room's surfaces.
+    /// Summed over every light-mapped texel: the AIM's and the IIM's green.
     struct Totals {
         double aim = 0.0;
         double iim = 0.0;
         std::size_t texels = 0;
     };
     [[nodiscard]] Totals totals() const {
-        const auto& maps = lighting->maps();
         Totals out;
-        for (std::uint32_t s = 0; s < maps.surfaces().size(); ++s) {
-            const std::int32_t page = maps.aim().surface_page[s];
-            if (page < 0) {
-                continue;
-            }
-            const auto& aim = maps.aim().pages[static_cast<std::size_t>(page)];
-            const auto& iim = maps.iim_pages()[static_cast<std::size_t>(page)].current;
-            for (const auto& texel : maps.surfaces()[s].texels.texels) {
-                out.aim += aim.at(texel.x, texel.y).g;
-                out.iim += iim.at(texel.x, texel.y).g;
+        luxel::testing::for_each_texel(
+            lighting->maps(), [&](std::uint32_t, const glm::vec3& aim, const glm::vec3& iim) {
+                out.aim += aim.g;
+                out.iim += iim.g;
                 ++out.texels;
-            }
-        }
+            });
         return out;
     }
 };

@@ -17,6 +17,7 @@
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/scene_instance.hpp"
+#include "texel_visit.hpp"
 
 namespace luxel::testing {
 
@@ -94,23 +95,6 @@ inline lighting::LightingConfig stability_config(std::uint32_t groups, std::uint
 inline bool finite_non_negative(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && v.x >= 0.0f &&
            v.y >= 0.0f && v.z >= 0.0f;
-}
-
-/// Visits every texel the level's light maps own: (surface, AIM value, IIM value).
-inline void for_each_texel(
-    const lighting::IlluminationMaps& maps,
-    const std::function<void(std::uint32_t, const glm::vec3&, const glm::vec3&)>& visit) {
-    for (std::uint32_t s = 0; s < maps.surfaces().size(); ++s) {
-        const std::int32_t page = maps.aim().surface_page[s];
-        if (page < 0) {
-            continue;
-        }
-        const auto& aim = maps.aim().pages[static_cast<std::size_t>(page)];
-        const auto& iim = maps.iim_pages()[static_cast<std::size_t>(page)].current;
-        for (const auto& texel : maps.surfaces()[s].texels.texels) {
-            visit(s, aim.at(texel.x, texel.y), iim.at(texel.x, texel.y));
-        }
-    }
 }
 
 }  // namespace luxel::testing
