@@ -250,6 +250,13 @@ void check_extras_types(const ImportContext& context, const nlohmann::json& luxe
             context.fail(where + ": extras.luxel.wave.direction must be two numbers [x, z]");
         }
     }
+    // Blender 3 keeps a boolean custom property as the integer 1 or 0, and exports it so.
+    if (const auto portal = luxel.find("portal");
+        portal != luxel.end() && !portal->is_boolean() &&
+        !(portal->is_number_integer() && (*portal == 0 || *portal == 1))) {
+        context.fail(where + ": extras.luxel.portal must be true or false (or 1 or 0), got " +
+                     portal->dump());
+    }
     if (const auto furnace = luxel.find("furnace");
         furnace != luxel.end() && !furnace->is_boolean()) {
         context.fail(where + ": extras.luxel.furnace must be true or false");

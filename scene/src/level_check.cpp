@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "luxel/runtime/log.hpp"
+#include "luxel/scene/portal.hpp"
 
 namespace luxel::scene {
 namespace {
@@ -82,7 +83,7 @@ bool is_prepared(const Scene& scene) {
         if (node.flags.raw.is_object() && node.flags.raw.contains("lightmap")) {
             return true;
         }
-        if (node.mesh < 0) {
+        if (node.mesh < 0 || is_portal(node)) {
             continue;
         }
         const Mesh& mesh = scene.meshes.at(static_cast<std::size_t>(node.mesh));

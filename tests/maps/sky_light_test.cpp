@@ -3,6 +3,7 @@
 // everywhere on top, so its AIM (photons) holds rho L and its IIM (gather rays that all leave
 // the level) pi L; a plane inside a closed box receives nothing at all.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -17,6 +18,7 @@
 #include "luxel/lighting/components.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
 #include "luxel/lighting/core/sky_radiance.hpp"
+#include "luxel/lighting/sky_portal.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/jobs.hpp"
 #include "map_test_scenes.hpp"
@@ -179,9 +181,11 @@ struct SkyPlane {
     JobSystem jobs{2};
     std::unique_ptr<lighting::LightingSystem> lighting;
     ecs::Entity sky;
+    ecs::Entity portal = ecs::null_entity;
     double time = 0.0;
 
-    SkyPlane(const glm::vec3& radiance, bool shut) {
+    /// `portal_height` > 0: a SkyPortal as large as the plane, that high above it.
+    SkyPlane(const glm::vec3& radiance, bool shut, float portal_height = 0.0f) {
         const ecs::Entity plane = registry.create();
         registry.emplace<scene::MeshInstance>(
             plane, luxel::testing::lightmapped_plane(kSide, 8, 0.25f, 64, glm::vec3(0.5f)), 0);
@@ -206,6 +210,18 @@ struct SkyPlane {
             t.translation = glm::vec3(0.5f * kSide, 0.0f, 0.5f * kSide);
             registry.emplace<ecs::Transform>(box, t);
         }
+        if (portal_height > 0.0f) {
+            portal = registry.create();
+            const float h = portal_height;
+            registry.emplace<lighting::SkyPortal>(portal, lighting::SkyPortal{{{0, h, 0},
+                                                                               {0, h, kSide},
+                                                                               {kSide, h, kSide},
+                                                                               {0, h, 0},
+                                                                               {kSide, h, kSide},
+                                                                               {kSide, h, 0}},
+                                                                              true});
+            registry.emplace<ecs::Transform>(portal, ecs::Transform{});
+        }
         sky = registry.create();
         registry.emplace<lighting::SkyLight>(
             sky,
@@ -218,6 +234,10 @@ struct SkyPlane {
     }
 
     int converge() { return luxel::testing::converge(transforms, *lighting, time); }
+
+    [[nodiscard]] std::size_t photon_hits() const {
+        return lighting->photons().photon_map().stored_hit_count();
+    }
 
     /// Per texel of the plane: the AIM's reflected radiance and the IIM's irradiance (green).
     struct Texels {
@@ -296,6 +316,64 @@ TEST(SkyLightMaps, APlaneUnderAUniformSkyGetsPiLFromPhotonsAndGathers) {
         "from rho L\n",
         100.0 * worst);
     EXPECT_LT(worst, 0.15);
+}
+
+/// The worst mean over the 16 regions of 6 x 6 texels (1.5 m) of `values`, relative to `expected`.
+double worst_region(const SkyPlane::Texels& texels, const std::vector<double>& values,
+                    double expected) {
+    constexpr int kRegion = 6;
+    std::vector<double> sums(16, 0.0);
+    for (std::size_t t = 0; t < values.size(); ++t) {
+        const int region = ((texels.at[t].y - 2) / kRegion) * 4 + (texels.at[t].x - 2) / kRegion;
+        sums[static_cast<std::size_t>(std::clamp(region, 0, 15))] += values[t];
+    }
+    double worst = 0.0;
+    for (const double sum : sums) {
+        worst = std::max(worst, std::abs(sum / (kRegion * kRegion) / expected - 1.0));
+    }
+    return worst;
+}
+
+TEST(SkyLightMaps, APortalOverThePlaneCarriesTheSameLightWithMoreOfItsPhotonsOnThePlane) {
+    // A portal 2 cm above the plane, as large as it: every direction the sky lights the plane
+    // from passes through it, so the photons that start on it must give rho L as the scene's
+    // disc does, but without spending photons beside the plane.
+    const float radiance = 0.8f;
+    SkyPlane disc(glm::vec3(radiance), false);
+    SkyPlane portal(glm::vec3(radiance), false, 0.02f);
+    ASSERT_LE(disc.converge(), 100);
+    ASSERT_LE(portal.converge(), 100);
+    const SkyPlane::Texels texels = portal.texels();
+    const double aim = mean_of(texels.aim);
+    const double worst = worst_region(texels, texels.aim, 0.5 * radiance);
+    std::printf(
+        "[ figures  ] uniform sky over a plane, 8,192 photons: from the scene's disc %zu land "
+        "on the plane, AIM mean %+.2f%% from rho L; from a portal over it %zu, AIM mean "
+        "%+.2f%%, worst 1.5 m region %.2f%%\n",
+        disc.photon_hits(), 100.0 * (mean_of(disc.texels().aim) / (0.5 * radiance) - 1.0),
+        portal.photon_hits(), 100.0 * (aim / (0.5 * radiance) - 1.0), 100.0 * worst);
+    EXPECT_NEAR(aim, 0.5 * radiance, 0.04 * 0.5 * radiance);
+    EXPECT_LT(worst, 0.15);
+    EXPECT_GT(portal.photon_hits(), 2 * disc.photon_hits());
+    // The gathers do not use portals: the IIM is pi L as before.
+    for (const double e : texels.iim) {
+        ASSERT_NEAR(e, kPi * radiance, 1e-4 * kPi * radiance);
+    }
+    // A portal switched off: the sky's photons start on the scene's disc again.
+    portal.registry.patch<lighting::SkyPortal>(
+        portal.portal, [](lighting::SkyPortal& opening) { opening.enabled = false; });
+    ASSERT_LE(portal.converge(), 100);
+    EXPECT_EQ(portal.photon_hits(), disc.photon_hits());
+}
+
+TEST(SkyLightMaps, APortalInsideAClosedBoxLetsNoSkyLightIn) {
+    // The portal's photons look back at the sky through the box's lid: not one carries light.
+    SkyPlane world(glm::vec3(1.0f), true, 0.5f);
+    ASSERT_LE(world.converge(), 100);
+    EXPECT_EQ(world.photon_hits(), 0u);
+    for (const double a : world.texels().aim) {
+        ASSERT_EQ(a, 0.0);
+    }
 }
 
 TEST(SkyLightMaps, APlaneShutInABoxReceivesNoSkyLightAtAll) {

@@ -420,6 +420,8 @@ TEST(GltfHostileValues, LuxelExtrasOfTheWrongTypeNameTheNodeAndTheKey) {
         {{{"switch", {{"period", true}}}}, "extras.luxel.switch.period must be a finite number"},
         {{{"wave", {{"direction", {1, "x"}}}}}, "extras.luxel.wave.direction must be two numbers"},
         {{{"furnace", 1}}, "extras.luxel.furnace must be true or false"},
+        {{{"portal", "window"}}, "extras.luxel.portal must be true or false (or 1 or 0)"},
+        {{{"portal", 2}}, "extras.luxel.portal must be true or false (or 1 or 0), got 2"},
         {{{"lightmap", 7}}, "extras.luxel.lightmap must be a JSON object"},
     };
     for (const auto& [luxel, problem] : cases) {

@@ -6,8 +6,10 @@
 #include "luxel/ecs/hierarchy.hpp"
 #include "luxel/ecs/transform.hpp"
 #include "luxel/lighting/components.hpp"
+#include "luxel/lighting/sky_portal.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/scene/lightmap_layout.hpp"
+#include "luxel/scene/portal.hpp"
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/sky.hpp"
 
@@ -51,6 +53,19 @@ void add_switch_if_any(ecs::Registry& registry, ecs::Entity entity, const nlohma
     if (light_switch.period > 0.0) {
         registry.emplace<LightSwitch>(entity, light_switch);
     }
+}
+
+/// A portal's triangles, in its node's space: every triangle of every primitive of its mesh.
+void add_portal(ecs::Registry& registry, ecs::Entity entity, const scene::Scene& source,
+                const scene::Node& node) {
+    lighting::SkyPortal portal;
+    for (const auto& primitive : source.meshes.at(static_cast<std::size_t>(node.mesh)).primitives) {
+        // The loader checked every index against the positions.
+        for (std::size_t i = 0; i < primitive.triangle_count() * 3; ++i) {
+            portal.triangles.push_back(primitive.positions[primitive.indices[i]]);
+        }
+    }
+    registry.emplace<lighting::SkyPortal>(entity, std::move(portal));
 }
 
 void add_mesh(ecs::Registry& registry, ecs::Entity entity,
@@ -125,7 +140,9 @@ SceneInstance instantiate(ecs::Registry& registry, std::shared_ptr<const scene::
         registry.emplace<ecs::Transform>(entity, node.translation, node.rotation, node.scale);
         registry.emplace<scene::Name>(entity, node.name);
         registry.emplace<scene::SceneNode>(entity, static_cast<int>(i));
-        if (node.mesh >= 0) {
+        if (node.mesh >= 0 && scene::is_portal(node)) {
+            add_portal(registry, entity, *scene, node);
+        } else if (node.mesh >= 0) {
             add_mesh(registry, entity, scene, node);
         }
         if (node.light >= 0) {

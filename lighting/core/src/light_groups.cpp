@@ -53,6 +53,7 @@ void LightGroups::refresh(ecs::Entity entity, const BoundingSphere& scene) {
                            : glm::vec3(0.0f);
         enabled = sky->enabled && sky->radiance != nullptr && !sky->radiance->black();
         directional = true;
+        source.portals = portals_;
     } else if (const auto* area = registry_.try_get<AreaLight>(entity);
                area != nullptr && registry_.has<scene::MeshInstance>(entity)) {
         source.kind = LightKind::Area;

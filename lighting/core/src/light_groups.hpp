@@ -37,6 +37,9 @@ class LightGroups {
     void remove(ecs::Entity entity);
     /// Refreshes every directional light not in `skip` (sorted): their discs follow the scene.
     void refresh_directional(std::span<const ecs::Entity> skip, const BoundingSphere& scene);
+    /// The world-space triangles of the enabled SkyPortals, three vertices each: where sky
+    /// photons start from the next refresh of each sky on (empty: the scene's disc).
+    void set_portals(std::vector<glm::vec3> triangles) { portals_ = std::move(triangles); }
 
     [[nodiscard]] bool contains(ecs::Entity entity) const { return lights_.contains(entity); }
     [[nodiscard]] std::size_t size() const { return lights_.size(); }
@@ -89,6 +92,7 @@ class LightGroups {
     std::vector<std::uint32_t> pending_;
     PathSegmentIndex paths_;
     std::uint32_t next_seed_ = 1;
+    std::vector<glm::vec3> portals_;
 };
 
 }  // namespace luxel::lighting

@@ -27,6 +27,49 @@ glm::vec3 cone_direction(const glm::vec3& axis, float angle, const glm::dvec2& u
                           static_cast<float>(cos_theta) * axis);
 }
 
+/// A sky photon through the portals: `p` places it on a portal, uniformly by area, and `d` picks
+/// the direction it arrives from by one of two strategies, each with probability 1/2: the sky's
+/// own distribution (its bright regions: the sun's aureole, an HDR map's lamps) or |cos| about
+/// the portal on a side chosen at random (every direction through the opening, where most sky
+/// samples would miss it). It carries L |cos| A / (pdf N) with pdf the mixture of the two
+/// densities (one-sample MIS, balance heuristic), which bounds it by 4 pi L A / N whatever the
+/// sky. Which side is the room's need not be known: a photon sent outwards is blocked behind
+/// it by the room itself, which trace_photon checks (EmittedPhoton::from_portal).
+EmittedPhoton portal_photon(const LightSource& light, const TriangleSampler& portals,
+                            const glm::dvec2& d, const glm::dvec2& p, std::uint64_t photon_count) {
+    EmittedPhoton photon;
+    photon.power = glm::vec3(0.0f);
+    photon.from_portal = true;
+    const TriangleSampler::Sample at = portals.sample(p);
+    if (light.sky == nullptr || !(at.density > 0.0)) {
+        return photon;
+    }
+    glm::vec3 towards_sky;
+    if (d.x < 0.5) {
+        towards_sky = light.sky->sample({2.0 * d.x, d.y}).direction;
+    } else {
+        const double u = 2.0 * d.x - 1.0;
+        const bool front = u < 0.5;
+        const glm::dvec2 c(front ? 2.0 * u : 2.0 * u - 1.0, d.y);
+        towards_sky = -cosine_direction(front ? at.normal : -at.normal, c);
+    }
+    const double cos_theta = std::abs(static_cast<double>(glm::dot(towards_sky, at.normal)));
+    const double pdf = 0.5 * light.sky->pdf(towards_sky) + 0.5 * cos_theta / kTwoPi;
+    const double weight = at.density * pdf * static_cast<double>(photon_count);
+    photon.direction = -towards_sky;
+    // A step off the portal's plane on the side it travels to (along the normal: along a
+    // grazing direction the step would round away): a pane or shutter in that plane then lies
+    // behind the photon, where the tracer's look back at the sky finds it.
+    photon.origin = offset_ray_origin(at.point, at.normal,
+                                      glm::dot(photon.direction, at.normal) >= 0.0f ? 1.0f : -1.0f);
+    if (!(weight > 0.0) || !(cos_theta > 0.0)) {
+        return photon;
+    }
+    photon.power = glm::vec3(glm::dvec3(light.sky->radiance(towards_sky)) *
+                             (static_cast<double>(light.sky_scale) * cos_theta / weight));
+    return photon;
+}
+
 }  // namespace
 
 glm::vec3 area_radiance(const LightSource& light, std::size_t triangle, std::uint32_t piece) {
@@ -246,6 +289,15 @@ PhotonEmitter::PhotonEmitter(LightSource light, const BoundingSphere& scene_boun
             break;
         }
         case LightKind::Sky:
+            if (!light_.portals.empty()) {
+                portals_ = TriangleSampler(light_.portals);
+                total_power_ =
+                    light_.sky != nullptr
+                        ? glm::vec3(light_.sky->integral() *
+                                    (0.5 * portals_.area() * static_cast<double>(light_.sky_scale)))
+                        : glm::vec3(0.0f);
+                break;
+            }
             total_power_ =
                 light_.sky != nullptr
                     ? glm::vec3(light_.sky->integral() *
@@ -310,6 +362,10 @@ EmittedPhoton PhotonEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
             // outside the sphere as for a directional light.
             photon.power = glm::vec3(0.0f);
             if (light_.sky == nullptr) {
+                break;
+            }
+            if (!light_.portals.empty()) {
+                photon = portal_photon(light_, portals_, d, p, photon_count);
                 break;
             }
             const SkyRadiance::Sample from = light_.sky->sample(d);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "luxel/lighting/core/halton.hpp"
 #include "luxel/lighting/core/optics.hpp"
@@ -97,6 +98,12 @@ void trace_photon(const RayScene& scene, std::span<const TraceMaterial> material
     std::uint32_t bounces = 0;
     std::uint32_t dim = 4;  // 0-3 were spent on emission
     if (!(power.r > 0.0f || power.g > 0.0f || power.b > 0.0f)) {
+        return;
+    }
+    // A photon from a portal carries the sky seen through it: none where the level itself (the
+    // room behind a photon sent outwards, a building outside) hides the sky.
+    if (photon.from_portal &&
+        scene.occluded(origin, -direction, std::numeric_limits<float>::infinity())) {
         return;
     }
     for (std::uint32_t interaction = 0;; ++interaction) {

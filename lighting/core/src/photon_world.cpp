@@ -5,6 +5,7 @@
 #include "caustic_lists.hpp"
 #include "light_groups.hpp"
 #include "photon_geometry.hpp"
+#include "photon_world_support.hpp"
 
 // PhotonWorld: construction, the observers and sync(), which reads the ECS change lists in order
 // and hands each change to the part that owns it (PhotonGeometry, LightGroups, CausticLists).
@@ -24,6 +25,7 @@ PhotonWorld::PhotonWorld(ecs::Registry& registry, PhotonWorldSettings settings)
       directional_changes_(registry.observe<DirectionalLight>(ecs::ObserverStart::WithExisting)),
       area_changes_(registry.observe<AreaLight>(ecs::ObserverStart::WithExisting)),
       sky_changes_(registry.observe<SkyLight>(ecs::ObserverStart::WithExisting)),
+      portal_changes_(registry.observe<SkyPortal>(ecs::ObserverStart::WithExisting)),
       generator_changes_(registry.observe<CausticGenerator>(ecs::ObserverStart::WithExisting)) {}
 
 PhotonWorld::~PhotonWorld() = default;
@@ -47,6 +49,7 @@ void PhotonWorld::sync() {
     collect(directional_changes_);
     collect(area_changes_);
     collect(sky_changes_);
+    touch_skies_if_portals_changed(light_touched);
     geometry_->commit();
 
     sync_lights(light_touched);
@@ -132,6 +135,34 @@ void PhotonWorld::sync_moves(std::vector<ecs::Entity>& light_touched) {
         }
         light_touched.push_back(entity);
     });
+}
+
+/// The sky photons start on the portals: a portal added, removed, edited or moved re-emits every
+/// sky's.
+void PhotonWorld::touch_skies_if_portals_changed(std::vector<ecs::Entity>& light_touched) {
+    bool changed = false;
+    portal_changes_.consume([&](ecs::Entity, ecs::ChangeKind) { changed = true; });
+    for (ecs::Entity entity : light_touched) {
+        changed = changed || (registry_.valid(entity) && registry_.has<SkyPortal>(entity));
+    }
+    if (!changed) {
+        return;
+    }
+    std::vector<glm::vec3> triangles;
+    for (auto [entity, portal] : registry_.view<SkyPortal>()) {
+        if (!portal.enabled) {
+            continue;
+        }
+        const glm::mat4 to_world = photon_world_support::world_matrix(registry_, entity);
+        const std::size_t whole = portal.triangles.size() / 3 * 3;
+        for (std::size_t v = 0; v < whole; ++v) {
+            triangles.push_back(glm::vec3(to_world * glm::vec4(portal.triangles[v], 1.0f)));
+        }
+    }
+    lights_->set_portals(std::move(triangles));
+    for (auto [entity, sky] : registry_.view<SkyLight>()) {
+        light_touched.push_back(entity);
+    }
 }
 
 /// Every entity touched this sync whose light may have changed: refreshed (its groups

@@ -8,7 +8,8 @@
 # scene custom property, {"luxel": {"sky": {"kind": "daylight", "irradiance": 1.0}}}, which the
 # exporter writes into the glTF scene's extras (docs/LEVELS.md, "Sky"). Every wall, the floor
 # and the ceiling is one-sided, facing into the room: light from outside reaches the inside only
-# through the window. The camera stands inside, looking at the window.
+# through the window, which a portal fills (the sky's photons start on it). The camera stands
+# inside, looking at the window.
 #
 # Blender is Z up; its exporter turns the level into glTF's Y up (the window's wall faces -Z in
 # glTF, the camera looks along -Z).
@@ -43,6 +44,11 @@ plane("Back wall below", (4.0, 1.0), (0.0, 2.0, 0.5), (half_pi, 0.0, 0.0), plast
 plane("Back wall above", (4.0, 0.6), (0.0, 2.0, 2.3), (half_pi, 0.0, 0.0), plaster)
 plane("Back wall left", (1.4, 1.0), (-1.3, 2.0, 1.5), (half_pi, 0.0, 0.0), plaster)
 plane("Back wall right", (1.4, 1.0), (1.3, 2.0, 1.5), (half_pi, 0.0, 0.0), plaster)
+# The window's portal: a plane filling the opening, marked with a custom property that the
+# exporter writes into the node's extras, {"luxel": {"portal": true}}. luxel neither draws nor
+# traces it; the sky's photons start on it, so they all go through the window.
+portal = plane("Window portal", (1.2, 1.0), (0.0, 2.0, 1.5), (half_pi, 0.0, 0.0), plaster)
+portal["luxel"] = {"portal": True}
 
 # The sun behind the window, shining in along (0, -1, -0.8) (down 39 degrees): its -Z axis
 # turned about X.

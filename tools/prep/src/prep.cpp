@@ -11,6 +11,7 @@
 #include "luxel/prep/surfaces.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
+#include "luxel/scene/portal.hpp"
 
 namespace luxel::prep {
 namespace {
@@ -347,7 +348,8 @@ PrepResult prepare(const scene::Scene& input, const PrepOptions& options, JobSys
     result.padding = options.padding;
     std::vector<NodeWork> work;
     for (std::size_t n = 0; n < input.nodes.size(); ++n) {
-        if (input.nodes[n].mesh >= 0) {
+        // A portal is an opening, not a surface: it gets no light map.
+        if (input.nodes[n].mesh >= 0 && !scene::is_portal(input.nodes[n])) {
             work.emplace_back().node = static_cast<int>(n);
         }
     }

@@ -34,6 +34,9 @@ struct LightSource {
     /// Sky: the radiance at infinity (null: black), times `sky_scale`.
     std::shared_ptr<const SkyRadiance> sky;
     float sky_scale = 1.0f;
+    /// Sky: the world-space triangles of the level's SkyPortals, three vertices each; photons
+    /// start on them when there are any (empty: on the disc of the scene's sphere).
+    std::vector<glm::vec3> portals;
 };
 
 /// The radiance a sky light sends from direction `towards_sky` (0 for other kinds).
@@ -58,6 +61,9 @@ struct EmittedPhoton {
     glm::vec3 origin{0.0f};
     glm::vec3 direction{0.0f, 0.0f, -1.0f};
     glm::vec3 power{0.0f};
+    /// A sky photon that starts on a portal: it carries light only if the sky is open from its
+    /// origin back along -direction, which the tracer checks (trace_photon) before tracing it.
+    bool from_portal = false;
 };
 
 /// The scene's bounding sphere: directional and sky lights emit from a disc that covers it.
@@ -127,7 +133,7 @@ class PhotonEmitter {
 
     /// Total flux leaving the light in W per channel (area: pi * L * area; directional:
     /// E * pi * R^2 over the scene disc; sky: pi * R^2 times its radiance integrated over the
-    /// sphere).
+    /// sphere; sky through portals: at most the portals' area times half that integral).
     [[nodiscard]] glm::vec3 total_power() const { return total_power_; }
     [[nodiscard]] const LightSource& light() const { return light_; }
 
@@ -140,7 +146,8 @@ class PhotonEmitter {
     LightSource light_;
     BoundingSphere bounds_;
     glm::vec3 total_power_{0.0f};
-    TriangleSampler area_;  // area lights
+    TriangleSampler area_;     // area lights
+    TriangleSampler portals_;  // a sky's portals
 };
 
 /// An orthonormal basis around n: (tangent, bitangent, n).

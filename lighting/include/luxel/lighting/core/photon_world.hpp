@@ -14,6 +14,7 @@
 #include "luxel/lighting/core/photon_map.hpp"
 #include "luxel/lighting/core/ray_scene.hpp"
 #include "luxel/lighting/core/selective_emitter.hpp"
+#include "luxel/lighting/sky_portal.hpp"
 #include "luxel/runtime/jobs.hpp"
 
 namespace luxel::lighting {
@@ -148,6 +149,7 @@ class PhotonWorld {
     void sync_generators(const std::vector<ecs::Entity>& meshes_added,
                          std::vector<ecs::Entity>& generators_touched);
     void sync_moves(std::vector<ecs::Entity>& light_touched);
+    void touch_skies_if_portals_changed(std::vector<ecs::Entity>& light_touched);
     void sync_lights(std::vector<ecs::Entity>& light_touched);
 
     ecs::Registry& registry_;
@@ -168,6 +170,7 @@ class PhotonWorld {
     ecs::Observer<DirectionalLight> directional_changes_;
     ecs::Observer<AreaLight> area_changes_;
     ecs::Observer<SkyLight> sky_changes_;
+    ecs::Observer<SkyPortal> portal_changes_;  // any change re-emits every sky's photons
     ecs::Observer<CausticGenerator> generator_changes_;
 };
 
