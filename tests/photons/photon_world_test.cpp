@@ -210,3 +210,48 @@ TEST(PhotonWorldSync, MovingAnObjectQueuesFirstExactlyTheGroupsWhosePathsCrossWh
 }
 
 }  // namespace
+
+namespace {
+
+TEST(PhotonWorldSync, AnObjectMovingInsideTheLevelLeavesTheSunsUncrossedGroupsAlone) {
+    // A sun over the closed cornell box: its photons stop on the box's outside, so the cube
+    // sliding inside crosses none of their paths and, the level's bounds unchanged, leaves every
+    // group of the sun where it is. (Refreshing the sun's disc on every move queued all 77.)
+    Level level("cornell");
+    const ecs::Entity sun = level.registry.create();
+    ecs::Transform down;
+    down.rotation = glm::angleAxis(-1.5707964f, glm::vec3(1.0f, 0.0f, 0.0f));
+    level.registry.emplace<ecs::Transform>(sun, down);
+    level.registry.emplace<lighting::DirectionalLight>(sun, glm::vec3(2.0f), true);
+    level.start();
+    ASSERT_TRUE(level.photons->pending_groups().empty());
+    const ecs::Entity cube = level.instance.find("moving cube");
+    for (int frame = 1; frame <= 3; ++frame) {
+        level.registry.patch<ecs::Transform>(cube,
+                                             [](ecs::Transform& t) { t.translation.x += 0.1f; });
+        level.step();
+        std::size_t sun_groups = 0;
+        std::size_t other_groups = 0;
+        for (const std::uint32_t group : level.photons->pending_groups()) {
+            ++(level.photons->light_of_group(group) == sun ? sun_groups : other_groups);
+        }
+        EXPECT_EQ(sun_groups, 0u) << "frame " << frame;
+        EXPECT_GT(other_groups, 0u) << "frame " << frame;
+        level.photons->retrace_pending(level.jobs);
+    }
+    // The sun's groups still follow a change of the level's bounds: an object added far
+    // outside moves the disc.
+    const ecs::Entity far = level.registry.create();
+    level.registry.emplace<scene::MeshInstance>(far, cube_scene(), 0);
+    ecs::Transform away;
+    away.translation = glm::vec3(30.0f, 0.0f, 0.0f);
+    level.registry.emplace<ecs::Transform>(far, away);
+    level.step();
+    std::size_t sun_groups = 0;
+    for (const std::uint32_t group : level.photons->pending_groups()) {
+        sun_groups += level.photons->light_of_group(group) == sun ? 1 : 0;
+    }
+    EXPECT_EQ(sun_groups, 77u);
+}
+
+}  // namespace

@@ -90,6 +90,7 @@ void LightGroups::refresh(ecs::Entity entity, const BoundingSphere& scene) {
     }
     record.directional = directional;
     record.enabled = enabled;
+    record.scene = scene;
     const LightPhotons& photons = *record.photons;
     // A moved, changed or switched light invalidates all its groups.
     for (std::uint32_t g = 0; g < photons.group_count(); ++g) {
@@ -151,7 +152,9 @@ void LightGroups::refresh_directional(std::span<const ecs::Entity> skip,
                                       const BoundingSphere& scene) {
     std::vector<ecs::Entity> directional;
     for (const auto& [entity, record] : lights_) {
-        if (record.directional && !std::binary_search(skip.begin(), skip.end(), entity)) {
+        const bool moved =
+            record.scene.centre != scene.centre || record.scene.radius != scene.radius;
+        if (record.directional && moved && !std::binary_search(skip.begin(), skip.end(), entity)) {
             directional.push_back(entity);
         }
     }

@@ -35,7 +35,9 @@ class LightGroups {
     /// invalidates its groups; `scene` bounds directional lights' discs.
     void refresh(ecs::Entity entity, const BoundingSphere& scene);
     void remove(ecs::Entity entity);
-    /// Refreshes every directional light not in `skip` (sorted): their discs follow the scene.
+    /// Refreshes every directional light not in `skip` (sorted) whose disc `scene` moves: their
+    /// discs follow the scene's sphere. One whose sphere is unchanged keeps its photons (an
+    /// object moving inside the level invalidates only the groups it crosses).
     void refresh_directional(std::span<const ecs::Entity> skip, const BoundingSphere& scene);
     /// The world-space triangles of the enabled SkyPortals, three vertices each: where sky
     /// photons start from the next refresh of each sky on (empty: the scene's disc).
@@ -70,6 +72,7 @@ class LightGroups {
         std::unique_ptr<LightPhotons> photons;
         bool enabled = true;
         bool directional = false;
+        BoundingSphere scene;  ///< the sphere its emitter was made with
     };
     struct PiecesCache {
         std::shared_ptr<const scene::Scene> source;
