@@ -128,6 +128,23 @@ TEST(SkyPortal, ADaylightSkysPhotonsCarryItsOwnIntegralThroughTheWindow) {
     }
 }
 
+TEST(SkyPortal, ASunsPhotonsCarryItsIrradianceThroughTheWindow) {
+    // A sun of irradiance E shining in down 39 degrees: the flux through the opening is
+    // E |cos| A, every photon starting on the window and travelling the sun's way.
+    LightSource light;
+    light.kind = LightKind::Directional;
+    light.direction = glm::normalize(glm::vec3(0.0f, -0.8f, -1.0f));
+    light.power = glm::vec3(3.0f);
+    light.portals = window();
+    const PhotonEmitter emitter(light, {});
+    const Crossing crossing = emit_all(emitter, 1 << 12);
+    const double expected = 3.0 * std::abs(static_cast<double>(light.direction.z)) * 1.2;
+    EXPECT_TRUE(crossing.finite);
+    EXPECT_TRUE(crossing.all_from_portal);
+    EXPECT_NEAR(crossing.into_room.g, expected, 1e-4 * expected);
+    EXPECT_NEAR(static_cast<double>(emitter.total_power().g), 3.0 * 1.2, 1e-5);
+}
+
 TEST(SkyPortal, APhotonWhoseWayBackToTheSkyIsBlockedCarriesNothing) {
     // One photon from the window into the room, traced twice: with nothing outside it lands
     // on the floor; with a wall standing outside the window it is dropped before it moves.

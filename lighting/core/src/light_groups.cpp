@@ -40,6 +40,7 @@ void LightGroups::refresh(ecs::Entity entity, const BoundingSphere& scene) {
     } else if (const auto* sun = registry_.try_get<DirectionalLight>(entity)) {
         source.kind = LightKind::Directional;
         source.power = sun->irradiance;
+        source.portals = portals_;
         enabled = sun->enabled;
         directional = true;
     } else if (const auto* sky = registry_.try_get<SkyLight>(entity)) {

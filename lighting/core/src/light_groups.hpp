@@ -39,8 +39,8 @@ class LightGroups {
     /// discs follow the scene's sphere. One whose sphere is unchanged keeps its photons (an
     /// object moving inside the level invalidates only the groups it crosses).
     void refresh_directional(std::span<const ecs::Entity> skip, const BoundingSphere& scene);
-    /// The world-space triangles of the enabled SkyPortals, three vertices each: where sky
-    /// photons start from the next refresh of each sky on (empty: the scene's disc).
+    /// The world-space triangles of the enabled SkyPortals, three vertices each: where the
+    /// photons of skies and suns start from their next refresh on (empty: the scene's disc).
     void set_portals(std::vector<glm::vec3> triangles) { portals_ = std::move(triangles); }
 
     [[nodiscard]] bool contains(ecs::Entity entity) const { return lights_.contains(entity); }

@@ -70,6 +70,27 @@ EmittedPhoton portal_photon(const LightSource& light, const TriangleSampler& por
     return photon;
 }
 
+/// A sun's photon through the portals: `d` places it on a portal, uniformly by area; it travels
+/// the sun's direction and carries E |cos| A / N (the irradiance through the opening). As for
+/// the sky, one sent through the portal's back is blocked by the room behind it.
+EmittedPhoton portal_beam(const LightSource& light, const TriangleSampler& portals,
+                          const glm::dvec2& d, std::uint64_t photon_count) {
+    EmittedPhoton photon;
+    photon.power = glm::vec3(0.0f);
+    photon.from_portal = true;
+    photon.direction = light.direction;
+    const TriangleSampler::Sample at = portals.sample(d);
+    const double cos_theta = std::abs(static_cast<double>(glm::dot(light.direction, at.normal)));
+    const double weight = at.density * static_cast<double>(photon_count);
+    photon.origin = offset_ray_origin(at.point, at.normal,
+                                      glm::dot(photon.direction, at.normal) >= 0.0f ? 1.0f : -1.0f);
+    if (!(weight > 0.0) || !(cos_theta > 0.0)) {
+        return photon;
+    }
+    photon.power = glm::vec3(glm::dvec3(light.power) * (cos_theta / weight));
+    return photon;
+}
+
 }  // namespace
 
 glm::vec3 area_radiance(const LightSource& light, std::size_t triangle, std::uint32_t piece) {
@@ -276,6 +297,11 @@ PhotonEmitter::PhotonEmitter(LightSource light, const BoundingSphere& scene_boun
             total_power_ = light_.power;
             break;
         case LightKind::Directional:
+            if (!light_.portals.empty()) {
+                portals_ = TriangleSampler(light_.portals);
+                total_power_ = light_.power * static_cast<float>(portals_.area());
+                break;
+            }
             total_power_ = light_.power * pi * bounds_.radius * bounds_.radius;
             break;
         case LightKind::Area: {
@@ -333,6 +359,10 @@ EmittedPhoton PhotonEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
             break;
         }
         case LightKind::Directional: {
+            if (!light_.portals.empty()) {
+                photon = portal_beam(light_, portals_, d, photon_count);
+                break;
+            }
             // One direction: d places the photon on the scene's disc.
             photon.origin = scene_disc_origin(bounds_, light_.direction, d);
             photon.direction = light_.direction;

@@ -137,8 +137,8 @@ void PhotonWorld::sync_moves(std::vector<ecs::Entity>& light_touched) {
     });
 }
 
-/// The sky photons start on the portals: a portal added, removed, edited or moved re-emits every
-/// sky's.
+/// The photons of skies and suns start on the portals: a portal added, removed, edited or moved
+/// re-emits every sky's and sun's.
 void PhotonWorld::touch_skies_if_portals_changed(std::vector<ecs::Entity>& light_touched) {
     bool changed = false;
     portal_changes_.consume([&](ecs::Entity, ecs::ChangeKind) { changed = true; });
@@ -161,6 +161,9 @@ void PhotonWorld::touch_skies_if_portals_changed(std::vector<ecs::Entity>& light
     }
     lights_->set_portals(std::move(triangles));
     for (auto [entity, sky] : registry_.view<SkyLight>()) {
+        light_touched.push_back(entity);
+    }
+    for (auto [entity, sun] : registry_.view<DirectionalLight>()) {
         light_touched.push_back(entity);
     }
 }

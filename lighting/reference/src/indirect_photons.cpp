@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/gtc/constants.hpp>
 
@@ -67,8 +68,14 @@ IndirectPhotons::IndirectPhotons(const ReferenceScene& scene, IndirectPhotonSett
                 break;
             }
         }
+        std::shared_ptr<const PhotonEmitter> through_portals;
+        if ((source.kind == LightKind::Sky || source.kind == LightKind::Directional) &&
+            !source.portals.empty()) {
+            through_portals = std::make_shared<const PhotonEmitter>(source, scene.bounds());
+            flux = glm::dvec3(through_portals->total_power());
+        }
         if (channel_sum(flux) > 0.0 && std::isfinite(channel_sum(flux))) {
-            emitters_.push_back({l, channel_sum(flux), 0.0, flux});
+            emitters_.push_back({l, channel_sum(flux), 0.0, flux, std::move(through_portals)});
             total += channel_sum(flux);
         }
     }
@@ -83,19 +90,26 @@ IndirectPhotons::IndirectPhotons(const ReferenceScene& scene, IndirectPhotonSett
     }
 }
 
-void IndirectPhotons::trace(std::uint64_t index, std::vector<Deposit>& out,
-                            IndirectPhotonCounters& counters) const {
-    ++counters.emitted;
-    SampleStream random(settings_.seed, index, 0x1d1ec7);
-    const double pick = random.next();
-    const Emitter& emitter = *std::find_if(emitters_.begin(), emitters_.end() - 1,
-                                           [&](const Emitter& e) { return pick < e.cumulative; });
+bool IndirectPhotons::start(const Emitter& emitter, SampleStream& random, glm::vec3& origin,
+                            glm::vec3& direction, glm::dvec3& power) const {
     const ReferenceLight& light = scene_->lights()[emitter.light];
     const LightSource& source = light.source;
-    glm::dvec3 power = emitter.flux / emitter.probability;
-    glm::vec3 origin(0.0f);
-    glm::vec3 direction(0.0f, -1.0f, 0.0f);
+    power = emitter.flux / emitter.probability;
     const glm::dvec2 d = random.next2();
+    if (emitter.through_portals != nullptr) {
+        // One photon of the real-time engine's own portal sampling (photon count 1: its power
+        // is the flux estimate), kept only where the sky or sun is open behind it.
+        const EmittedPhoton photon = emitter.through_portals->emit(d, random.next2(), 1);
+        if (!(channel_sum(glm::dvec3(photon.power)) > 0.0) ||
+            scene_->rays().occluded(photon.origin, -photon.direction,
+                                    std::numeric_limits<float>::infinity())) {
+            return false;
+        }
+        power = glm::dvec3(photon.power) / emitter.probability;
+        origin = photon.origin;
+        direction = photon.direction;
+        return true;
+    }
     switch (source.kind) {
         case LightKind::Point:
             origin = source.position;
@@ -120,8 +134,7 @@ void IndirectPhotons::trace(std::uint64_t index, std::vector<Deposit>& out,
         case LightKind::Area: {
             const TriangleSampler::Sample sample = light.triangles.sample(random.next2());
             if (glm::dot(sample.normal, sample.normal) <= 0.0f || !(sample.density > 0.0)) {
-                ++counters.absorbed;
-                return;
+                return false;
             }
             // pi L / density is this point's estimate of the light's flux (the light's mean
             // radiance x pi x area when its radiance is uniform).
@@ -136,8 +149,7 @@ void IndirectPhotons::trace(std::uint64_t index, std::vector<Deposit>& out,
             // facing it: L pi R^2 / pdf is this photon's estimate of the sky's flux.
             const SkyRadiance::Sample from = source.sky->sample(d);
             if (!(from.pdf > 0.0)) {
-                ++counters.absorbed;
-                return;
+                return false;
             }
             const BoundingSphere bounds = scene_->bounds();
             direction = -from.direction;
@@ -148,6 +160,23 @@ void IndirectPhotons::trace(std::uint64_t index, std::vector<Deposit>& out,
                                                  (from.pdf * emitter.probability));
             break;
         }
+    }
+    return true;
+}
+
+void IndirectPhotons::trace(std::uint64_t index, std::vector<Deposit>& out,
+                            IndirectPhotonCounters& counters) const {
+    ++counters.emitted;
+    SampleStream random(settings_.seed, index, 0x1d1ec7);
+    const double pick = random.next();
+    const Emitter& emitter = *std::find_if(emitters_.begin(), emitters_.end() - 1,
+                                           [&](const Emitter& e) { return pick < e.cumulative; });
+    glm::vec3 origin(0.0f);
+    glm::vec3 direction(0.0f, -1.0f, 0.0f);
+    glm::dvec3 power(0.0);
+    if (!start(emitter, random, origin, direction, power)) {
+        ++counters.absorbed;
+        return;
     }
     const std::size_t first = out.size();
     const RayScene& rays = scene_->rays();

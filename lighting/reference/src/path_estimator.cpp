@@ -22,6 +22,42 @@ double power_heuristic(double mine, double other) {
     return a + b > 0.0 ? a / (a + b) : 0.0;
 }
 
+/// The density per steradian with which a point chosen uniformly by area on `portals` lies in
+/// direction `w` (unit) from `origin`: over every portal triangle the ray meets, its distance
+/// squared over the total area times the cosine there (0 when it meets none).
+double portal_density(const TriangleSampler& portals, const glm::vec3& origin, const glm::vec3& w) {
+    if (portals.size() == 0 || !(portals.area() > 0.0)) {
+        return 0.0;
+    }
+    double density = 0.0;
+    const std::vector<glm::vec3>& v = portals.vertices();
+    for (std::size_t t = 0; t < portals.size(); ++t) {
+        // Moller-Trumbore, in double: the portals are few.
+        const glm::dvec3 a(v[3 * t]);
+        const glm::dvec3 e1 = glm::dvec3(v[3 * t + 1]) - a;
+        const glm::dvec3 e2 = glm::dvec3(v[3 * t + 2]) - a;
+        const glm::dvec3 dir(w);
+        const glm::dvec3 p = glm::cross(dir, e2);
+        const double det = glm::dot(e1, p);
+        if (!(std::abs(det) > 1e-18)) {
+            continue;
+        }
+        const glm::dvec3 s = glm::dvec3(origin) - a;
+        const double u = glm::dot(s, p) / det;
+        const glm::dvec3 q = glm::cross(s, e1);
+        const double vv = glm::dot(dir, q) / det;
+        const double distance = glm::dot(e2, q) / det;
+        if (u < 0.0 || vv < 0.0 || u + vv > 1.0 || !(distance > 0.0)) {
+            continue;
+        }
+        const double cosine = std::abs(glm::dot(glm::normalize(glm::cross(e1, e2)), dir));
+        if (cosine > 0.0) {
+            density += distance * distance / (portals.area() * cosine);
+        }
+    }
+    return density;
+}
+
 void add(Components& out, Component component, const glm::dvec3& value, PathCounters& counters) {
     if (finite(value)) {
         out[component] += value;
@@ -129,42 +165,72 @@ PathEstimator::DirectLight PathEstimator::direct_light(const glm::vec3& point,
                             (cosine / pdf_light * power_heuristic(pdf_light, pdf_bsdf));
                 break;
             }
-            case LightKind::Sky: {
-                // A direction by the sky's distribution, weighed against the cosine-sampled
-                // continuation that may leave the scene the same way (trace()'s escape).
-                if (source.sky == nullptr) {
-                    break;
-                }
-                const SkyRadiance::Sample from = source.sky->sample(random.next2());
-                const glm::vec3& w = from.direction;
-                const double cosine = glm::dot(normal, w);
-                if (!(from.pdf > 0.0) || cosine <= 0.0 || glm::dot(geometric, w) <= 0.0f) {
-                    break;
-                }
-                ++counters.rays;
-                if (rays.occluded(origin, w, std::numeric_limits<float>::infinity())) {
-                    break;
-                }
-                gathered += glm::dvec3(from.radiance) *
-                            (static_cast<double>(source.sky_scale) * cosine / from.pdf *
-                             power_heuristic(from.pdf, cosine / kPi));
+            case LightKind::Sky:
+                gathered += sky_light(light, origin, normal, geometric, random, counters);
                 break;
-            }
         }
     }
     return out;
 }
 
-glm::dvec3 PathEstimator::escaped(const glm::vec3& direction, double pdf) const {
+glm::dvec3 PathEstimator::sky_light(const ReferenceLight& light, const glm::vec3& origin,
+                                    const glm::vec3& normal, const glm::vec3& geometric,
+                                    SampleStream& random, PathCounters& counters) const {
+    const LightSource& source = light.source;
+    if (source.sky == nullptr) {
+        return glm::dvec3(0.0);
+    }
+    const RayScene& rays = scene_->rays();
+    glm::dvec3 gathered(0.0);
+    // One sample of a strategy with density `pdf` at `w`, weighed against the others.
+    auto add_sample = [&](const glm::vec3& w, double pdf, bool by_sky) {
+        const double cosine = glm::dot(normal, w);
+        if (!(pdf > 0.0) || cosine <= 0.0 || glm::dot(geometric, w) <= 0.0f) {
+            return;
+        }
+        const double pdf_sky = by_sky ? pdf : source.sky->pdf(w);
+        const double pdf_portal = by_sky ? portal_density(light.portals, origin, w) : pdf;
+        const double pdf_bsdf = cosine / kPi;
+        const double sum = pdf_sky * pdf_sky + pdf_portal * pdf_portal + pdf_bsdf * pdf_bsdf;
+        ++counters.rays;
+        if (rays.occluded(origin, w, std::numeric_limits<float>::infinity())) {
+            return;
+        }
+        gathered += glm::dvec3(sky_radiance(source, w)) * (cosine / pdf * (pdf * pdf / sum));
+    };
+    // The sky's own distribution: its bright regions, wherever the openings are.
+    const SkyRadiance::Sample from = source.sky->sample(random.next2());
+    add_sample(from.direction, from.pdf, true);
+    // Towards a point on the portals: the openings, whatever the sky there.
+    if (light.portals.size() > 0) {
+        const TriangleSampler::Sample at = light.portals.sample(random.next2());
+        const glm::vec3 to = at.point - origin;
+        const float length = glm::length(to);
+        if (length > 0.0f && std::isfinite(length)) {
+            const glm::vec3 w = to / length;
+            add_sample(w, portal_density(light.portals, origin, w), false);
+        }
+    }
+    return gathered;
+}
+
+glm::dvec3 PathEstimator::escaped(const glm::vec3& origin, const glm::vec3& direction,
+                                  double pdf) const {
     glm::dvec3 radiance(0.0);
     for (const ReferenceLight& light : scene_->lights()) {
         if (light.source.kind != LightKind::Sky || light.source.sky == nullptr) {
             continue;
         }
         const glm::dvec3 sky(sky_radiance(light.source, direction));
-        // After a diffuse vertex its next-event estimate also sampled this sky: weigh the two.
-        const double weight =
-            pdf > 0.0 ? power_heuristic(pdf, light.source.sky->pdf(direction)) : 1.0;
+        // After a diffuse vertex its next-event estimates also sampled this sky (and its
+        // portals): weigh them.
+        double weight = 1.0;
+        if (pdf > 0.0) {
+            const double pdf_sky = light.source.sky->pdf(direction);
+            const double pdf_portal = portal_density(light.portals, origin, direction);
+            const double sum = pdf * pdf + pdf_sky * pdf_sky + pdf_portal * pdf_portal;
+            weight = sum > 0.0 ? pdf * pdf / sum : 1.0;
+        }
         radiance += sky * weight;
     }
     return radiance;
@@ -189,7 +255,7 @@ void PathEstimator::trace(glm::vec3 origin, glm::vec3 direction, glm::dvec3 beta
                                                   : Component::Caustic;
         if (!hit) {
             // Left the scene: the sky, if it has one.
-            add(out, component, beta * escaped(direction, pdf), counters);
+            add(out, component, beta * escaped(origin, direction, pdf), counters);
             return;
         }
         const FacingNormals normals = facing_normals(*hit, direction);

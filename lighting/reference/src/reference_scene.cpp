@@ -68,6 +68,9 @@ ReferenceScene::ReferenceScene(const RayScene& rays, std::vector<TraceMaterial> 
         if (source.kind == LightKind::Area) {
             light.triangles = TriangleSampler(source.triangles, source.pieces);
         }
+        if (source.kind == LightKind::Sky && !source.portals.empty()) {
+            light.portals = TriangleSampler(source.portals);
+        }
         light.intensity = intensity_of(source);
         light.source = std::move(source);
         lights_.push_back(std::move(light));

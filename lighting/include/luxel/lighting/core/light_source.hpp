@@ -34,8 +34,9 @@ struct LightSource {
     /// Sky: the radiance at infinity (null: black), times `sky_scale`.
     std::shared_ptr<const SkyRadiance> sky;
     float sky_scale = 1.0f;
-    /// Sky: the world-space triangles of the level's SkyPortals, three vertices each; photons
-    /// start on them when there are any (empty: on the disc of the scene's sphere).
+    /// Sky and directional: the world-space triangles of the level's SkyPortals, three vertices
+    /// each; photons start on them when there are any (empty: on the disc of the scene's
+    /// sphere).
     std::vector<glm::vec3> portals;
 };
 
@@ -61,8 +62,8 @@ struct EmittedPhoton {
     glm::vec3 origin{0.0f};
     glm::vec3 direction{0.0f, 0.0f, -1.0f};
     glm::vec3 power{0.0f};
-    /// A sky photon that starts on a portal: it carries light only if the sky is open from its
-    /// origin back along -direction, which the tracer checks (trace_photon) before tracing it.
+    /// A sky or sun photon that starts on a portal: it carries light only if the sky is open from
+    /// its origin back along -direction, which the tracer checks (trace_photon) before tracing it.
     bool from_portal = false;
 };
 
@@ -133,7 +134,8 @@ class PhotonEmitter {
 
     /// Total flux leaving the light in W per channel (area: pi * L * area; directional:
     /// E * pi * R^2 over the scene disc; sky: pi * R^2 times its radiance integrated over the
-    /// sphere; sky through portals: at most the portals' area times half that integral).
+    /// sphere; through portals: E times their area, and at most their area times half the sky's
+    /// integral).
     [[nodiscard]] glm::vec3 total_power() const { return total_power_; }
     [[nodiscard]] const LightSource& light() const { return light_; }
 

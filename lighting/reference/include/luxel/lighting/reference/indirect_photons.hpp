@@ -1,11 +1,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "luxel/lighting/reference/reference_scene.hpp"
+#include "luxel/lighting/reference/sample_stream.hpp"
 #include "luxel/runtime/jobs.hpp"
 
 /// A dense photon estimate of the indirect component (docs/METHOD.md §10.1), the reference's
@@ -69,11 +71,18 @@ class IndirectPhotons {
         double probability = 0.0;  ///< of choosing this light for a photon
         double cumulative = 0.0;   ///< upper end of its slot in [0, 1)
         glm::dvec3 flux{0.0};      ///< W per channel (spot: before the falloff)
+        /// A sky or sun with portals: their photons, as the real-time engine emits them (each
+        /// looked back from before it is traced).
+        std::shared_ptr<const PhotonEmitter> through_portals;
     };
     struct Deposit {
         std::uint32_t texel = 0;
         glm::dvec3 value{0.0};  ///< one photon's arrivals in the texel, W/m^2 (as the only photon)
     };
+    /// Where one photon of `emitter` starts, along which direction, carrying what (W, divided
+    /// by the emitter's probability), from `random`; false when it carries nothing.
+    [[nodiscard]] bool start(const Emitter& emitter, SampleStream& random, glm::vec3& origin,
+                             glm::vec3& direction, glm::dvec3& power) const;
     /// Traces photon `index`, appending its per-texel sums to `out`.
     void trace(std::uint64_t index, std::vector<Deposit>& out,
                IndirectPhotonCounters& counters) const;

@@ -86,10 +86,17 @@ class PathEstimator {
                                       SampleStream& random, PathCounters& counters) const;
 
   private:
-    /// The radiance of every sky from `direction` for a ray that left the scene, each weighed
-    /// against its next-event estimate when the ray was cosine-sampled with density `pdf` (0:
-    /// not sampled so, weight 1).
-    [[nodiscard]] glm::dvec3 escaped(const glm::vec3& direction, double pdf) const;
+    /// The radiance of every sky from `direction` for a ray from `origin` that left the scene,
+    /// each weighed against its next-event estimates (the sky's and its portals') when the ray
+    /// was cosine-sampled with density `pdf` (0: not sampled so, weight 1).
+    [[nodiscard]] glm::dvec3 escaped(const glm::vec3& origin, const glm::vec3& direction,
+                                     double pdf) const;
+    /// A sky's next-event estimate at a diffuse vertex: a direction by the sky's distribution
+    /// and, when the level has portals, one towards a point on them, each weighed against the
+    /// other and the cosine-sampled continuation (power heuristic).
+    [[nodiscard]] glm::dvec3 sky_light(const ReferenceLight& light, const glm::vec3& origin,
+                                       const glm::vec3& normal, const glm::vec3& geometric,
+                                       SampleStream& random, PathCounters& counters) const;
     /// Irradiance at a point from every light by next-event estimation, MIS-weighted against
     /// cosine sampling around `normal` for area lights and skies. `geometric` rejects
     /// directions into the surface.

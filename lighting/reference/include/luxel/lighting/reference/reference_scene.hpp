@@ -51,6 +51,7 @@ struct ReferenceSurface {
 struct ReferenceLight {
     LightSource source;
     TriangleSampler triangles;  ///< area lights: the emitting triangles
+    TriangleSampler portals;    ///< skies: the level's portals (empty: none)
     /// Point and spot: radiant intensity on the axis, W/sr (spot: before the falloff).
     glm::vec3 intensity{0.0f};
 
