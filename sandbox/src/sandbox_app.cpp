@@ -4,6 +4,7 @@
 #include "luxel/runtime/log.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/animation_system.hpp"
+#include "luxel/world/sky.hpp"
 
 namespace luxel::sandbox {
 namespace {
@@ -62,6 +63,7 @@ SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const Shade
     // its light until the budget caught up (issue 28).
     world::update_animations(registry_, 0.0);
     world::update_light_switches(registry_, 0.0);
+    world::update_sky(registry_);
     update_bounces(registry_, 0.0);
     transforms_.update();
     path_ = camera_path_for(level_name_, *scene_);
@@ -91,6 +93,7 @@ SandboxApp::FrameResult SandboxApp::frame(double time, double dt,
         world::update_animations(registry_, dt);
         world::update_light_switches(registry_, dt);
         update_bounces(registry_, time);
+        world::update_sky(registry_);  // a daylight sky turns with its sun
     }
     transforms_.update();
 

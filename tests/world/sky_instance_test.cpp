@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/quaternion.hpp>
 
+#include "luxel/ecs/transform.hpp"
 #include "luxel/lighting/components.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/image.hpp"
@@ -97,6 +98,56 @@ TEST(SkyInstance, ADaylightSkyFollowsTheBrightestEnabledSun) {
     const glm::vec3 near_sun = sky->radiance->radiance(glm::vec3(0.0f, 0.6f, 0.8f));
     const glm::vec3 away = sky->radiance->radiance(glm::vec3(0.0f, 0.6f, -0.8f));
     EXPECT_GT(near_sun.g, 2.0f * away.g);
+}
+
+TEST(SkyInstance, ADaylightSkyTurnsWithItsSun) {
+    // Time of day: the sun's node turns, update_sky rebuilds the sky for its new direction
+    // (the same sky daylight_sky makes for it), once; a turn under a quarter degree, a uniform
+    // sky and a sky whose sun is gone are left alone.
+    auto level = two_suns();
+    level->sky = scene::parse_sky("daylight:1.5,4");
+    ecs::Registry registry;
+    const world::SceneInstance instance = world::instantiate(registry, level);
+    const ecs::Entity sun = instance.find("sun");
+    const auto* daylight = registry.try_get<world::DaylightSun>(instance.sky);
+    ASSERT_NE(daylight, nullptr);
+    EXPECT_EQ(daylight->sun, sun);
+    EXPECT_EQ(world::update_sky(registry), 0u);  // the sun has not moved
+    const auto before = sky_of(registry, instance)->radiance;
+
+    // Evening: from 30 degrees up to 10 degrees up.
+    registry.patch<ecs::Transform>(sun, [](ecs::Transform& t) {
+        t.rotation = glm::angleAxis(glm::radians(-10.0f), glm::vec3(1, 0, 0));
+    });
+    EXPECT_EQ(world::update_sky(registry), 1u);
+    const lighting::SkyLight* sky = sky_of(registry, instance);
+    ASSERT_NE(sky->radiance, before);
+    const glm::vec3 towards(0.0f, std::sin(glm::radians(10.0f)), std::cos(glm::radians(10.0f)));
+    const lighting::SkyRadiance expected = lighting::daylight_sky(towards, 4.0f, 1.5f);
+    for (const glm::vec3& d : {glm::vec3(0.0f, 0.2f, 1.0f), glm::vec3(0.5f, 0.8f, -0.3f),
+                               glm::vec3(-1.0f, 0.1f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f)}) {
+        const glm::vec3 got = sky->radiance->radiance(glm::normalize(d));
+        const glm::vec3 want = expected.radiance(glm::normalize(d));
+        EXPECT_NEAR(got.g, want.g, 1e-4f * want.g) << d.x << " " << d.y << " " << d.z;
+    }
+    // Low sun: the horizon by it is brighter than the zenith.
+    EXPECT_GT(sky->radiance->radiance(glm::normalize(glm::vec3(0.0f, 0.2f, 1.0f))).g,
+              sky->radiance->radiance(glm::vec3(0.0f, 1.0f, 0.0f)).g);
+    EXPECT_EQ(world::update_sky(registry), 0u);
+
+    registry.patch<ecs::Transform>(sun, [](ecs::Transform& t) {
+        t.rotation = glm::angleAxis(glm::radians(-10.1f), glm::vec3(1, 0, 0));
+    });
+    EXPECT_EQ(world::update_sky(registry), 0u);
+    registry.destroy(sun);
+    EXPECT_EQ(world::update_sky(registry), 0u);
+
+    // A uniform sky does not follow anything.
+    auto uniform = two_suns();
+    uniform->sky = scene::parse_sky("uniform:1");
+    ecs::Registry other;
+    const world::SceneInstance plain = world::instantiate(other, uniform);
+    EXPECT_FALSE(other.has<world::DaylightSun>(plain.sky));
 }
 
 TEST(SkyInstance, AnEnvironmentMapIsReadAndABadOneIsRefusedNamingTheFile) {

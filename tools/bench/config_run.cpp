@@ -15,6 +15,7 @@
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/world/animation_system.hpp"
+#include "luxel/world/sky.hpp"
 
 namespace luxel::bench {
 namespace {
@@ -101,6 +102,7 @@ world::SceneInstance posed_instance(ecs::Registry& registry,
     world::SceneInstance instance = world::instantiate(registry, source, instantiate_options);
     world::update_animations(registry, time);
     world::update_light_switches(registry, time);
+    world::update_sky(registry);
     return instance;
 }
 
@@ -273,6 +275,7 @@ void ConfigRun::change_phase() {
     const Change& change = *context_.change;
     result_.changed = true;
     apply(change, registry_, instance_.find(change.node), context_.file.string());
+    world::update_sky(registry_);  // a turned sun turns its daylight sky (time of day)
     transforms_->update();
     // A zero budget syncs the move into the photon world and the maps without doing any
     // lighting work: the reference of the new pose needs the moved geometry.
@@ -341,6 +344,7 @@ void ConfigRun::animated_phase() {
     for (std::uint32_t f = 1; f <= options_.animate; ++f) {
         world::update_animations(registry_, options_.dt);
         world::update_light_switches(registry_, options_.dt);
+        world::update_sky(registry_);
         frame(config.budget_ms);
         if (f % options_.checkpoint != 0 && f != options_.animate) {
             continue;

@@ -14,6 +14,7 @@
 #include "luxel/scene/gltf.hpp"
 #include "luxel/scene/level_check.hpp"
 #include "luxel/world/animation_system.hpp"
+#include "luxel/world/sky.hpp"
 
 namespace luxel::ref {
 
@@ -75,6 +76,7 @@ std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file, doubl
     // Every animation and light switch at `time` (a zero step still poses time 0).
     world::update_animations(level->registry, time);
     world::update_light_switches(level->registry, time);
+    world::update_sky(level->registry);
     ecs::TransformSystem transforms(level->registry);
     transforms.update();
     lighting::PhotonWorldSettings settings;

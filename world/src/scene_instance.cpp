@@ -183,7 +183,10 @@ SceneInstance instantiate(ecs::Registry& registry, std::shared_ptr<const scene::
         registry.emplace<AnimationPlayer>(entity, std::move(player));
         instance.animations.push_back(entity);
     }
-    instance.sky = add_sky(registry, *scene, options.sky.value_or(scene->sky));
+    const int sun = sun_node(*scene);
+    instance.sky =
+        add_sky(registry, *scene, options.sky.value_or(scene->sky),
+                sun >= 0 ? instance.nodes[static_cast<std::size_t>(sun)] : ecs::null_entity);
     return instance;
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "luxel/ecs/hierarchy.hpp"
 #include "luxel/lighting/components.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/image.hpp"
@@ -48,9 +49,9 @@ std::shared_ptr<const lighting::SkyRadiance> make_sky_radiance(const scene::SkyS
     return nullptr;
 }
 
-glm::vec3 sun_direction(const scene::Scene& scene) {
+int sun_node(const scene::Scene& scene) {
     const std::vector<glm::mat4> world = scene.world_matrices();
-    glm::vec3 towards(0.5f, std::sqrt(0.5f), 0.5f);
+    int sun = -1;
     float brightest = 0.0f;
     for (std::size_t i = 0; i < scene.nodes.size() && i < world.size(); ++i) {
         const scene::Node& node = scene.nodes[i];
@@ -63,28 +64,70 @@ glm::vec3 sun_direction(const scene::Scene& scene) {
         }
         const glm::vec3 irradiance = light.irradiance();
         const float strength = irradiance.r + irradiance.g + irradiance.b;
-        const glm::vec3 axis(world[i][2]);
-        const float length = glm::length(axis);
+        const float length = glm::length(glm::vec3(world[i][2]));
         if (strength > brightest && length > 0.0f && std::isfinite(length)) {
             brightest = strength;
-            towards = axis / length;  // the light travels down -z: the sun lies up +z
+            sun = static_cast<int>(i);
         }
     }
-    return towards;
+    return sun;
 }
 
-ecs::Entity add_sky(ecs::Registry& registry, const scene::Scene& scene,
-                    const scene::SkySpec& spec) {
-    std::shared_ptr<const lighting::SkyRadiance> radiance = make_sky_radiance(
-        spec, spec.kind == scene::SkySpec::Kind::Daylight ? sun_direction(scene)
-                                                          : glm::vec3(0.0f, 1.0f, 0.0f));
+glm::vec3 sun_direction(const scene::Scene& scene) {
+    const int sun = sun_node(scene);
+    if (sun < 0) {
+        return {0.5f, std::sqrt(0.5f), 0.5f};
+    }
+    // The light travels down -z: the sun lies up +z.
+    return glm::normalize(glm::vec3(scene.world_matrices()[static_cast<std::size_t>(sun)][2]));
+}
+
+ecs::Entity add_sky(ecs::Registry& registry, const scene::Scene& scene, const scene::SkySpec& spec,
+                    ecs::Entity sun) {
+    const bool daylight = spec.kind == scene::SkySpec::Kind::Daylight;
+    const glm::vec3 towards_sun = daylight ? sun_direction(scene) : glm::vec3(0.0f, 1.0f, 0.0f);
+    std::shared_ptr<const lighting::SkyRadiance> radiance = make_sky_radiance(spec, towards_sun);
     if (radiance == nullptr) {
         return ecs::null_entity;
     }
     const ecs::Entity entity = registry.create();
     registry.emplace<scene::Name>(entity, "sky");
     registry.emplace<lighting::SkyLight>(entity, std::move(radiance), spec.scale, true);
+    if (daylight && registry.valid(sun)) {
+        registry.emplace<DaylightSun>(
+            entity, DaylightSun{sun, spec.turbidity, spec.irradiance, towards_sun});
+    }
     return entity;
+}
+
+std::size_t update_sky(ecs::Registry& registry) {
+    const float turned = std::cos(glm::radians(DaylightSun::kTurnDegrees));
+    std::vector<ecs::Entity> skies;
+    for (auto [entity, daylight, sky] : registry.view<DaylightSun, lighting::SkyLight>()) {
+        if (registry.valid(daylight.sun)) {
+            skies.push_back(entity);
+        }
+    }
+    std::size_t rebuilt = 0;
+    for (const ecs::Entity entity : skies) {
+        DaylightSun& daylight = registry.get<DaylightSun>(entity);
+        const glm::vec3 axis(ecs::compute_world_matrix(registry, daylight.sun)[2]);
+        const float length = glm::length(axis);
+        if (!(length > 0.0f) || !std::isfinite(length)) {
+            continue;
+        }
+        const glm::vec3 towards_sun = axis / length;
+        if (glm::dot(towards_sun, daylight.towards_sun) >= turned) {
+            continue;
+        }
+        daylight.towards_sun = towards_sun;
+        auto radiance = std::make_shared<const lighting::SkyRadiance>(
+            lighting::daylight_sky(towards_sun, daylight.turbidity, daylight.irradiance));
+        registry.patch<lighting::SkyLight>(
+            entity, [&](lighting::SkyLight& sky) { sky.radiance = std::move(radiance); });
+        ++rebuilt;
+    }
+    return rebuilt;
 }
 
 }  // namespace luxel::world

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <memory>
 
 #include <glm/glm.hpp>
@@ -19,12 +20,36 @@ namespace luxel::world {
 [[nodiscard]] std::shared_ptr<const lighting::SkyRadiance> make_sky_radiance(
     const scene::SkySpec& spec, const glm::vec3& towards_sun);
 
-/// The direction towards the sun of `scene` in its rest pose: its brightest enabled
-/// directional light (shining down its node's -z), or 45 degrees up when it has none.
+/// The sun of `scene`: its brightest enabled directional light's node, or -1 without one.
+[[nodiscard]] int sun_node(const scene::Scene& scene);
+
+/// The direction towards the sun of `scene` in its rest pose: sun_node's light (shining down
+/// its node's -z), or 45 degrees up when it has none.
 [[nodiscard]] glm::vec3 sun_direction(const scene::Scene& scene);
 
+/// A daylight sky that turns with its sun (time of day): update_sky rebuilds the entity's
+/// SkyLight radiance for the sun entity's direction whenever that has turned by more than
+/// kTurnDegrees since the sky was made.
+struct DaylightSun {
+    static constexpr float kTurnDegrees = 0.25f;
+    ecs::Entity sun = ecs::null_entity;  ///< a DirectionalLight; it shines down its -z
+    float turbidity = 3.0f;
+    float irradiance = 1.0f;                  ///< W/m^2 the sky alone gives a horizontal face
+    glm::vec3 towards_sun{0.0f, 1.0f, 0.0f};  ///< the direction the radiance was made for
+};
+
 /// An entity named "sky" with the SkyLight `spec` describes (the sun from sun_direction for a
-/// daylight sky); null_entity for SkySpec::Kind::None.
-ecs::Entity add_sky(ecs::Registry& registry, const scene::Scene& scene, const scene::SkySpec& spec);
+/// daylight sky); null_entity for SkySpec::Kind::None. A daylight sky given the level's `sun`
+/// entity (instantiate passes it) gets a DaylightSun, so it follows the sun at run time.
+ecs::Entity add_sky(ecs::Registry& registry, const scene::Scene& scene, const scene::SkySpec& spec,
+                    ecs::Entity sun = ecs::null_entity);
+
+/// Rebuilds each DaylightSun's sky whose sun turned (patching its SkyLight, so the lighting
+/// system re-emits its photons and re-gathers, and the renderer redraws the background); a sky
+/// whose sun is gone, or points nowhere, stays as it is. Reads the sun's world transform from
+/// its Transform hierarchy, so it may run before or after the TransformSystem; run it after
+/// whatever turns the sun (animations, a game's clock) and before the lighting update. Returns
+/// how many skies it rebuilt.
+std::size_t update_sky(ecs::Registry& registry);
 
 }  // namespace luxel::world
