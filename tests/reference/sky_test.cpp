@@ -141,36 +141,9 @@ TEST(SkyReference, TheFloorOfABoxGetsWhatItsRoofHoleLetsThrough) {
     check_direct(scene, omega * glm::dvec3(radiance), "uniform sky through a roof hole", 32);
 }
 
-TEST(SkyReference, AnUnevenSkyThroughTheHoleMatchesTheSameFormPerCell) {
-    // A sky bright only in a cap of directions within 30 degrees of the zenith and four times
-    // dimmer elsewhere above the horizon, on a fine grid: the hole (within 19.5 degrees of
-    // the zenith from the texel) sees only the bright cap, so the expected value is the same
-    // form with the cap's radiance. The light samples mostly fall in the cap, most of it
-    // outside the hole, where the shadow rays find the roof.
-    const int width = 64;
-    const int height = 48;  // 3.75 degree rows: the cap ends on a row boundary (8 rows)
-    std::vector<glm::vec3> cells(static_cast<std::size_t>(width) * height);
-    for (int row = 0; row < height; ++row) {
-        for (int col = 0; col < width; ++col) {
-            const glm::vec3 value = row < 8    ? glm::vec3(3.0f)
-                                    : row < 24 ? glm::vec3(0.75f)
-                                               : glm::vec3(0.0f);
-            cells[static_cast<std::size_t>(row) * width + col] = value;
-        }
-    }
-    const float a = 0.25f;
-    const HoleBox box(a);
-    const ReferenceScene scene(box.rays, black_materials(),
-                               {sky_light(SkyRadiance(width, height, std::move(cells)), 0.5f)},
-                               {luxel::testing::quad_texels(0, 0.0f, HoleBox::kHalf, true, 1)});
-    const double omega = projected_solid_angle_of_square(a, HoleBox::kHeight);
-    check_direct(scene, glm::dvec3(1.5 * omega), "uneven sky through a roof hole", 32);
-}
-
-TEST(SkyReference, APortalInTheHoleGivesTheSameLightWithLessNoise) {
-    // The same box and uneven sky, with a portal filling the hole: the next-event estimate
-    // also aims at the opening, and is weighed against the sky's own samples and the cosine
-    // continuation, so the answer is the same and its standard error smaller.
+/// Radiance 3 within 30 degrees of the zenith, 0.75 elsewhere above the horizon, black below, on
+/// a 64 x 48 grid (3.75 degree rows: the cap ends on a row boundary, 8 rows).
+SkyRadiance capped_sky() {
     const int width = 64;
     const int height = 48;
     std::vector<glm::vec3> cells(static_cast<std::size_t>(width) * height);
@@ -181,9 +154,30 @@ TEST(SkyReference, APortalInTheHoleGivesTheSameLightWithLessNoise) {
                                                                             : glm::vec3(0.0f);
         }
     }
+    return SkyRadiance(width, height, std::move(cells));
+}
+
+TEST(SkyReference, AnUnevenSkyThroughTheHoleMatchesTheSameFormPerCell) {
+    // A sky bright only in a cap of directions within 30 degrees of the zenith and four times
+    // dimmer elsewhere above the horizon, on a fine grid: the hole (within 19.5 degrees of
+    // the zenith from the texel) sees only the bright cap, so the expected value is the same
+    // form with the cap's radiance. The light samples mostly fall in the cap, most of it
+    // outside the hole, where the shadow rays find the roof.
     const float a = 0.25f;
     const HoleBox box(a);
-    LightSource light = sky_light(SkyRadiance(width, height, std::move(cells)), 0.5f);
+    const ReferenceScene scene(box.rays, black_materials(), {sky_light(capped_sky(), 0.5f)},
+                               {luxel::testing::quad_texels(0, 0.0f, HoleBox::kHalf, true, 1)});
+    const double omega = projected_solid_angle_of_square(a, HoleBox::kHeight);
+    check_direct(scene, glm::dvec3(1.5 * omega), "uneven sky through a roof hole", 32);
+}
+
+TEST(SkyReference, APortalInTheHoleGivesTheSameLightWithLessNoise) {
+    // The same box and uneven sky, with a portal filling the hole: the next-event estimate
+    // also aims at the opening, and is weighed against the sky's own samples and the cosine
+    // continuation, so the answer is the same and its standard error smaller.
+    const float a = 0.25f;
+    const HoleBox box(a);
+    LightSource light = sky_light(capped_sky(), 0.5f);
     const float y = HoleBox::kHeight;
     // Facing down, into the box (either side would do).
     light.portals = {{-a, y, -a}, {a, y, a}, {a, y, -a}, {-a, y, -a}, {-a, y, a}, {a, y, a}};
