@@ -3,6 +3,7 @@
 // as Blender writes it; with the sun off, the room receives the sky's light only through the
 // window; with the window shut it receives none at all, neither photons nor gathered light.
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -55,7 +56,8 @@ struct Room {
     double time = 0.0;
 
     /// `portal`: keep the window's portal (the level's), or drop it (photons from the disc).
-    explicit Room(bool shut, bool portal = true) {
+    /// `per_group`: photons per group, 32 groups (256: 8,192 photons).
+    explicit Room(bool shut, bool portal = true, std::uint32_t per_group = 256) {
         const world::SceneInstance instance = world::instantiate(registry, sky_window());
         EXPECT_NE(instance.sky, ecs::null_entity);
         EXPECT_EQ(registry.size<lighting::SkyPortal>(), 1u);
@@ -80,7 +82,7 @@ struct Room {
         transforms.update();
         // 8,192 photons; converged once every group has been probed (32 frames).
         lighting = std::make_unique<lighting::LightingSystem>(
-            registry, jobs, luxel::testing::closed_form_config(256, 32));
+            registry, jobs, luxel::testing::closed_form_config(per_group, 32));
     }
 
     int converge() { return luxel::testing::converge(transforms, *lighting, time); }
@@ -154,13 +156,32 @@ TEST(SkyWindow, ThePortalSendsTheSkysPhotonsThroughTheWindowAndTheyCarryTheSameL
         "sum %.3f; through the portal %zu hits, AIM sum %.3f (%+.1f%%); IIM sums %.3f, %.3f\n",
         disc_hits, from_disc.aim, portal_hits, from_portal.aim,
         100.0 * (from_portal.aim / from_disc.aim - 1.0), from_disc.iim, from_portal.iim);
-    // Measured: 328 and 8,977 hits, the AIM sums 6.2% apart; with 64 times the photons (19,385
-    // and 573,878 hits) 1.0% apart: the disc's noise, not a bias of the portal's.
+    // Measured: 328 and 8,977 hits, the AIM sums 6.2% apart; with 64 times the photons 1.0%
+    // apart (DISABLED_ThePortalAndTheDiscAgreeWithManyPhotons): the disc's noise, not a bias
+    // of the portal's.
     EXPECT_GT(portal_hits, 8 * disc_hits);
     EXPECT_NEAR(from_portal.aim / from_disc.aim, 1.0, 0.2);
     // The gathers read the sky directly either way; only their bounce off the AIM differs
     // (measured 4%).
     EXPECT_NEAR(from_portal.iim / from_disc.iim, 1.0, 0.1);
+}
+
+// Left out of the suite for its time (16 s on two cores); run it with
+// --gtest_also_run_disabled_tests.
+TEST(SkyWindow, DISABLED_ThePortalAndTheDiscAgreeWithManyPhotons) {
+    // 524,288 sky photons each way: the disc's noise no longer hides a bias of the portal's.
+    // Measured: 19,385 and 573,878 hits inside, AIM sums 1.0% apart.
+    Room disc(false, false, 16384);
+    ASSERT_LE(disc.converge(), 100);
+    Room portal(false, true, 16384);
+    ASSERT_LE(portal.converge(), 100);
+    const double ratio = portal.totals().aim / disc.totals().aim;
+    std::printf(
+        "[ figures  ] sky-window, 524,288 sky photons: from the disc %zu hits inside, "
+        "through the portal %zu; AIM sums %+.2f%% apart\n",
+        disc.lighting->photons().photon_map().stored_hit_count(),
+        portal.lighting->photons().photon_map().stored_hit_count(), 100.0 * (ratio - 1.0));
+    EXPECT_NEAR(ratio, 1.0, 0.03);
 }
 
 }  // namespace

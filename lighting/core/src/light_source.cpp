@@ -27,6 +27,15 @@ glm::vec3 cone_direction(const glm::vec3& axis, float angle, const glm::dvec2& u
                           static_cast<float>(cos_theta) * axis);
 }
 
+/// Where a photon leaving a portal at `at` along `direction` starts: a step off the portal's
+/// plane on the side it travels to (along the normal: along a grazing direction the step would
+/// round away), so that a pane or shutter in that plane lies behind it, where the tracer's look
+/// back at the sky finds it.
+glm::vec3 off_portal(const TriangleSampler::Sample& at, const glm::vec3& direction) {
+    return offset_ray_origin(at.point, at.normal,
+                             glm::dot(direction, at.normal) >= 0.0f ? 1.0f : -1.0f);
+}
+
 /// A sky photon through the portals: `p` places it on a portal, uniformly by area, and `d` picks
 /// the direction it arrives from by one of two strategies, each with probability 1/2: the sky's
 /// own distribution (its bright regions: the sun's aureole, an HDR map's lamps) or |cos| about
@@ -57,11 +66,7 @@ EmittedPhoton portal_photon(const LightSource& light, const TriangleSampler& por
     const double pdf = 0.5 * light.sky->pdf(towards_sky) + 0.5 * cos_theta / kTwoPi;
     const double weight = at.density * pdf * static_cast<double>(photon_count);
     photon.direction = -towards_sky;
-    // A step off the portal's plane on the side it travels to (along the normal: along a
-    // grazing direction the step would round away): a pane or shutter in that plane then lies
-    // behind the photon, where the tracer's look back at the sky finds it.
-    photon.origin = offset_ray_origin(at.point, at.normal,
-                                      glm::dot(photon.direction, at.normal) >= 0.0f ? 1.0f : -1.0f);
+    photon.origin = off_portal(at, photon.direction);
     if (!(weight > 0.0) || !(cos_theta > 0.0)) {
         return photon;
     }
@@ -82,8 +87,7 @@ EmittedPhoton portal_beam(const LightSource& light, const TriangleSampler& porta
     const TriangleSampler::Sample at = portals.sample(d);
     const double cos_theta = std::abs(static_cast<double>(glm::dot(light.direction, at.normal)));
     const double weight = at.density * static_cast<double>(photon_count);
-    photon.origin = offset_ray_origin(at.point, at.normal,
-                                      glm::dot(photon.direction, at.normal) >= 0.0f ? 1.0f : -1.0f);
+    photon.origin = off_portal(at, photon.direction);
     if (!(weight > 0.0) || !(cos_theta > 0.0)) {
         return photon;
     }

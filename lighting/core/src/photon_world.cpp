@@ -49,7 +49,7 @@ void PhotonWorld::sync() {
     collect(directional_changes_);
     collect(area_changes_);
     collect(sky_changes_);
-    touch_skies_if_portals_changed(light_touched);
+    touch_lights_if_portals_changed(light_touched);
     geometry_->commit();
 
     sync_lights(light_touched);
@@ -139,7 +139,7 @@ void PhotonWorld::sync_moves(std::vector<ecs::Entity>& light_touched) {
 
 /// The photons of skies and suns start on the portals: a portal added, removed, edited or moved
 /// re-emits every sky's and sun's.
-void PhotonWorld::touch_skies_if_portals_changed(std::vector<ecs::Entity>& light_touched) {
+void PhotonWorld::touch_lights_if_portals_changed(std::vector<ecs::Entity>& light_touched) {
     bool changed = false;
     portal_changes_.consume([&](ecs::Entity, ecs::ChangeKind) { changed = true; });
     for (ecs::Entity entity : light_touched) {

@@ -149,7 +149,7 @@ class PhotonWorld {
     void sync_generators(const std::vector<ecs::Entity>& meshes_added,
                          std::vector<ecs::Entity>& generators_touched);
     void sync_moves(std::vector<ecs::Entity>& light_touched);
-    void touch_skies_if_portals_changed(std::vector<ecs::Entity>& light_touched);
+    void touch_lights_if_portals_changed(std::vector<ecs::Entity>& light_touched);
     void sync_lights(std::vector<ecs::Entity>& light_touched);
 
     ecs::Registry& registry_;
