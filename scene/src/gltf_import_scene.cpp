@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include <tiny_gltf.h>
 #include <glm/gtc/quaternion.hpp>
@@ -215,6 +216,25 @@ void import_transform(const ImportContext& context, const tinygltf::Node& source
 /// Checks the types of the `extras.luxel` keys luxel reads (docs/LEVELS.md), so that the
 /// systems that read them later (switches, bounces, waves) never meet a string where a number
 /// belongs: a wrong type here names the file, the node and the key.
+/// A boolean flag of extras.luxel: true or false, or the integer 1 or 0, which is how Blender 3
+/// keeps a boolean custom property and how its glTF exporter writes it. Absent: nullopt.
+/// Anything else fails the load naming the node and the key.
+std::optional<bool> flag(const ImportContext& context, const nlohmann::json& luxel, const char* key,
+                         const std::string& where) {
+    const auto found = luxel.find(key);
+    if (found == luxel.end()) {
+        return std::nullopt;
+    }
+    if (found->is_boolean()) {
+        return found->get<bool>();
+    }
+    if (found->is_number_integer() && (*found == 0 || *found == 1)) {
+        return *found == 1;
+    }
+    context.fail(where + ": extras.luxel." + key + " must be true or false (or 1 or 0), got " +
+                 found->dump());
+}
+
 void check_extras_types(const ImportContext& context, const nlohmann::json& luxel,
                         const std::string& where) {
     struct Shape {
@@ -250,16 +270,8 @@ void check_extras_types(const ImportContext& context, const nlohmann::json& luxe
             context.fail(where + ": extras.luxel.wave.direction must be two numbers [x, z]");
         }
     }
-    // Blender 3 keeps a boolean custom property as the integer 1 or 0, and exports it so.
-    if (const auto portal = luxel.find("portal");
-        portal != luxel.end() && !portal->is_boolean() &&
-        !(portal->is_number_integer() && (*portal == 0 || *portal == 1))) {
-        context.fail(where + ": extras.luxel.portal must be true or false (or 1 or 0), got " +
-                     portal->dump());
-    }
-    if (const auto furnace = luxel.find("furnace");
-        furnace != luxel.end() && !furnace->is_boolean()) {
-        context.fail(where + ": extras.luxel.furnace must be true or false");
+    for (const char* key : {"portal", "furnace"}) {
+        (void)flag(context, luxel, key, where);
     }
     if (const auto lightmap = luxel.find("lightmap");
         lightmap != luxel.end() && !lightmap->is_object()) {
@@ -280,17 +292,11 @@ void import_flags(const ImportContext& context, const tinygltf::Node& source, No
     if (!luxel.is_object()) {
         context.fail(where + ": extras.luxel must be a JSON object");
     }
-    if (luxel.contains("dynamic")) {
-        if (!luxel.at("dynamic").is_boolean()) {
-            context.fail(where + ": extras.luxel.dynamic must be true or false");
-        }
-        node.flags.dynamic = luxel.at("dynamic").get<bool>();
+    if (const std::optional<bool> dynamic = flag(context, luxel, "dynamic", where)) {
+        node.flags.dynamic = *dynamic;
     }
-    if (luxel.contains("enabled")) {
-        if (!luxel.at("enabled").is_boolean()) {
-            context.fail(where + ": extras.luxel.enabled must be true or false");
-        }
-        node.flags.light_enabled = luxel.at("enabled").get<bool>();
+    if (const std::optional<bool> enabled = flag(context, luxel, "enabled", where)) {
+        node.flags.light_enabled = *enabled;
     }
     check_extras_types(context, luxel, where);
     node.flags.raw = luxel;

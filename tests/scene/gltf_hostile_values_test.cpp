@@ -419,7 +419,10 @@ TEST(GltfHostileValues, LuxelExtrasOfTheWrongTypeNameTheNodeAndTheKey) {
         {{{"bounce", {{"height", "high"}}}}, "extras.luxel.bounce.height must be a finite number"},
         {{{"switch", {{"period", true}}}}, "extras.luxel.switch.period must be a finite number"},
         {{{"wave", {{"direction", {1, "x"}}}}}, "extras.luxel.wave.direction must be two numbers"},
-        {{{"furnace", 1}}, "extras.luxel.furnace must be true or false"},
+        {{{"furnace", 2}}, "extras.luxel.furnace must be true or false (or 1 or 0), got 2"},
+        {{{"dynamic", "yes"}},
+         "extras.luxel.dynamic must be true or false (or 1 or 0), got \"yes\""},
+        {{{"enabled", 0.5}}, "extras.luxel.enabled must be true or false (or 1 or 0), got 0.5"},
         {{{"portal", "window"}}, "extras.luxel.portal must be true or false (or 1 or 0)"},
         {{{"portal", 2}}, "extras.luxel.portal must be true or false (or 1 or 0), got 2"},
         {{{"lightmap", 7}}, "extras.luxel.lightmap must be a JSON object"},
@@ -436,6 +439,25 @@ TEST(GltfHostileValues, LuxelExtrasOfTheWrongTypeNameTheNodeAndTheKey) {
     GltfBuilder file = triangle();
     file.document["nodes"][0]["extras"]["luxel"] = {{"bounce", {{"height", 1.0}, {"period", 2}}}};
     EXPECT_EQ(load_error(file.text()), "(loaded)");
+}
+
+}  // namespace
+
+namespace {
+
+TEST(GltfHostileValues, BooleanFlagsAcceptBlendersIntegers) {
+    // Blender 3 keeps a boolean custom property as the integer 1 or 0 and its glTF exporter
+    // writes it so: a level made there must load with its flags as meant.
+    for (const int value : {0, 1}) {
+        GltfBuilder file = triangle();
+        file.document["nodes"][0]["extras"]["luxel"] = {{"dynamic", value}, {"enabled", value}};
+        const luxel::scene::Scene scene =
+            luxel::scene::load_gltf_from_memory(bytes_of(file.text()), kName, {}, {});
+        ASSERT_EQ(scene.nodes.size(), 1u);
+        ASSERT_TRUE(scene.nodes[0].flags.dynamic.has_value());
+        EXPECT_EQ(*scene.nodes[0].flags.dynamic, value == 1);
+        EXPECT_EQ(scene.nodes[0].flags.light_enabled, value == 1);
+    }
 }
 
 }  // namespace
