@@ -7,6 +7,7 @@
 // does all the work queued, footprint_support.hpp).
 
 #include <cstdint>
+#include <cstdio>
 #include <utility>
 #include <vector>
 
@@ -110,6 +111,55 @@ TEST(BlenderFootprint, ACrateKnockedAwayLeavesNoFootprintAndThePapersMethodDoes)
     paper.level.frame(1e9, kDt);
     paper.level.frame(1e9, kDt);
     EXPECT_LT(paper.mean_iim(truth.left), 0.5 * truth.lit);
+}
+
+TEST(BlenderFootprint, TheFloorsAimFollowsTheCrateWithoutWaitingForItsPhotons) {
+    // What the AIM decided from the old geometry is looked at again next to the change: the
+    // floor under the crate's new place was open and lit, under its old place enclosed and
+    // black. At a budget the floor's full rebuild (thousands of texels, asked for when its
+    // photons' change passes aim_threshold) comes tens of frames later, and until then every
+    // gather that sees the floor beside the crate (the crate's own faces) reads it as it was.
+    // Here full rebuilds are never asked for by the photons (aim_threshold out of reach), so
+    // only the local rebuild can move the floor's AIM.
+    const Truth truth;
+    expect_a_real_footprint(truth);
+    const double lit = truth.level.mean_aim(truth.left);
+    ASSERT_GT(lit, 0.0);
+    // The crate's bottom face lies in the floor's plane: the texels under it are inside the
+    // crate and enclosed, though its walls are a quarter metre away.
+    EXPECT_LT(truth.level.mean_aim(truth.covered), 0.05 * lit);
+
+    luxel::testing::Response local = kLuxel;
+    local.aim_threshold = 1e30;
+    FootprintLevel crate(kCrate, local);
+    EXPECT_LT(crate.mean_aim(truth.left), 0.05 * lit);  // enclosed while the crate stood there
+    EXPECT_GT(crate.mean_aim(truth.covered), 0.75 * lit);
+    jump_to_the_end(crate);
+    // The retraces exact invalidation queued, the local rebuild that waits for their photons,
+    // and one frame to spare.
+    constexpr int kFrames = 4;
+    for (int f = 0; f < kFrames; ++f) {
+        crate.level.frame(1e9, kDt);
+    }
+    std::printf(
+        "floor AIM after %d frames, where the crate stood / stands: %.4f / %.4f (truth "
+        "%.4f / %.4f)\n",
+        kFrames, crate.mean_aim(truth.left), crate.mean_aim(truth.covered), lit,
+        truth.level.mean_aim(truth.covered));
+    EXPECT_NEAR(crate.mean_aim(truth.left), lit, 0.1 * lit);
+    EXPECT_LT(crate.mean_aim(truth.covered), 0.05 * lit);
+
+    // Without local passes the floor's AIM is still the one decided with the crate where it
+    // stood, though exact invalidation retraced the photons at once.
+    luxel::testing::Response photons_only{false, true};
+    photons_only.aim_threshold = 1e30;
+    FootprintLevel paper(kCrate, photons_only);
+    jump_to_the_end(paper);
+    for (int f = 0; f < kFrames; ++f) {
+        paper.level.frame(1e9, kDt);
+    }
+    EXPECT_LT(paper.mean_aim(truth.left), 0.05 * lit);
+    EXPECT_GT(paper.mean_aim(truth.covered), 0.75 * lit);
 }
 
 }  // namespace

@@ -22,6 +22,7 @@ struct Response {
     bool exact_invalidation = true;
     double change_blend_seconds = lighting::IlluminationSettings{}.change_blend_seconds;
     double change_test_sigmas = lighting::IlluminationSettings{}.change_test_sigmas;
+    double aim_threshold = lighting::IlluminationSettings{}.aim_threshold;
 };
 inline constexpr Response kLuxel{};
 inline constexpr Response kPaper{false, false};
@@ -35,6 +36,7 @@ inline lighting::LightingConfig footprint_config(const Response& response) {
     config.photons.selective.exact_invalidation = response.exact_invalidation;
     config.maps.change_blend_seconds = response.change_blend_seconds;
     config.maps.change_test_sigmas = response.change_test_sigmas;
+    config.maps.aim_threshold = response.aim_threshold;
     return config;
 }
 
@@ -122,6 +124,20 @@ struct FootprintLevel {
         return mean_over(texels, [this](const lighting::IimPage& page, int x, int y) {
             return page.shown(x, y, level.time);
         });
+    }
+
+    /// The mean AIM (the radiance the gathers read off the floor) over floor texels.
+    [[nodiscard]] double mean_aim(
+        const std::vector<std::pair<std::uint32_t, std::size_t>>& texels) const {
+        const auto& maps = level.lighting->maps();
+        double sum = 0.0;
+        for (const auto& [s, i] : texels) {
+            const auto page = static_cast<std::size_t>(maps.aim().surface_page[s]);
+            const auto& texel = maps.surfaces()[s].texels.texels[i];
+            const glm::vec3 v = maps.aim().pages[page].at(texel.x, texel.y);
+            sum += static_cast<double>(v.x + v.y + v.z) / 3.0;
+        }
+        return texels.empty() ? 0.0 : sum / static_cast<double>(texels.size());
     }
 
     template <typename Read>

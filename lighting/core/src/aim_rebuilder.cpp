@@ -19,7 +19,14 @@ struct AimRebuilder::RebuildState {
     std::uint32_t surface = 0;
     std::unique_ptr<PhotonDensity> density;
     std::vector<GatherTexel> texels;  ///< world space, at the rebuild's start
+    /// A local rebuild's texel indices (texels[k] is texel subset[k]); empty for a full one.
+    std::vector<std::uint32_t> subset;
+    std::uint64_t first_serial = 0;  ///< a local rebuild's LocalMarks::first_serial
     std::size_t cursor = 0;
+    [[nodiscard]] bool local() const { return !subset.empty(); }
+    [[nodiscard]] std::uint32_t index(std::size_t k) const {
+        return local() ? subset[k] : static_cast<std::uint32_t>(k);
+    }
 };
 
 AimRebuilder::AimRebuilder(MapRegistry& registry, const PhotonWorld& world, SurfaceDeltas& deltas,
@@ -28,20 +35,116 @@ AimRebuilder::AimRebuilder(MapRegistry& registry, const PhotonWorld& world, Surf
 
 AimRebuilder::~AimRebuilder() = default;
 
-bool AimRebuilder::needs_rebuild(std::uint32_t s) const {
+void AimRebuilder::sync() {
+    ++syncs_;
+    marked_in_last_sync_ = false;
+    if (!awaited_groups_.empty()) {
+        // Retraced since: no longer pending (one queued again by a probe stays awaited).
+        std::vector<std::uint32_t> pending = world_.pending_groups();
+        std::sort(pending.begin(), pending.end());
+        std::erase_if(awaited_groups_, [&](std::uint32_t group) {
+            return !std::binary_search(pending.begin(), pending.end(), group);
+        });
+    }
+    if (!settings_.local_passes) {
+        return;  // the paper's method: an AIM follows its photons only
+    }
+    bool& marked = marked_in_last_sync_;
+    for (const MapRegistry::NearbyChange& change : registry_.nearby_changes()) {
+        // An AIM not built yet is built whole, from the geometry as it is then. The moved
+        // object's own AIM moves with it (looked up by its light-map UVs) until its photons,
+        // every one of which the move changes, ask for a full rebuild: a local one before they
+        // are retraced would estimate from hits where the object no longer is.
+        if (built(change.surface) && registry_.page_of(change.surface) >= 0 &&
+            !registry_.moved_in_last_sync(change.surface)) {
+            if (!marked) {
+                ++change_serial_;
+                marked = true;
+                // The groups queued by now include those exact invalidation found crossing
+                // the change: the local rebuilds wait for their photons.
+                const std::vector<std::uint32_t>& pending = world_.pending_groups();
+                awaited_groups_.insert(awaited_groups_.end(), pending.begin(), pending.end());
+                std::sort(awaited_groups_.begin(), awaited_groups_.end());
+                awaited_groups_.erase(std::unique(awaited_groups_.begin(), awaited_groups_.end()),
+                                      awaited_groups_.end());
+            }
+            mark(change.surface, change.texels);
+        }
+    }
+}
+
+void AimRebuilder::mark(std::uint32_t s, std::span<const std::uint32_t> texels) {
+    if (marks_.size() <= s) {
+        marks_.resize(s + 1);
+    }
+    LocalMarks& marks = marks_[s];
+    marks.marked.resize(registry_.surface(s).texels.texels.size(), 0);
+    const bool had_marks = !marks.texels.empty();
+    for (const std::uint32_t i : texels) {
+        if (i < marks.marked.size() && marks.marked[i] == 0) {
+            marks.marked[i] = 1;
+            marks.texels.push_back(i);
+        }
+    }
+    if (!had_marks && !marks.texels.empty()) {
+        marks.first_serial = change_serial_;
+        marks.first_sync = syncs_;
+    }
+}
+
+std::uint64_t AimRebuilder::local_current_through() const {
+    std::uint64_t through = change_serial_;
+    for (std::uint32_t s = 0; s < marks_.size(); ++s) {
+        // A surface gone (or never given photons) keeps its marks but is never rebuilt; marks
+        // not due yet (waiting for retraces) hold it back like any other.
+        if (has_marks(s) && registry_.live(s) && s < world_.photon_map().surface_count()) {
+            through = std::min(through, marks_[s].first_serial - 1);
+        }
+    }
+    if (rebuild_ && rebuild_->local()) {
+        through = std::min(through, rebuild_->first_serial - 1);
+    }
+    return through;
+}
+
+bool AimRebuilder::needs_full_rebuild(std::uint32_t s) const {
     const PhotonMap& map = world_.photon_map();
     if (!registry_.live(s) || s >= map.surface_count()) {
         return false;
     }
     const SurfacePhotons& photons = map.surface(s);
     const double change = relative(deltas_.full(map, s), photons.stored_energy.value());
-    const bool in_progress = rebuild_ && rebuild_->surface == s;
+    const bool in_progress = (rebuild_ && rebuild_->surface == s && !rebuild_->local()) ||
+                             (paused_ && paused_->surface == s);
     return !built(s) || in_progress || change > settings_.aim_threshold;
 }
 
+bool AimRebuilder::needs_rebuild(std::uint32_t s) const {
+    if (needs_full_rebuild(s)) {
+        return true;
+    }
+    const bool in_progress = rebuild_ && rebuild_->surface == s;
+    return registry_.live(s) && s < world_.photon_map().surface_count() &&
+           (in_progress || marks_due(s));
+}
+
+bool AimRebuilder::marks_due(std::uint32_t s) const {
+    // The groups whose paths crossed the change are retraced first (exact invalidation queues
+    // them in the frame of the change): a density estimate from the photons before them would
+    // keep the floor beside a crate's new place lit. Where those groups keep being queued
+    // again (objects that move every frame), the marks go anyway after kMaxRetraceWait frames.
+    constexpr std::uint64_t kMaxRetraceWait = 8;
+    return has_marks(s) &&
+           (awaited_groups_.empty() || syncs_ - marks_[s].first_sync >= kMaxRetraceWait);
+}
+
 bool AimRebuilder::current() const {
+    // Local rebuilds do not count: near an object that moves every frame they never run out,
+    // and refinement, which waits for current AIMs, would stop everywhere in the level. The
+    // texels of the local gather passes near them are gathered again after them instead
+    // (local_current_through).
     for (std::uint32_t s = 0; s < registry_.surfaces().size(); ++s) {
-        if (needs_rebuild(s)) {
+        if (needs_full_rebuild(s)) {
             return false;
         }
     }
@@ -50,13 +153,25 @@ bool AimRebuilder::current() const {
 
 double AimRebuilder::priority(std::uint32_t s) const {
     const MapSurface& mapped = registry_.surface(s);
-    // The rebuild in progress, then unbuilt maps, then the surfaces whose light changed most per
-    // square metre.
-    if (rebuild_ && rebuild_->surface == s) {
-        return std::numeric_limits<double>::max();
+    // A local rebuild in progress, then the texels marked next to a change (a few texels, which
+    // the local gather passes there wait for), then a full rebuild in progress (or paused),
+    // then unbuilt maps, then the surfaces whose light changed most per square metre.
+    constexpr double kTop = std::numeric_limits<double>::max();
+    const bool in_progress = rebuild_ && rebuild_->surface == s;
+    if (in_progress && rebuild_->local()) {
+        return kTop;
+    }
+    if (marks_due(s) && built(s)) {
+        // After a local rebuild, a full one (in progress or asked for) goes first: near
+        // objects that move every frame marks never run out, and full rebuilds must not wait
+        // for them forever.
+        return full_turn_ ? -1.0 : kTop / 2.0;
+    }
+    if (in_progress || (paused_ && paused_->surface == s)) {
+        return kTop / 4.0;
     }
     if (!built(s)) {
-        return std::numeric_limits<double>::max() / 2.0;
+        return kTop / 8.0;
     }
     return deltas_.full(world_.photon_map(), s) / safe_area(mapped.texels.area);
 }
@@ -97,23 +212,28 @@ std::size_t AimRebuilder::rebuild(std::uint32_t surface, std::size_t max_texels)
     if (page_id < 0 || surface >= map.surface_count() || max_texels == 0) {
         return 0;
     }
+    if (rebuild_ && rebuild_->surface != surface && !rebuild_->local() && !paused_ &&
+        marks_due(surface) && built(surface)) {
+        // A local rebuild does not wait for a full one (a floor's thousands of texels, tens of
+        // frames at a small budget): the full one pauses, its tree kept, and goes on after.
+        paused_ = std::move(rebuild_);
+    }
     if (rebuild_ && rebuild_->surface != surface) {
-        // One tree at a time: the rebuild in progress goes on (this call's effort goes to it), so
-        // rebuilds finish in order however the requests interleave. Only a rebuild whose surface
-        // went away is dropped.
+        // Otherwise one tree at a time: the rebuild in progress goes on (this call's effort
+        // goes to it), so rebuilds finish in order however the requests interleave. Only a
+        // rebuild whose surface went away is dropped.
         if (registry_.live(rebuild_->surface)) {
             return rebuild(rebuild_->surface, max_texels);
         }
         rebuild_.reset();
+        if (paused_ && registry_.live(paused_->surface)) {
+            rebuild_ = std::move(paused_);
+            return rebuild(rebuild_->surface, max_texels);
+        }
+        paused_.reset();
     }
     if (!rebuild_) {
-        rebuild_ = std::make_unique<RebuildState>();
-        rebuild_->surface = surface;
-        const std::array<std::uint32_t, 1> sources{surface};
-        rebuild_->density = std::make_unique<PhotonDensity>(map, sources, PhotonSelection::Full);
-        rebuild_->texels = registry_.world_texels(surface);
-        // Photons that change from now on need another rebuild; this one sees the tree's snapshot.
-        deltas_.consume_full(map, surface);
+        start(surface);
     }
     RebuildState& rebuild = *rebuild_;
     RadiancePage& page = registry_.aim_page(page_id);
@@ -125,13 +245,16 @@ std::size_t AimRebuilder::rebuild(std::uint32_t surface, std::size_t max_texels)
     }
     const std::size_t first = rebuild.cursor;
     const std::size_t end = std::min(rebuild.texels.size(), first + max_texels);
+    // Indices run over rebuild.texels (the subset's, for a local rebuild); `texel` is the
+    // surface's own.
     int x0 = page.size;
     int y0 = page.size;
     int x1 = -1;
     int y1 = -1;
     const float ray_length = static_cast<float>(settings_.enclosure_ray_texels * metres_per_texel);
     for (std::size_t i = first; i < end; ++i) {
-        const SurfaceTexel& texel = mapped.texels.texels[i];
+        const std::uint32_t index = rebuild.index(i);
+        const SurfaceTexel& texel = mapped.texels.texels[index];
         glm::vec3 radiance(0.0f);
         if (ray_length > 0.0f && enclosed(rebuild.texels[i], ray_length)) {
             page.at(texel.x, texel.y) = radiance;
@@ -145,8 +268,8 @@ std::size_t AimRebuilder::rebuild(std::uint32_t surface, std::size_t max_texels)
         const DensitySample found =
             rebuild.density->sample(rebuild.texels[i].position, rebuild.texels[i].normal, density);
         if (found.radius > 0.0 && metres_per_texel > 0.0) {
-            const double on_surface = mapped.footprint.fraction(i, found.radius / metres_per_texel,
-                                                                settings_.density.kernel);
+            const double on_surface = mapped.footprint.fraction(
+                index, found.radius / metres_per_texel, settings_.density.kernel);
             const double area = glm::pi<double>() * found.radius * found.radius * on_surface;
             radiance =
                 glm::vec3(glm::dvec3(mapped.albedo) * found.power / (area * glm::pi<double>()));
@@ -178,14 +301,49 @@ std::size_t AimRebuilder::rebuild(std::uint32_t surface, std::size_t max_texels)
     }
     texels_ += end - first;
     if (complete) {
-        if (built_.size() <= surface) {
-            built_.resize(surface + 1, false);
+        if (rebuild.local()) {
+            ++local_rebuilds_;
+            full_turn_ = true;
+        } else {
+            if (built_.size() <= surface) {
+                built_.resize(surface + 1, false);
+            }
+            built_[surface] = true;
+            ++rebuilds_;
         }
-        built_[surface] = true;
-        ++rebuilds_;
-        rebuild_.reset();
+        rebuild_ = std::move(paused_);  // a full rebuild a local one paused goes on
     }
     return end - first;
+}
+
+void AimRebuilder::start(std::uint32_t surface) {
+    const PhotonMap& map = world_.photon_map();
+    // Marks make a local rebuild even where delta_f asks for a full one, which stays asked for:
+    // the texels next to the change first, in a frame or two, then the rest.
+    const bool full = !built(surface) || !marks_due(surface);
+    rebuild_ = std::make_unique<RebuildState>();
+    rebuild_->surface = surface;
+    const std::array<std::uint32_t, 1> sources{surface};
+    rebuild_->density = std::make_unique<PhotonDensity>(map, sources, PhotonSelection::Full);
+    // Either way the texels are placed where the geometry is now: the marks are taken.
+    LocalMarks marks;
+    if (surface < marks_.size()) {
+        std::swap(marks, marks_[surface]);
+    }
+    if (full) {
+        full_turn_ = false;
+        rebuild_->texels = registry_.world_texels(surface);
+        // Photons that change from now on need another rebuild; this one sees the tree's
+        // snapshot.
+        deltas_.consume_full(map, surface);
+        return;
+    }
+    // A local rebuild: only the marked texels, and delta_f stays for a full rebuild to consume
+    // (the photons' change elsewhere on the surface is not looked at).
+    std::sort(marks.texels.begin(), marks.texels.end());
+    rebuild_->subset = std::move(marks.texels);
+    rebuild_->first_serial = marks.first_serial;
+    rebuild_->texels = registry_.world_texels(surface, rebuild_->subset);
 }
 
 bool AimRebuilder::enclosed(const GatherTexel& texel, float ray_length) const {
@@ -194,10 +352,22 @@ bool AimRebuilder::enclosed(const GatherTexel& texel, float ray_length) const {
     // texel or two; one in a corner or beside a wall has the ones pointing away free (half or
     // more). Two free rays are allowed: where a box rests on a bumpy floor, grazing rays slip
     // out through the gaps between the bumps although hardly any light gets in.
+    //
+    // A texel inside a closed object is enclosed however far its walls are: a crate modelled
+    // with a bottom face, resting on the floor, has that face in the floor's plane, so the
+    // rays start inside the crate and meet its walls from behind, a quarter metre away. The ray
+    // along the normal tells (its first hit faces away from it); then every probe that meets a
+    // face from behind, at any distance, counts as blocked. A texel under a table top, which
+    // the normal ray also meets from behind, still has its sideways probes free.
     constexpr int kProbes = 9;
     constexpr int kFreeAllowed = 2;
     const RayScene& scene = world_.ray_scene();
     const glm::vec3 origin = offset_ray_origin(texel.position, texel.normal);
+    const auto from_behind = [](const glm::vec3& direction, const std::optional<RayHit>& hit) {
+        return hit && glm::dot(direction, hit->geometric_normal) > 0.0f;
+    };
+    const std::optional<RayHit> along_normal = scene.intersect(origin, texel.normal);
+    const bool inside = from_behind(texel.normal, along_normal);
     int free = 0;
     for (int k = 0; k < kProbes && free <= kFreeAllowed; ++k) {
         const glm::vec3 direction =
@@ -206,7 +376,16 @@ bool AimRebuilder::enclosed(const GatherTexel& texel, float ray_length) const {
                          texel.normal,
                          glm::dvec2((static_cast<double>(k) - 0.5) / (kProbes - 1),
                                     std::fmod(static_cast<double>(k) * 0.6180339887498949, 1.0)));
-        free += scene.occluded(origin, direction, ray_length) ? 0 : 1;
+        bool blocked = false;
+        if (k == 0) {
+            blocked = inside || (along_normal && along_normal->distance < ray_length);
+        } else if (inside) {
+            const std::optional<RayHit> hit = scene.intersect(origin, direction);
+            blocked = from_behind(direction, hit) || (hit && hit->distance < ray_length);
+        } else {
+            blocked = scene.occluded(origin, direction, ray_length);
+        }
+        free += blocked ? 0 : 1;
     }
     return free <= kFreeAllowed;
 }

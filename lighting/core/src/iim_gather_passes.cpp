@@ -37,15 +37,33 @@ void IimGatherPasses::sync() {
     }
     update_seen();
     if (settings_.local_passes) {
+        // Texels next to a change are gathered again at once, reading the AIMs as they are;
+        // where the AIMs there were marked for a local rebuild (what they decided from the old
+        // geometry: the floor under a crate's new place found open and lit), the texels are
+        // gathered again once it is done.
+        const std::uint64_t through = aims_.local_current_through();
+        std::erase_if(after_local_aims_, [&](const NearbyRegion& waiting) {
+            if (waiting.serial > through) {
+                return false;
+            }
+            if (waiting.surface < states_.size()) {
+                mark_changed(waiting.surface, waiting.texels);
+            }
+            return true;
+        });
         for (const MapRegistry::NearbyChange& change : registry_.nearby_changes()) {
-            mark_changed(change.surface, change.region);
+            mark_changed(change.surface, change.texels);
+            if (aims_.marked_in_last_sync()) {
+                after_local_aims_.push_back({aims_.change_serial(), change.surface, change.texels});
+            }
         }
     }
     const bool any_stale = std::any_of(states_.begin(), states_.end(), [](const auto& state) {
         return !state.stale_local_texels.empty();
     });
     if (any_stale && aims_.current()) {
-        for (GatherPassState& state : states_) {
+        for (std::size_t s = 0; s < states_.size(); ++s) {
+            GatherPassState& state = states_[s];
             for (const std::uint32_t i : state.stale_local_texels) {
                 if (i < state.changed_texels.size() && state.changed_texels[i] == 0) {
                     state.changed_texels[i] = 1;
@@ -75,16 +93,11 @@ void IimGatherPasses::update_seen() {
     }
 }
 
-void IimGatherPasses::mark_changed(std::uint32_t surface, const GeometryChange& region) {
-    // Tested in the surface's own space, where its texels are kept: the region's box moved
-    // there (a little larger where the surface is rotated) instead of every texel moved out.
+void IimGatherPasses::mark_changed(std::uint32_t surface, std::span<const std::uint32_t> texels) {
     GatherPassState& state = states_.at(surface);
-    const MapSurface& mapped = registry_.surface(surface);
-    const AxisBox local = transformed(region, glm::inverse(mapped.to_world));
-    const std::vector<SurfaceTexel>& texels = mapped.texels.texels;
-    state.changed_texels.resize(texels.size(), 0);
-    for (std::size_t i = 0; i < texels.size(); ++i) {
-        if (local.contains(texels[i].position) && state.changed_texels[i] == 0) {
+    state.changed_texels.resize(registry_.surface(surface).texels.texels.size(), 0);
+    for (const std::uint32_t i : texels) {
+        if (i < state.changed_texels.size() && state.changed_texels[i] == 0) {
             state.changed_texels[i] = 1;
             ++state.changed_count;
         }
@@ -141,33 +154,40 @@ double IimGatherPasses::priority(std::uint32_t s, bool current) const {
     const RefinementStats& refinement = refinements_[s];
     const double delta = deltas_.indirect(map, s);
     const bool changed = lighting_changed(s, current);
-    // Passes in progress first, the furthest along first, so passes finish one after
+    // Local passes first (texels next to a geometry change: small, and what a player sees go
+    // wrong, such as the dark footprint of a crate that slid away), the one in progress first;
+    // then other passes in progress, the furthest along first, so passes finish one after
     // another instead of all crawling together (a pass shows only when complete); then
-    // surfaces never gathered; then texels near a geometry change (a local pass: small, and
-    // what a player sees go wrong, such as the dark footprint of a crate that slid away); then
-    // the largest delta_i / area, the surfaces in the player's view first (set_view); refinement
-    // last: a refinement pass in progress, then the surfaces with the fewest passes averaged,
-    // again those in view first. A change never waits for refinement (a refinement pass of a
-    // surface whose light or geometry changed is dropped by gather()).
+    // surfaces never gathered; then the largest delta_i / area, the surfaces in the player's
+    // view first (set_view); refinement last: a refinement pass in progress, then the surfaces
+    // with the fewest passes averaged, again those in view first. A change never waits for
+    // refinement (a refinement pass of a surface whose light or geometry changed is dropped by
+    // gather()). A local pass used to wait behind a full pass in progress: a wall's thousands of
+    // texels, ten frames at 4 ms, with the crate's footprint dark all the while.
+    constexpr double kTop = std::numeric_limits<double>::max();
     const double done = static_cast<double>(state.cursor) /
                         static_cast<double>(std::max<std::size_t>(pass_size(s), 1));
     double rank = delta / safe_area(mapped.texels.area);
-    if (state.in_progress && !state.refines) {
-        rank = std::numeric_limits<double>::max() / 2.0 * (1.0 + done);
+    if (state.in_progress && state.local) {
+        rank = kTop / 2.0 * (1.0 + done);
+    } else if (state.completed_once && state.changed_count > 0 &&
+               !(state.in_progress && !state.refines)) {
+        // (A refinement pass in progress is dropped for it.)
+        rank = kTop / 4.0;
+    } else if (state.in_progress && !state.refines) {
+        rank = kTop / 16.0 * (1.0 + done);
     } else if (!state.completed_once) {
-        rank = std::numeric_limits<double>::max() / 4.0;
-    } else if (state.changed_count > 0) {
-        rank = std::numeric_limits<double>::max() / 8.0;
+        rank = kTop / 32.0;
     } else if (!changed && state.in_progress) {
         rank = -0.5 + 0.25 * done - (seen(s) ? 0.0 : kUnseenRefinement);
     } else if (!changed) {
         rank =
             -static_cast<double>(refinement.passes_averaged) - (seen(s) ? 0.0 : kUnseenRefinement);
     } else if (view_ && seen(s)) {
-        // Above every unseen change, below the local passes: [max/16, max/8), in the order of
-        // delta_i / area.
+        // Above every unseen change, below the surfaces never gathered: [max/128, max/64), in
+        // the order of delta_i / area.
         const double r = std::max(rank, 0.0);
-        rank = std::numeric_limits<double>::max() / 16.0 * (1.0 + r / (1.0 + r));
+        rank = kTop / 128.0 * (1.0 + r / (1.0 + r));
     }
     return rank;
 }

@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "aim_rebuilder.hpp"
@@ -77,8 +78,8 @@ class IimGatherPasses {
     void start_pass(std::uint32_t surface);
     /// Which surfaces the view holds, where they are now.
     void update_seen();
-    /// Marks the surface's texels inside `region` as changed (MapRegistry::nearby_changes).
-    void mark_changed(std::uint32_t surface, const GeometryChange& region);
+    /// Marks some of the surface's texels as changed (MapRegistry::nearby_changes).
+    void mark_changed(std::uint32_t surface, std::span<const std::uint32_t> texels);
     /// Whether the per-texel means are kept (refinement on), which local passes need: without
     /// them a geometry change re-gathers the whole surface.
     [[nodiscard]] bool keeps_mean() const { return refine_ && settings_.refine_passes > 1; }
@@ -109,6 +110,14 @@ class IimGatherPasses {
     std::optional<ViewHint> view_;
     std::vector<AxisBox> local_boxes_;  ///< by surface: its texels' box in its own space
     std::vector<std::uint8_t> seen_;    ///< by surface, from view_ at the last sync()
+    /// A change's texels on a surface, to be marked again once the local AIM rebuilds of
+    /// changes up to `serial` (AimRebuilder::change_serial) are done.
+    struct NearbyRegion {
+        std::uint64_t serial = 0;
+        std::uint32_t surface = 0;
+        std::vector<std::uint32_t> texels;
+    };
+    std::vector<NearbyRegion> after_local_aims_;
 };
 
 }  // namespace luxel::lighting

@@ -22,6 +22,7 @@ IlluminationMaps::~IlluminationMaps() = default;
 
 void IlluminationMaps::sync() {
     registry_->sync();
+    aims_->sync();
     gathers_->sync();
 }
 

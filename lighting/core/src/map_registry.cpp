@@ -164,6 +164,22 @@ void MapRegistry::refresh_transform(std::uint32_t surface) {
     surface_boxes_[surface] = transformed(local_boxes_[surface], mapped.to_world);
 }
 
+std::vector<std::uint32_t> MapRegistry::texels_inside(std::uint32_t surface,
+                                                      const GeometryChange& region) const {
+    // Tested in the surface's own space, where its texels are kept: the region's box moved
+    // there (a little larger where the surface is rotated) instead of every texel moved out.
+    const MapSurface& mapped = surfaces_[surface];
+    const AxisBox local = transformed(region, glm::inverse(mapped.to_world));
+    const std::vector<SurfaceTexel>& texels = mapped.texels.texels;
+    std::vector<std::uint32_t> inside;
+    for (std::size_t i = 0; i < texels.size(); ++i) {
+        if (local.contains(texels[i].position)) {
+            inside.push_back(static_cast<std::uint32_t>(i));
+        }
+    }
+    return inside;
+}
+
 void MapRegistry::find_nearby_changes() {
     nearby_changes_.clear();
     for (const GeometryChange& change : world_.geometry_changes()) {
@@ -176,7 +192,7 @@ void MapRegistry::find_nearby_changes() {
         // (300,000 nodes, none light-mapped, took minutes): only surfaces with texels count.
         for (const std::uint32_t s : mapped_surfaces_) {
             if (surface_boxes_[s].meets(region) && live(s)) {
-                nearby_changes_.push_back({s, region});
+                nearby_changes_.push_back({s, region, texels_inside(s, region)});
             }
         }
     }
@@ -223,6 +239,8 @@ void MapRegistry::sync() {
     if (sky_touched && refresh_skies()) {
         ++emission_version_;
     }
+    std::fill(moved_.begin(), moved_.end(), 0);
+    moved_.resize(surfaces_.size(), 0);
     moves_.consume([&](ecs::Entity entity, ecs::ChangeKind kind) {
         if (kind == ecs::ChangeKind::Destroyed) {
             return;
@@ -233,6 +251,7 @@ void MapRegistry::sync() {
         }
         for (std::uint32_t surface : found->second) {
             refresh_transform(surface);
+            moved_[surface] = 1;
         }
     });
     find_nearby_changes();

@@ -65,9 +65,17 @@ class MapRegistry {
     struct NearbyChange {
         std::uint32_t surface = 0;
         GeometryChange region;
+        /// The surface's texels inside `region` (indices into its texels), found once for the
+        /// local gather passes and the local AIM rebuilds that both mark them.
+        std::vector<std::uint32_t> texels;
     };
     [[nodiscard]] const std::vector<NearbyChange>& nearby_changes() const {
         return nearby_changes_;
+    }
+    /// Whether the surface's own transform changed in the last sync() (it belongs to an object
+    /// that moved).
+    [[nodiscard]] bool moved_in_last_sync(std::uint32_t surface) const {
+        return surface < moved_.size() && moved_[surface] != 0;
     }
 
   private:
@@ -79,6 +87,9 @@ class MapRegistry {
     /// Sets aim_.skies from the enabled SkyLights; returns whether they changed.
     bool refresh_skies();
     std::int32_t page_index(const scene::Scene* source, int page, int page_size);
+    /// The indices of `surface`'s texels inside `region` (world space).
+    [[nodiscard]] std::vector<std::uint32_t> texels_inside(std::uint32_t surface,
+                                                           const GeometryChange& region) const;
     /// Collects nearby_changes_ from the photon world's geometry changes.
     void find_nearby_changes();
 
@@ -97,6 +108,7 @@ class MapRegistry {
     /// a level of many meshes without light maps costs find_nearby_changes nothing per pair.
     std::vector<std::uint32_t> mapped_surfaces_;
     std::vector<NearbyChange> nearby_changes_;
+    std::vector<std::uint8_t> moved_;  ///< by surface, in the last sync()
     std::map<std::pair<const scene::Scene*, int>, std::int32_t> pages_;
     std::map<ecs::Entity, std::vector<std::uint32_t>> surfaces_of_;
     ecs::Observer<ecs::WorldTransform> moves_;
