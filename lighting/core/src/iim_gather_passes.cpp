@@ -42,19 +42,31 @@ void IimGatherPasses::sync() {
         // geometry: the floor under a crate's new place found open and lit), the texels are
         // gathered again once it is done.
         const std::uint64_t through = aims_.local_current_through();
-        std::erase_if(after_local_aims_, [&](const NearbyRegion& waiting) {
-            if (waiting.serial > through) {
-                return false;
+        after_local_aims_.resize(states_.size());
+        for (std::uint32_t surface = 0; surface < after_local_aims_.size(); ++surface) {
+            AfterLocalAims& waiting = after_local_aims_[surface];
+            if (!waiting.texels.empty() && waiting.serial <= through) {
+                mark_changed(surface, waiting.texels);
+                for (const std::uint32_t i : waiting.texels) {
+                    waiting.flagged[i] = 0;
+                }
+                waiting.texels.clear();
             }
-            if (waiting.surface < states_.size()) {
-                mark_changed(waiting.surface, waiting.texels);
-            }
-            return true;
-        });
+        }
         for (const MapRegistry::NearbyChange& change : registry_.nearby_changes()) {
             mark_changed(change.surface, change.texels);
             if (aims_.marked_in_last_sync()) {
-                after_local_aims_.push_back({aims_.change_serial(), change.surface, change.texels});
+                AfterLocalAims& waiting = after_local_aims_.at(change.surface);
+                if (waiting.texels.empty()) {
+                    waiting.serial = aims_.change_serial();
+                }
+                waiting.flagged.resize(registry_.surface(change.surface).texels.texels.size(), 0);
+                for (const std::uint32_t i : change.texels) {
+                    if (i < waiting.flagged.size() && waiting.flagged[i] == 0) {
+                        waiting.flagged[i] = 1;
+                        waiting.texels.push_back(i);
+                    }
+                }
             }
         }
     }

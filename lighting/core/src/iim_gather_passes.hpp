@@ -110,14 +110,16 @@ class IimGatherPasses {
     std::optional<ViewHint> view_;
     std::vector<AxisBox> local_boxes_;  ///< by surface: its texels' box in its own space
     std::vector<std::uint8_t> seen_;    ///< by surface, from view_ at the last sync()
-    /// A change's texels on a surface, to be marked again once the local AIM rebuilds of
-    /// changes up to `serial` (AimRebuilder::change_serial) are done.
-    struct NearbyRegion {
+    /// By surface: texels next to changes, to be marked again once the local AIM rebuilds of
+    /// the changes up to `serial` (AimRebuilder::change_serial, the oldest of them) are done.
+    /// One set per surface, so a level whose objects move every frame while the AIM units get
+    /// no budget holds at most a flag per texel.
+    struct AfterLocalAims {
         std::uint64_t serial = 0;
-        std::uint32_t surface = 0;
+        std::vector<std::uint8_t> flagged;  ///< by texel
         std::vector<std::uint32_t> texels;
     };
-    std::vector<NearbyRegion> after_local_aims_;
+    std::vector<AfterLocalAims> after_local_aims_;
 };
 
 }  // namespace luxel::lighting
