@@ -74,8 +74,7 @@ void IimGatherPasses::sync() {
         return !state.stale_local_texels.empty();
     });
     if (any_stale && aims_.current()) {
-        for (std::size_t s = 0; s < states_.size(); ++s) {
-            GatherPassState& state = states_[s];
+        for (GatherPassState& state : states_) {
             for (const std::uint32_t i : state.stale_local_texels) {
                 if (i < state.changed_texels.size() && state.changed_texels[i] == 0) {
                     state.changed_texels[i] = 1;
@@ -510,8 +509,12 @@ void IimGatherPasses::finish_pass(std::uint32_t surface, double now_seconds) {
     const IimPassFilter& filter = *found->second;
     const bool aim_changed = aims_.rebuilds() != state.aim_rebuilds_at_start;
     if (state.local && (state.local_read_stale_aim || aim_changed)) {
-        state.stale_local_texels.insert(state.stale_local_texels.end(), state.subset.begin(),
-                                        state.subset.end());
+        // Kept until every AIM is current, which near objects that move every frame may take
+        // long: each texel once, so the list never outgrows the surface.
+        std::vector<std::uint32_t>& stale = state.stale_local_texels;
+        stale.insert(stale.end(), state.subset.begin(), state.subset.end());
+        std::sort(stale.begin(), stale.end());
+        stale.erase(std::unique(stale.begin(), stale.end()), stale.end());
     } else if (!state.local && aim_changed) {
         state.read_stale_aim = true;  // an AIM changed under the pass
     }
