@@ -302,7 +302,6 @@ std::size_t AimRebuilder::rebuild(std::uint32_t surface, std::size_t max_texels)
     texels_ += end - first;
     if (complete) {
         if (rebuild.local()) {
-            ++local_rebuilds_;
             full_turn_ = true;
         } else {
             if (built_.size() <= surface) {

@@ -47,12 +47,10 @@ class AimRebuilder {
     [[nodiscard]] bool ready() const;
     /// Whether no AIM needs rebuilding.
     [[nodiscard]] bool current() const;
-    /// Rebuilds completed since construction (a gather pass compares it at its start and end to
-    /// know whether an AIM changed under it).
+    /// Full rebuilds completed since construction (a gather pass compares it at its start and
+    /// end to know whether an AIM changed under it; a local rebuild changes an AIM only next to
+    /// a change, whose texels the gather passes gather again after it anyway).
     [[nodiscard]] std::uint64_t rebuilds() const { return rebuilds_; }
-    /// Local rebuilds completed (not counted in rebuilds(): a local rebuild changes an AIM only
-    /// next to a change, which the gather passes there re-gather anyway).
-    [[nodiscard]] std::uint64_t local_rebuilds() const { return local_rebuilds_; }
     /// The syncs that brought geometry changes next to a built AIM, counted from 1.
     [[nodiscard]] std::uint64_t change_serial() const { return change_serial_; }
     /// Whether the last sync() marked texels (change_serial() is then that sync's).
@@ -117,7 +115,6 @@ class AimRebuilder {
     /// Sorted: the groups pending when texels were marked and not retraced since.
     std::vector<std::uint32_t> awaited_groups_;
     std::uint64_t rebuilds_ = 0;
-    std::uint64_t local_rebuilds_ = 0;
     std::uint64_t texels_ = 0;
     std::uint64_t enclosed_texels_ = 0;
 };
