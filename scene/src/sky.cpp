@@ -1,5 +1,6 @@
 #include "luxel/scene/sky.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <vector>
@@ -42,18 +43,49 @@ std::string number_text(float value) {
     return error == std::errc() ? std::string(buffer, end) : std::string("?");
 }
 
+/// An albedo: finite and in [0, 1], or an Error naming `what`.
+float albedo(double value, const std::string& what) {
+    if (!std::isfinite(value) || value < 0.0 || value > 1.0) {
+        throw Error(what + " must be an albedo from 0 to 1 (got " + std::to_string(value) + ")");
+    }
+    return static_cast<float>(value);
+}
+
+/// Takes a last ",ground=..." (or a whole "ground=...") off `rest` into `sky.ground`.
+std::string_view take_ground(std::string_view rest, SkySpec& sky, const std::string& what) {
+    const std::string_view key = "ground=";
+    const std::size_t at = rest.rfind(key);
+    if (at == std::string_view::npos || (at > 0 && rest[at - 1] != ',')) {
+        return rest;
+    }
+    std::string value(rest.substr(at + key.size()));
+    for (char& c : value) {
+        c = c == '/' ? ',' : c;
+    }
+    const std::vector<float> values = numbers(value, what + " ground");
+    if (values.size() != 1 && values.size() != 3) {
+        throw Error(what + ": ground=A or ground=R/G/B, an albedo from 0 to 1");
+    }
+    for (std::size_t c = 0; c < 3; ++c) {
+        sky.ground[static_cast<glm::length_t>(c)] =
+            albedo(values[values.size() == 1 ? 0 : c], what + " ground");
+    }
+    return rest.substr(0, at == 0 ? 0 : at - 1);
+}
+
 }  // namespace
 
 SkySpec parse_sky(std::string_view text) {
     SkySpec sky;
     const std::size_t colon = text.find(':');
     const std::string_view head = text.substr(0, colon);
-    const std::string_view rest =
+    std::string_view rest =
         colon == std::string_view::npos ? std::string_view() : text.substr(colon + 1);
     if (head == "none" && colon == std::string_view::npos) {
         return sky;
     }
     if (head == "uniform") {
+        rest = take_ground(rest, sky, "--sky uniform");
         const std::vector<float> values = numbers(rest, "--sky uniform");
         if (values.size() != 1 && values.size() != 3) {
             throw Error("--sky uniform: give one radiance or three (R,G,B), e.g. uniform:0.5");
@@ -66,6 +98,11 @@ SkySpec parse_sky(std::string_view text) {
     if (head == "daylight") {
         sky.kind = SkySpec::Kind::Daylight;
         if (colon == std::string_view::npos) {
+            return sky;
+        }
+        const bool only_ground = rest.starts_with("ground=");
+        rest = take_ground(rest, sky, "--sky daylight");
+        if (only_ground) {
             return sky;
         }
         const std::vector<float> values = numbers(rest, "--sky daylight");
@@ -133,6 +170,20 @@ SkySpec read_sky_extras(const nlohmann::json& sky) {
         throw Error(where + ".kind must be \"uniform\" or \"daylight\" (got " + kind->dump() + ")");
     }
     out.scale = number("scale", out.scale);
+    if (const auto ground = sky.find("ground"); ground != sky.end()) {
+        const std::string field = where + ".ground";
+        if (ground->is_number()) {
+            out.ground = glm::vec3(albedo(ground->get<double>(), field));
+        } else if (ground->is_array() && ground->size() == 3 &&
+                   std::all_of(ground->begin(), ground->end(),
+                               [](const nlohmann::json& v) { return v.is_number(); })) {
+            for (int c = 0; c < 3; ++c) {
+                out.ground[c] = albedo((*ground)[static_cast<std::size_t>(c)].get<double>(), field);
+            }
+        } else {
+            throw Error(field + " must be an albedo: a number or [R, G, B], each from 0 to 1");
+        }
+    }
     return out;
 }
 
@@ -155,18 +206,28 @@ nlohmann::json sky_extras(const SkySpec& sky) {
     if (sky.scale != 1.0f) {
         out["scale"] = sky.scale;
     }
+    if (sky.ground != glm::vec3(0.0f)) {
+        out["ground"] = {sky.ground.r, sky.ground.g, sky.ground.b};
+    }
     return out;
 }
 
 std::string describe(const SkySpec& sky) {
+    const std::string ground = sky.ground == glm::vec3(0.0f) ? std::string()
+                               : sky.ground == glm::vec3(sky.ground.r)
+                                   ? ",ground=" + number_text(sky.ground.r)
+                                   : ",ground=" + number_text(sky.ground.r) + "/" +
+                                         number_text(sky.ground.g) + "/" +
+                                         number_text(sky.ground.b);
     switch (sky.kind) {
         case SkySpec::Kind::None:
             return "none";
         case SkySpec::Kind::Uniform:
             return "uniform:" + number_text(sky.radiance.r) + "," + number_text(sky.radiance.g) +
-                   "," + number_text(sky.radiance.b);
+                   "," + number_text(sky.radiance.b) + ground;
         case SkySpec::Kind::Daylight:
-            return "daylight:" + number_text(sky.irradiance) + "," + number_text(sky.turbidity);
+            return "daylight:" + number_text(sky.irradiance) + "," + number_text(sky.turbidity) +
+                   ground;
         case SkySpec::Kind::Map:
             return sky.map.string();
     }

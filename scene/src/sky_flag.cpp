@@ -17,8 +17,9 @@ CLI::Option* add_sky(CLI::App& app, std::optional<scene::SkySpec>& sky) {
             }
         },
         "the sky instead of the level's: none, uniform:R,G,B (W/(m^2 sr)), daylight[:E[,T]] "
-        "(E W/m^2 on the ground from the sky, turbidity T; the sun is the level's) or an "
-        "equirectangular FILE.exr (docs/LEVELS.md)");
+        "(E W/m^2 on the ground from the sky, turbidity T; the sun is the level's), either "
+        "with a last ,ground=A (an albedo below the horizon), or an equirectangular FILE.exr "
+        "(docs/LEVELS.md)");
 }
 
 }  // namespace luxel::cli

@@ -58,6 +58,41 @@ TEST(SkySpec, CommandLineValues) {
     EXPECT_NE(error_of([] { (void)parse_sky("cloudy"); }).find("daylight"), std::string::npos);
 }
 
+TEST(SkySpec, AGroundBelowTheHorizonOnTheCommandLineAndInExtras) {
+    EXPECT_EQ(parse_sky("daylight:1.5,3,ground=0.2").ground, glm::vec3(0.2f));
+    EXPECT_EQ(parse_sky("daylight:1.5,3,ground=0.2").irradiance, 1.5f);
+    const SkySpec only = parse_sky("daylight:ground=0.1/0.2/0.3");
+    EXPECT_EQ(only.ground, glm::vec3(0.1f, 0.2f, 0.3f));
+    EXPECT_EQ(only.irradiance, SkySpec{}.irradiance);
+    EXPECT_EQ(parse_sky("uniform:0.5,ground=0.3").ground, glm::vec3(0.3f));
+    EXPECT_EQ(parse_sky("uniform:0.5").ground, glm::vec3(0.0f));
+    for (const char* text : {"daylight:1.5,3,ground=0.2", "uniform:1,2,3,ground=0.1/0.2/0.3"}) {
+        EXPECT_EQ(parse_sky(luxel::scene::describe(parse_sky(text))), parse_sky(text)) << text;
+    }
+    for (const char* bad : {"daylight:ground=1.5", "daylight:ground=-0.1", "daylight:ground=nan",
+                            "daylight:ground=", "daylight:ground=0.1/0.2", "uniform:ground=0.2",
+                            "daylight:ground=0.2,3", "uniform:0.5,ground=0.2,1"}) {
+        EXPECT_NE(error_of([&] { (void)parse_sky(bad); }), "") << "'" << bad << "'";
+    }
+    const SkySpec grey =
+        read_sky_extras(nlohmann::json::parse(R"({"kind": "daylight", "ground": 0.25})"));
+    EXPECT_EQ(grey.ground, glm::vec3(0.25f));
+    const SkySpec tinted =
+        read_sky_extras(nlohmann::json::parse(R"({"kind": "uniform", "ground": [0.2, 0.3, 0.1]})"));
+    EXPECT_EQ(tinted.ground, glm::vec3(0.2f, 0.3f, 0.1f));
+    EXPECT_EQ(read_sky_extras(luxel::scene::sky_extras(tinted)), tinted);
+    for (const char* bad :
+         {R"({"kind": "daylight", "ground": 2})", R"({"kind": "daylight", "ground": -0.5})",
+          R"({"kind": "daylight", "ground": [0.2, 0.3]})",
+          R"({"kind": "daylight", "ground": "grass"})",
+          R"({"kind": "daylight", "ground": [0.2, "0.3", 0.1]})"}) {
+        const std::string message =
+            error_of([&] { (void)read_sky_extras(nlohmann::json::parse(bad)); });
+        EXPECT_NE(message.find("extras.luxel.sky.ground"), std::string::npos)
+            << bad << " -> '" << message << "'";
+    }
+}
+
 TEST(SkySpec, ExtrasAreCheckedFieldByField) {
     const SkySpec uniform = read_sky_extras(
         nlohmann::json::parse(R"({"kind": "uniform", "radiance": [1, 2, 3], "scale": 0.5})"));
@@ -89,7 +124,7 @@ TEST(SkySpec, ExtrasAreCheckedFieldByField) {
 
 TEST(SkySpec, ALevelKeepsItsSkyThroughSaveAndLoad) {
     luxel::testing::TempDir dir;
-    for (const char* text : {"uniform:0.25,0.5,1", "daylight:2.5,4"}) {
+    for (const char* text : {"uniform:0.25,0.5,1", "daylight:2.5,4", "daylight:2.5,4,ground=0.2"}) {
         luxel::scene::Scene room = luxel::testing::box_room();
         room.sky = parse_sky(text);
         room.sky.scale = 2.0f;

@@ -17,9 +17,11 @@
 #include "luxel/ecs/transform.hpp"
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/components.hpp"
+#include "luxel/lighting/sky_portal.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/scene_instance.hpp"
+#include "luxel/world/sky.hpp"
 #include "validator.hpp"
 
 namespace {
@@ -163,6 +165,76 @@ TEST(BuiltInLevels, SandboxHasEverythingTheGameLevelPromises) {
     const glm::vec3 after =
         level.registry.get<ecs::WorldTransform>(level["swinging lamp"]).position();
     EXPECT_GT(std::abs(after.x - before.x), 0.3f);  // 0.9 m cord, 30 degrees: 0.45 m
+}
+
+TEST(BuiltInLevels, SandboxHasDaylightThroughAWindowInEachRoom) {
+    Loaded level("sandbox");
+    // The sun, a daylight sky that turns with it, and a ground below the horizon.
+    EXPECT_EQ(count<lighting::DirectionalLight>(level.registry), 1u);
+    ASSERT_NE(level.instance.sky, ecs::null_entity);
+    EXPECT_TRUE(level.registry.has<lighting::SkyLight>(level.instance.sky));
+    const auto* daylight = level.registry.try_get<world::DaylightSun>(level.instance.sky);
+    ASSERT_NE(daylight, nullptr);
+    EXPECT_EQ(daylight->sun, level["sun"]);
+    EXPECT_GT(level.scene->sky.ground.g, 0.0f);
+    EXPECT_GT(level.registry.get<lighting::SkyLight>(level.instance.sky)
+                  .radiance->radiance({0.0f, -1.0f, 0.0f})
+                  .g,
+              0.0f);
+    EXPECT_EQ(count<lighting::SkyPortal>(level.registry), 2u);
+    // Each portal fills a hole of its room's north wall: no triangle of the wall covers its
+    // centre, and the wall's triangles do reach round it (the hole is in that wall).
+    const std::vector<glm::mat4> world = level.scene->world_matrices();
+    auto centre_of = [&](const std::string& name) {
+        for (std::size_t i = 0; i < level.scene->nodes.size(); ++i) {
+            const scene::Node& node = level.scene->nodes[i];
+            if (node.name == name && node.mesh >= 0) {
+                const scene::Primitive& p =
+                    level.scene->meshes.at(static_cast<std::size_t>(node.mesh)).primitives.at(0);
+                glm::vec3 sum(0.0f);
+                for (const glm::vec3& v : p.positions) {
+                    sum += v;
+                }
+                return glm::vec3(world[i] *
+                                 glm::vec4(sum / static_cast<float>(p.positions.size()), 1.0f));
+            }
+        }
+        ADD_FAILURE() << "no mesh node " << name;
+        return glm::vec3(0.0f);
+    };
+    auto covered = [&](const std::string& wall, const glm::vec3& point) {
+        for (std::size_t i = 0; i < level.scene->nodes.size(); ++i) {
+            const scene::Node& node = level.scene->nodes[i];
+            if (node.name != wall || node.mesh < 0) {
+                continue;
+            }
+            const scene::Primitive& p =
+                level.scene->meshes.at(static_cast<std::size_t>(node.mesh)).primitives.at(0);
+            for (std::size_t t = 0; t + 2 < p.indices.size(); t += 3) {
+                // The walls lie in z = const: a 2D point-in-triangle test in x, y.
+                const glm::vec3 a(world[i] * glm::vec4(p.positions[p.indices[t]], 1.0f));
+                const glm::vec3 b(world[i] * glm::vec4(p.positions[p.indices[t + 1]], 1.0f));
+                const glm::vec3 c(world[i] * glm::vec4(p.positions[p.indices[t + 2]], 1.0f));
+                auto side = [&](const glm::vec3& u, const glm::vec3& v) {
+                    return (v.x - u.x) * (point.y - u.y) - (v.y - u.y) * (point.x - u.x);
+                };
+                const float s0 = side(a, b);
+                const float s1 = side(b, c);
+                const float s2 = side(c, a);
+                if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) {
+                    return true;
+                }
+            }
+        }
+        return false;
+    };
+    for (const std::string room : {"west ", "east "}) {
+        const glm::vec3 centre = centre_of(room + "window");
+        EXPECT_NEAR(centre.z, -2.0f, 1e-5f) << room;
+        EXPECT_FALSE(covered(room + "north wall", centre)) << room;
+        EXPECT_TRUE(covered(room + "north wall", centre + glm::vec3(0.0f, 1.0f, 0.0f))) << room;
+        EXPECT_TRUE(level.registry.has<lighting::SkyPortal>(level[room + "window"])) << room;
+    }
 }
 
 TEST(BuiltInLevels, FurnaceIsAClosedEmissiveSphere) {

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include <gtest/gtest.h>
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include "luxel/ecs/transform.hpp"
@@ -148,6 +149,46 @@ TEST(SkyInstance, ADaylightSkyTurnsWithItsSun) {
     ecs::Registry other;
     const world::SceneInstance plain = world::instantiate(other, uniform);
     EXPECT_FALSE(other.has<world::DaylightSun>(plain.sky));
+}
+
+TEST(SkyInstance, TheGroundIsLitByTheSkyAndBySunAsItIsNow) {
+    // A ground of albedo 0.2 below a daylight sky of 1.5 W/m^2 and the 3 W/m^2 sun 30 degrees
+    // up: radiance 0.2 (E_sky + 3 sin 30) / pi. The sun sinks to 10 degrees: the ground darkens
+    // with it; the sun switched off: the sky alone lights it.
+    auto level = two_suns();
+    level->sky = scene::parse_sky("daylight:1.5,3,ground=0.2");
+    ecs::Registry registry;
+    const world::SceneInstance instance = world::instantiate(registry, level);
+    const glm::vec3 down(0.0f, -1.0f, 0.0f);
+    auto ground = [&] { return sky_of(registry, instance)->radiance->radiance(down); };
+    auto expected = [](float elevation_degrees, float sun) {
+        const glm::vec3 towards(0.0f, std::sin(glm::radians(elevation_degrees)),
+                                std::cos(glm::radians(elevation_degrees)));
+        const glm::dvec3 e_sky =
+            lighting::horizontal_irradiance(lighting::daylight_sky(towards, 3.0f, 1.5f));
+        return 0.2 * (e_sky.g + sun * std::sin(glm::radians(elevation_degrees))) /
+               glm::pi<double>();
+    };
+    EXPECT_NEAR(ground().g, expected(30.0f, 3.0f), 1e-4 * expected(30.0f, 3.0f));
+    const ecs::Entity sun = instance.find("sun");
+    registry.patch<ecs::Transform>(sun, [](ecs::Transform& t) {
+        t.rotation = glm::angleAxis(glm::radians(-10.0f), glm::vec3(1, 0, 0));
+    });
+    ASSERT_EQ(world::update_sky(registry), 1u);
+    EXPECT_NEAR(ground().g, expected(10.0f, 3.0f), 1e-4 * expected(10.0f, 3.0f));
+    EXPECT_LT(ground().g, expected(30.0f, 3.0f));
+    // Switched off without turning: the sky is rebuilt all the same, its ground lit by itself.
+    registry.patch<lighting::DirectionalLight>(
+        sun, [](lighting::DirectionalLight& d) { d.enabled = false; });
+    ASSERT_EQ(world::update_sky(registry), 1u);
+    EXPECT_NEAR(ground().g, expected(10.0f, 0.0f), 1e-4 * expected(10.0f, 0.0f));
+    EXPECT_EQ(world::update_sky(registry), 0u);
+    // Without a ground, below the horizon stays black.
+    auto plain = two_suns();
+    plain->sky = scene::parse_sky("daylight:1.5,3");
+    ecs::Registry other;
+    const world::SceneInstance bare = world::instantiate(other, plain);
+    EXPECT_EQ(sky_of(other, bare)->radiance->radiance(down), glm::vec3(0.0f));
 }
 
 TEST(SkyInstance, AnEnvironmentMapIsReadAndABadOneIsRefusedNamingTheFile) {

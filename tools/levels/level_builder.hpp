@@ -38,6 +38,8 @@ class LevelBuilder {
     [[nodiscard]] scene::Node& node(int index) {
         return scene_.nodes.at(static_cast<std::size_t>(index));
     }
+    /// The level's sky (scene extras, docs/LEVELS.md "Sky"); none unless set.
+    [[nodiscard]] scene::SkySpec& sky() { return scene_.sky; }
     [[nodiscard]] scene::Scene finish();
 
   private:

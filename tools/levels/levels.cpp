@@ -1,5 +1,6 @@
 #include "levels.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/constants.hpp>
@@ -70,6 +71,43 @@ scene::Primitive doorway_wall(float x, bool faces_negative_x, float half_depth, 
     append(wall, face(-half_depth, -door_half, 0.0f, height));
     append(wall, face(-door_half, door_half, door_height, height));
     return wall;
+}
+
+/// A wall from `corner` spanning `along` and `up` (its normal along x up, as make_quad), with
+/// a window: the hole [u0, u1] x [v0, v1] in metres along the two edges, left open in four
+/// pieces around it.
+scene::Primitive window_wall(glm::vec3 corner, glm::vec3 along, glm::vec3 up, glm::vec2 hole_low,
+                             glm::vec2 hole_high) {
+    const float width = glm::length(along);
+    const float height = glm::length(up);
+    const glm::vec3 u = along / width;
+    const glm::vec3 v = up / height;
+    auto piece = [&](float u0, float u1, float v0, float v1) {
+        // About two cells a metre, as the walls around it.
+        const int cells_u = std::max(1, static_cast<int>(std::lround(2.0f * (u1 - u0))));
+        const int cells_v = std::max(1, static_cast<int>(std::lround(2.0f * (v1 - v0))));
+        return make_quad(corner + u * u0 + v * v0, u * (u1 - u0), v * (v1 - v0), cells_u, cells_v);
+    };
+    scene::Primitive wall;
+    append(wall, piece(0.0f, width, 0.0f, hole_low.y));              // below the sill
+    append(wall, piece(0.0f, width, hole_high.y, height));           // above the lintel
+    append(wall, piece(0.0f, hole_low.x, hole_low.y, hole_high.y));  // beside the window
+    append(wall, piece(hole_high.x, width, hole_low.y, hole_high.y));
+    return wall;
+}
+
+/// A sky portal (docs/LEVELS.md, "Sky") filling the hole `window_wall` left in the same wall.
+int add_window_portal(LevelBuilder& level, const std::string& name, int material, glm::vec3 corner,
+                      glm::vec3 along, glm::vec3 up, glm::vec2 hole_low, glm::vec2 hole_high) {
+    const glm::vec3 u = glm::normalize(along);
+    const glm::vec3 v = glm::normalize(up);
+    const int node = level.add_mesh_node(
+        name,
+        make_quad(corner + u * hole_low.x + v * hole_low.y, u * (hole_high.x - hole_low.x),
+                  v * (hole_high.y - hole_low.y)),
+        material);
+    level.node(node).flags.raw["portal"] = true;
+    return node;
 }
 
 }  // namespace
@@ -225,10 +263,10 @@ scene::Scene make_caustics() {
     // The floor, 6 x 6 m, with the pool's 2 x 2 m opening (x in [-1, 1], z in [0.5, 2.5]) left
     // out: four strips around it.
     scene::Primitive floor;
-    append(floor, make_quad({-3, 0, 0.5f}, {6, 0, 0}, {0, 0, -3.5f}, 12, 7));     // behind
-    append(floor, make_quad({-3, 0, 3}, {6, 0, 0}, {0, 0, -0.5f}, 12, 1));        // in front
-    append(floor, make_quad({-3, 0, 2.5f}, {2, 0, 0}, {0, 0, -2}, 4, 4));         // left
-    append(floor, make_quad({1, 0, 2.5f}, {2, 0, 0}, {0, 0, -2}, 4, 4));          // right
+    append(floor, make_quad({-3, 0, 0.5f}, {6, 0, 0}, {0, 0, -3.5f}, 12, 7));  // behind
+    append(floor, make_quad({-3, 0, 3}, {6, 0, 0}, {0, 0, -0.5f}, 12, 1));     // in front
+    append(floor, make_quad({-3, 0, 2.5f}, {2, 0, 0}, {0, 0, -2}, 4, 4));      // left
+    append(floor, make_quad({1, 0, 2.5f}, {2, 0, 0}, {0, 0, -2}, 4, 4));       // right
     level.add_mesh_node("floor", std::move(floor), floor_white);
     // The brass ring: an open cylinder 1 m across on the floor.
     level.add_mesh_node("brass ring", make_open_cylinder(0.5f, 0.3f, 96), brass_material, -1,
@@ -244,7 +282,7 @@ scene::Scene make_caustics() {
     // A pool: a tiled basin 40 cm deep under a 2 x 2 m water surface whose waves are driven
     // by the wave system from the node's extras (docs/LEVELS.md).
     scene::Primitive pool;
-    append(pool, make_quad({-1.0f, -0.4f, 2.5f}, {2, 0, 0}, {0, 0, -2}, 8, 8));  // floor
+    append(pool, make_quad({-1.0f, -0.4f, 2.5f}, {2, 0, 0}, {0, 0, -2}, 8, 8));    // floor
     append(pool, make_quad({-1.0f, -0.4f, 0.5f}, {2, 0, 0}, {0, 0.4f, 0}, 8, 2));  // walls,
     append(pool, make_quad({1.0f, -0.4f, 2.5f}, {-2, 0, 0}, {0, 0.4f, 0}, 8, 2));  // facing in
     append(pool, make_quad({-1.0f, -0.4f, 2.5f}, {0, 0, -2}, {0, 0.4f, 0}, 8, 2));
@@ -292,6 +330,9 @@ scene::Scene make_sandbox() {
     constexpr float door_half = 0.5f;
     constexpr float door_height = 2.2f;
     constexpr float corridor_end = 3.0f;
+    constexpr float window_width = 1.6f;
+    constexpr float window_sill = 0.9f;
+    constexpr float window_top = 2.3f;
     const int plaster = level.add_diffuse("plaster", glm::vec3(0.78f, 0.76f, 0.72f));
     const int sage = level.add_diffuse("sage plaster", glm::vec3(0.55f, 0.68f, 0.52f));
     const int terracotta = level.add_diffuse("terracotta", glm::vec3(0.72f, 0.42f, 0.30f));
@@ -310,8 +351,17 @@ scene::Scene make_sandbox() {
         level.add_mesh_node(prefix + "ceiling",
                             make_quad({x0, height, -depth}, {width, 0, 0}, {0, 0, 2 * depth}, 8, 8),
                             plaster);
+        // A window in the north wall, the sun and the sky outside it (west: by the lamp;
+        // east: behind the sculpture, so the sun's beam crosses the glass).
+        const glm::vec3 north_corner(x0, 0, -depth);
+        const glm::vec3 along(width, 0, 0);
+        const glm::vec3 up(0, height, 0);
+        const glm::vec2 hole_low(west ? 1.6f : 1.2f, window_sill);
+        const glm::vec2 hole_high(hole_low.x + window_width, window_top);
         level.add_mesh_node(prefix + "north wall",
-                            make_quad({x0, 0, -depth}, {width, 0, 0}, {0, height, 0}, 8, 6), walls);
+                            window_wall(north_corner, along, up, hole_low, hole_high), walls);
+        add_window_portal(level, prefix + "window", walls, north_corner, along, up, hole_low,
+                          hole_high);
         level.add_mesh_node(prefix + "south wall",
                             make_quad({x1, 0, depth}, {-width, 0, 0}, {0, height, 0}, 8, 6), walls);
         if (west) {
@@ -394,6 +444,18 @@ scene::Scene make_sandbox() {
         level.add_light(point_light("corridor light", 15.0f, {1.0f, 0.9f, 0.75f}),
                         {1.5f, door_height - 0.15f, 0.0f});
     add_switch(level.node(corridor_light), 4.0f, 2.0f, 0.0f);
+    // Outside: a sun beyond the north walls, 37 degrees up, shining in through both windows
+    // (the east room's beam crosses the glass sculpture), a clear daylight sky and a grassy
+    // ground below the horizon (the level has no ground of its own outside).
+    scene::Light sun = scene::Light::directional_from_irradiance(glm::vec3(4.0f, 3.8f, 3.4f));
+    sun.name = "sun";
+    level.add_light(sun, {2.0f, 6.0f, -6.0f}, aim({0.25f, -0.6f, 0.75f}));
+    scene::SkySpec sky;
+    sky.kind = scene::SkySpec::Kind::Daylight;
+    sky.irradiance = 1.5f;
+    sky.turbidity = 3.0f;
+    sky.ground = glm::vec3(0.22f, 0.26f, 0.16f);
+    level.sky() = sky;
     level.add_camera("camera", {-3.5f, 1.6f, 1.6f}, {1.0f, 1.1f, -0.2f}, glm::radians(60.0f));
     return level.finish();
 }
@@ -428,8 +490,9 @@ std::vector<LevelRecipe> built_in_levels() {
         {"caustics", "brass ring, glass sphere in a box, water surface over a pool",
          [] { return make_caustics(); }},
         {"sandbox",
-         "the sandbox game level: two rooms and a corridor, door, glass sculpture, "
-         "bouncing ball, swinging lamp, switched light",
+         "the sandbox game level: two rooms and a corridor, windows with the sun and a "
+         "daylight sky outside, door, glass sculpture, bouncing ball, swinging lamp, switched "
+         "light",
          [] { return make_sandbox(); }},
         {"furnace", "closed sphere, uniform albedo 0.5 and emission 1 W/(m^2 sr)",
          [] { return make_furnace(); }},

@@ -30,19 +30,36 @@ std::shared_ptr<const lighting::SkyRadiance> read_map(const std::filesystem::pat
                                                          std::move(cells));
 }
 
+/// A daylight sky for a sun towards `towards_sun` (unit), with the ground `albedo` lit by it
+/// and by the sun's `sun_irradiance` when the albedo is not 0.
+lighting::SkyRadiance daylight_with_ground(const glm::vec3& towards_sun, float turbidity,
+                                           float irradiance, const glm::vec3& albedo,
+                                           const glm::vec3& sun_irradiance) {
+    lighting::SkyRadiance sky = lighting::daylight_sky(towards_sun, turbidity, irradiance);
+    if (albedo == glm::vec3(0.0f)) {
+        return sky;
+    }
+    return lighting::with_ground(sky, albedo, sun_irradiance * std::max(towards_sun.y, 0.0f));
+}
+
 }  // namespace
 
 std::shared_ptr<const lighting::SkyRadiance> make_sky_radiance(const scene::SkySpec& spec,
-                                                               const glm::vec3& towards_sun) {
+                                                               const glm::vec3& towards_sun,
+                                                               const glm::vec3& sun_irradiance) {
     switch (spec.kind) {
         case scene::SkySpec::Kind::None:
             return nullptr;
-        case scene::SkySpec::Kind::Uniform:
+        case scene::SkySpec::Kind::Uniform: {
+            const lighting::SkyRadiance sky = lighting::SkyRadiance::uniform(spec.radiance);
             return std::make_shared<const lighting::SkyRadiance>(
-                lighting::SkyRadiance::uniform(spec.radiance));
+                spec.ground == glm::vec3(0.0f)
+                    ? sky
+                    : lighting::with_ground(sky, spec.ground, glm::vec3(0.0f)));
+        }
         case scene::SkySpec::Kind::Daylight:
-            return std::make_shared<const lighting::SkyRadiance>(
-                lighting::daylight_sky(towards_sun, spec.turbidity, spec.irradiance));
+            return std::make_shared<const lighting::SkyRadiance>(daylight_with_ground(
+                towards_sun, spec.turbidity, spec.irradiance, spec.ground, sun_irradiance));
         case scene::SkySpec::Kind::Map:
             return read_map(spec.map);
     }
@@ -73,6 +90,26 @@ int sun_node(const scene::Scene& scene) {
     return sun;
 }
 
+namespace {
+
+/// The irradiance of `scene`'s sun facing it, W/m^2 (0 without a sun).
+glm::vec3 scene_sun_irradiance(const scene::Scene& scene) {
+    const int sun = sun_node(scene);
+    if (sun < 0) {
+        return glm::vec3(0.0f);
+    }
+    const scene::Node& node = scene.nodes.at(static_cast<std::size_t>(sun));
+    return scene.lights.at(static_cast<std::size_t>(node.light)).irradiance();
+}
+
+/// The irradiance the sun entity gives now: its DirectionalLight's, 0 while it is off.
+glm::vec3 sun_light_now(const ecs::Registry& registry, ecs::Entity sun) {
+    const auto* light = registry.try_get<lighting::DirectionalLight>(sun);
+    return light != nullptr && light->enabled ? light->irradiance : glm::vec3(0.0f);
+}
+
+}  // namespace
+
 glm::vec3 sun_direction(const scene::Scene& scene) {
     const int sun = sun_node(scene);
     if (sun < 0) {
@@ -86,7 +123,8 @@ ecs::Entity add_sky(ecs::Registry& registry, const scene::Scene& scene, const sc
                     ecs::Entity sun) {
     const bool daylight = spec.kind == scene::SkySpec::Kind::Daylight;
     const glm::vec3 towards_sun = daylight ? sun_direction(scene) : glm::vec3(0.0f, 1.0f, 0.0f);
-    std::shared_ptr<const lighting::SkyRadiance> radiance = make_sky_radiance(spec, towards_sun);
+    std::shared_ptr<const lighting::SkyRadiance> radiance = make_sky_radiance(
+        spec, towards_sun, daylight ? scene_sun_irradiance(scene) : glm::vec3(0.0f));
     if (radiance == nullptr) {
         return ecs::null_entity;
     }
@@ -95,7 +133,8 @@ ecs::Entity add_sky(ecs::Registry& registry, const scene::Scene& scene, const sc
     registry.emplace<lighting::SkyLight>(entity, std::move(radiance), spec.scale, true);
     if (daylight && registry.valid(sun)) {
         registry.emplace<DaylightSun>(
-            entity, DaylightSun{sun, spec.turbidity, spec.irradiance, towards_sun});
+            entity, DaylightSun{sun, spec.turbidity, spec.irradiance, towards_sun, spec.ground,
+                                sun_light_now(registry, sun)});
     }
     return entity;
 }
@@ -117,12 +156,16 @@ std::size_t update_sky(ecs::Registry& registry) {
             continue;
         }
         const glm::vec3 towards_sun = axis / length;
-        if (glm::dot(towards_sun, daylight.towards_sun) >= turned) {
+        const glm::vec3 sun_irradiance = sun_light_now(registry, daylight.sun);
+        const bool ground_changed =
+            daylight.ground != glm::vec3(0.0f) && sun_irradiance != daylight.sun_irradiance;
+        if (glm::dot(towards_sun, daylight.towards_sun) >= turned && !ground_changed) {
             continue;
         }
         daylight.towards_sun = towards_sun;
-        auto radiance = std::make_shared<const lighting::SkyRadiance>(
-            lighting::daylight_sky(towards_sun, daylight.turbidity, daylight.irradiance));
+        daylight.sun_irradiance = sun_irradiance;
+        auto radiance = std::make_shared<const lighting::SkyRadiance>(daylight_with_ground(
+            towards_sun, daylight.turbidity, daylight.irradiance, daylight.ground, sun_irradiance));
         registry.patch<lighting::SkyLight>(
             entity, [&](lighting::SkyLight& sky) { sky.radiance = std::move(radiance); });
         ++rebuilt;

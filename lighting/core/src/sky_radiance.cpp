@@ -135,4 +135,41 @@ SkyRadiance::Sample SkyRadiance::sample(const glm::dvec2& u) const {
     return out;
 }
 
+glm::dvec3 horizontal_irradiance(const SkyRadiance& sky) {
+    glm::dvec3 sum(0.0);
+    const int width = sky.width();
+    const int height = sky.height();
+    for (int row = 0; 2 * (row + 1) <= height; ++row) {  // rows whose lower edge is at or above 0
+        const double top = std::cos(kPi * row / height);
+        const double bottom = std::cos(kPi * (row + 1) / height);
+        // The integral of cos(theta) over one cell: (cos^2 top - cos^2 bottom) / 2 per radian.
+        const double weight = 0.5 * (top * top - bottom * bottom) * (2.0 * kPi / width);
+        for (int col = 0; col < width; ++col) {
+            sum += glm::dvec3(
+                       sky.cells()[static_cast<std::size_t>(row) * static_cast<std::size_t>(width) +
+                                   static_cast<std::size_t>(col)]) *
+                   weight;
+        }
+    }
+    return sum;
+}
+
+SkyRadiance with_ground(const SkyRadiance& sky, const glm::vec3& albedo,
+                        const glm::vec3& sun_on_ground) {
+    const glm::dvec3 rho = glm::clamp(glm::dvec3(sanitized(albedo)), 0.0, 1.0);
+    const glm::dvec3 ground =
+        rho * (horizontal_irradiance(sky) + glm::dvec3(sanitized(sun_on_ground))) / kPi;
+    std::vector<glm::vec3> cells = sky.cells();
+    const int width = sky.width();
+    const int height = sky.height();
+    for (int row = (height + 1) / 2; row < height;
+         ++row) {  // rows whose upper edge is at or below 0
+        for (int col = 0; col < width; ++col) {
+            cells[static_cast<std::size_t>(row) * static_cast<std::size_t>(width) +
+                  static_cast<std::size_t>(col)] = glm::vec3(ground);
+        }
+    }
+    return SkyRadiance(width, height, std::move(cells));
+}
+
 }  // namespace luxel::lighting

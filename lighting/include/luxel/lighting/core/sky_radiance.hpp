@@ -89,4 +89,18 @@ class SkyRadiance {
 [[nodiscard]] SkyRadiance daylight_sky(const glm::vec3& towards_sun, float turbidity,
                                        float horizontal_irradiance);
 
+/// The irradiance per channel, W/m^2, that the part of `sky` above the horizon gives an
+/// upward face: the sum over the rows wholly above it of each cell's radiance times its
+/// integral of cos(theta) over its solid angle (exact for the constant cells).
+[[nodiscard]] glm::dvec3 horizontal_irradiance(const SkyRadiance& sky);
+
+/// `sky` with every row wholly below the horizon replaced by a flat diffuse ground of `albedo`
+/// (each channel in [0, 1]) lit by the sky above and by `sun_on_ground` (W/m^2 on the ground: a
+/// sun's irradiance times the sine of its elevation): radiance albedo (E_sky + E_sun) / pi. It
+/// stands in for the world outside a level's windows, so a view or a gather ray that looks down
+/// through an opening sees the ground's light instead of black. A row across the horizon (an
+/// odd number of rows) keeps its radiance.
+[[nodiscard]] SkyRadiance with_ground(const SkyRadiance& sky, const glm::vec3& albedo,
+                                      const glm::vec3& sun_on_ground);
+
 }  // namespace luxel::lighting
