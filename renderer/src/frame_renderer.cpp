@@ -17,6 +17,7 @@
 #include "luxel/ecs/transform.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
 #include "luxel/lighting/gpu/lightmap_textures.hpp"
+#include "luxel/lighting/gpu/sky_texture.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/gl_state_guard.hpp"
 #include "luxel/runtime/log.hpp"
@@ -26,7 +27,6 @@
 #include "pass_timer.hpp"
 #include "scene_draws.hpp"
 #include "shadow_maps.hpp"
-#include "sky_texture.hpp"
 #include "specular_cube_maps.hpp"
 
 namespace luxel::renderer {
@@ -90,7 +90,7 @@ struct FrameRenderer::Impl {
     ShadowMaps shadows;
     std::uint64_t gbuffer_skipped = 0;  ///< draws the G-buffer's FillBudget left out, in all
     lighting::LightmapTextures lightmaps;
-    SkyTexture sky;  ///< the lighting system's skies, behind everything drawn
+    lighting::SkyTexture sky;  ///< the lighting system's skies, behind everything drawn
     SpecularCubeMaps cube_maps;
     PassTimer timer;
     FrameTimings timings;
@@ -287,7 +287,7 @@ struct FrameRenderer::Impl {
                                                    caustic ? 1.0f : 0.0f, specular ? 1.0f : 0.0f));
         composite_program.set("u_emission_on", terms.emission ? 1.0f : 0.0f);
         composite_program.set("u_caustics_irradiance", caustics.irradiance ? 1 : 0);
-        const bool sky_on = sky.sync(lighting.maps().aim());
+        const bool sky_on = sky.present();  // synced by render()
         composite_program.set("u_sky_on", sky_on ? 1 : 0);
         composite_program.set("u_inverse_view_projection",
                               glm::inverse(camera.projection * camera.view));
@@ -393,14 +393,19 @@ struct FrameRenderer::Impl {
             clear_colour(targets.indirect_target.id());
         }
 
+        // The sky behind the cube maps' faces and the frame: a new one redraws the faces.
+        const std::uint64_t sky_before = sky.changes();
+        const bool sky_on = sky.sync(lighting.maps().aim());
+        const bool sky_changed = sky.changes() != sky_before;
         bool specular = false;
         if (specular_pass) {
             timer.begin(RenderPass::Specular);
             const bool changed = counters.shadow_maps_drawn > 0 ||
                                  lights.size() != previous_light_count ||
-                                 lightmaps.uploads() != previous_page_uploads;
-            specular = cube_maps.render(draws, lights, shadows, batches, lightmaps, targets, camera,
-                                        now_seconds, changed, terms.specular);
+                                 lightmaps.uploads() != previous_page_uploads || sky_changed;
+            specular =
+                cube_maps.render(draws, lights, shadows, batches, lightmaps, targets, camera,
+                                 sky_on ? sky.id() : 0, now_seconds, changed, terms.specular);
             timer.end(RenderPass::Specular);
         } else {
             cube_maps.clear();

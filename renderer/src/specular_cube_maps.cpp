@@ -20,6 +20,8 @@ SpecularCubeMaps::SpecularCubeMaps(const ShaderLibrary& shaders, int size, int f
           {{ShaderStage::Vertex, "render/mesh.vert"},
            {ShaderStage::Fragment, "render/cube_map_face.frag"}},
           "#define LIGHTS_PER_BATCH " + std::to_string(LightBatches::kLightsPerBatch) + "\n")),
+      sky_program_(shaders.build({{ShaderStage::Vertex, "post/fullscreen.vert"},
+                                  {ShaderStage::Fragment, "render/cube_map_sky.frag"}})),
       specular_program_(shaders.build({{ShaderStage::Vertex, "render/mesh.vert"},
                                        {ShaderStage::Fragment, "render/specular.frag"}})),
       size_(std::max(size, 1)),
@@ -50,7 +52,7 @@ SpecularCubeMaps::CubeMap SpecularCubeMaps::allocate() const {
     return cube_map;
 }
 
-void SpecularCubeMaps::render_face(CubeMap& cube_map, int face, const DrawList& draws) {
+void SpecularCubeMaps::render_face(CubeMap& cube_map, int face, const DrawList& draws, GLuint sky) {
     const GLuint fbo = cube_map.framebuffer.id();
     glNamedFramebufferTextureLayer(fbo, GL_COLOR_ATTACHMENT0, cube_map.cube.id(), 0, face);
     cube_map.framebuffer.check_complete("specular cube_map face");
@@ -64,6 +66,18 @@ void SpecularCubeMaps::render_face(CubeMap& cube_map, int face, const DrawList& 
     const glm::mat4 projection = glm::perspective(glm::half_pi<float>(), 1.0f, 0.01f, far);
     const gl::Program& program = face_program_;
     const glm::mat4 view_projection = projection * cube_face_view(cube_map.centre, face);
+    if (sky != 0) {
+        // The sky first, everywhere, without depth; the level is drawn over it.
+        glDisable(GL_DEPTH_TEST);
+        sky_program_.use();
+        sky_program_.set("u_inverse_view_projection", glm::inverse(view_projection));
+        sky_program_.set("u_centre", cube_map.centre);
+        glBindTextureUnit(17, sky);
+        glBindVertexArray(sky_triangle_.id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glEnable(GL_DEPTH_TEST);
+        program.use();
+    }
     program.set("u_view_projection", view_projection);
     program.set("u_camera", cube_map.centre);
     // The face covers what it sees as a shadow map does: geometry stacked on itself is left
@@ -141,7 +155,7 @@ void SpecularCubeMaps::draw_term(const DrawList& draws, const FrameTargets& targ
 bool SpecularCubeMaps::render(const DrawList& draws, const std::vector<FrameLight>& lights,
                               const ShadowMaps& shadows, LightBatches& batches,
                               const lighting::LightmapTextures& lightmaps,
-                              const FrameTargets& targets, const FrameCamera& camera,
+                              const FrameTargets& targets, const FrameCamera& camera, GLuint sky,
                               double now_seconds, bool scene_changed, bool draw_term_now) {
     std::set<ecs::Entity> present;
     for (const DrawItem& item : draws.items) {
@@ -179,7 +193,7 @@ bool SpecularCubeMaps::render(const DrawList& draws, const std::vector<FrameLigh
         int budget = cube_map.filled ? faces_per_frame_ : 6;
         cube_map.filled = true;
         while (cube_map.stale_faces > 0 && budget > 0) {
-            render_face(cube_map, cube_map.next_face, draws);
+            render_face(cube_map, cube_map.next_face, draws, sky);
             cube_map.next_face = (cube_map.next_face + 1) % 6;
             --cube_map.stale_faces;
             --budget;

@@ -24,7 +24,8 @@ namespace luxel::renderer {
 /// word these docs keep for photon cube maps): one dynamic cube map per entity with a mirror or
 /// glass material, centred on its bounds, at reduced resolution. Faces are rendered with forward
 /// shading of the diffuse scene (emitted + first light batch with shadows + IIM; specular
-/// objects are left out of each other's cube maps) and refreshed on a budget: a new cube map
+/// objects are left out of each other's cube maps) over the sky, where the level has one, and
+/// refreshed on a budget: a new cube map
 /// renders all six faces, afterwards `faces_per_frame` faces a frame while it is stale. A cube
 /// map goes stale when its object moves, when a caster changes
 /// (invalidate()) or when the caller says the lighting changed (a shadow map re-rendered, a
@@ -38,12 +39,14 @@ class SpecularCubeMaps {
 
     /// Something in the scene changed near `bounds`: every cube_map refreshes its faces.
     void invalidate(const Bounds& bounds);
-    /// Refreshes cube maps and draws the specular term into targets.specular_target. Returns
-    /// whether a term was drawn (false when there is no specular object or `draw_term` is off).
+    /// Refreshes cube maps and draws the specular term into targets.specular_target. `sky` is
+    /// the frame's SkyTexture (0 without a sky: black behind the level). Returns whether a term
+    /// was drawn (false when there is no specular object or `draw_term` is off).
     bool render(const DrawList& draws, const std::vector<FrameLight>& lights,
                 const ShadowMaps& shadows, LightBatches& batches,
                 const lighting::LightmapTextures& lightmaps, const FrameTargets& targets,
-                const FrameCamera& camera, double now_seconds, bool scene_changed, bool draw_term);
+                const FrameCamera& camera, GLuint sky, double now_seconds, bool scene_changed,
+                bool draw_term);
     void clear() { cube_maps_.clear(); }
 
     [[nodiscard]] std::size_t count() const { return cube_maps_.size(); }
@@ -63,10 +66,12 @@ class SpecularCubeMaps {
     };
 
     CubeMap allocate() const;
-    void render_face(CubeMap& cube_map, int face, const DrawList& draws);
+    void render_face(CubeMap& cube_map, int face, const DrawList& draws, GLuint sky);
     void draw_term(const DrawList& draws, const FrameTargets& targets, const FrameCamera& camera);
 
     gl::Program face_program_;
+    gl::Program sky_program_;  ///< the sky behind a face (render/cube_map_sky.frag)
+    gl::VertexArray sky_triangle_ = gl::VertexArray::create();  ///< no attributes
     gl::Program specular_program_;
     int size_;
     int faces_per_frame_;

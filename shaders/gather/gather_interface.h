@@ -13,6 +13,7 @@
 // Textures.
 #define GATHER_RADIANCE_UNIT 0  // the AIM pages (radiance leaving each surface)
 #define GATHER_TILES_UNIT 1     // the tile atlas the scene pass drew
+#define GATHER_SKY_UNIT 2       // the sky (lighting::SkyTexture) for pixels that leave the level
 
 // struct GatherView, std430: four vec4s. right x up = -forward, so triangles whose front faces
 // the texel wind counter-clockwise on the plane, as GL's front faces do.

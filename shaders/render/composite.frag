@@ -5,7 +5,7 @@
 // by albedo / pi here) or radiance. Tone mapping happens later, for display only.
 
 #include "common/radiometry.glsl"
-#include "render/sky.glsl"
+#include "common/sky.glsl"
 
 layout(binding = 0) uniform sampler2D u_albedo;
 layout(binding = 2) uniform sampler2D u_position;

@@ -11,9 +11,9 @@
 #include "gather/gather_interface.h"
 #include "gather_geometry.hpp"
 #include "luxel/lighting/gpu/hemi_plane_geometry.hpp"
+#include "luxel/lighting/gpu/sky_texture.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/gl_state_guard.hpp"
-#include "luxel/runtime/log.hpp"
 #include "luxel/runtime/program.hpp"
 #include "luxel/runtime/shader_library.hpp"
 #include "radiance_texture.hpp"
@@ -41,6 +41,7 @@ constexpr GLuint kWeightsBinding = GATHER_WEIGHTS_BINDING;
 constexpr GLuint kSumsBinding = GATHER_SUMS_BINDING;
 constexpr GLuint kRadianceUnit = GATHER_RADIANCE_UNIT;
 constexpr GLuint kTilesUnit = GATHER_TILES_UNIT;
+constexpr GLuint kSkyUnit = GATHER_SKY_UNIT;
 
 bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
@@ -111,7 +112,6 @@ int fit_batch(int batch, int resolution) {
 struct HemiPlaneGatherer::Impl {
     const RayScene* scene;
     const RadianceAtlas* atlas;
-    bool warned_sky = false;
     HemiPlaneSettings settings;
     HemiPlaneStats stats;
     double coverage = 0.0;
@@ -122,6 +122,7 @@ struct HemiPlaneGatherer::Impl {
     gl::Program reduce_program;
     GatherGeometry geometry;
     RadianceTexture radiance;
+    SkyTexture sky;  ///< what the pixels that leave the level read
     gl::Texture tiles;
     gl::Renderbuffer depth;
     gl::Framebuffer framebuffer;
@@ -164,6 +165,7 @@ struct HemiPlaneGatherer::Impl {
         scene_program.set("u_half_width", settings.half_width);
         reduce_program.set("u_tiles_x", tiles_x);
         reduce_program.set("u_resolution", settings.resolution);
+        reduce_program.set("u_half_width", settings.half_width);
         gl::check_error("HemiPlaneGatherer setup");
     }
 
@@ -229,14 +231,10 @@ struct HemiPlaneGatherer::Impl {
         geometry.sync(*scene);
         const std::uint64_t pages_before = radiance.page_uploads();
         radiance.sync(*atlas);
-        if (!atlas->skies.empty() && !warned_sky) {
-            // Its background is black: a sky's direct light is missing from its IIM (the CPU
-            // gather sees it, docs/METHOD.md §6.11).
-            log::warn(
-                "the GPU gather does not see the sky yet: its light maps leave out the "
-                "sky's direct light (the CPU gather, the default, includes it)");
-            warned_sky = true;
-        }
+        // A pixel where nothing was drawn looks out of the level: the reduction reads the sky
+        // there, as the CPU gather's escaping rays do (docs/METHOD.md §6.11).
+        const bool sky_on = sky.sync(*atlas);
+        reduce_program.set("u_sky_on", sky_on ? 1 : 0);
         stats.page_uploads += radiance.page_uploads() - pages_before;
         stats.object_uploads = geometry.uploads();
         reserve(count);
@@ -261,6 +259,9 @@ struct HemiPlaneGatherer::Impl {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kWeightsBinding, weights.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSumsBinding, sums.id());
         glBindTextureUnit(kRadianceUnit, radiance.texture());
+        if (sky_on) {
+            glBindTextureUnit(kSkyUnit, sky.id());
+        }
 
         const auto batch = static_cast<std::size_t>(settings.texels_per_batch);
         for (std::size_t first = 0; first < count; first += batch) {
@@ -273,6 +274,7 @@ struct HemiPlaneGatherer::Impl {
         glGetNamedBufferSubData(sums.id(), 0, static_cast<GLsizeiptr>(count * sizeof(glm::vec4)),
                                 result.data());
         glBindTextureUnit(kRadianceUnit, 0);
+        glBindTextureUnit(kSkyUnit, 0);
         gl::check_error("HemiPlaneGatherer::gather");
 
         const float scale = static_cast<float>(glm::pi<double>() / coverage);

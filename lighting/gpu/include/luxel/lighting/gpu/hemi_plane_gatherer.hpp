@@ -41,7 +41,9 @@ struct HemiPlaneStats {
 /// The GPU backend of final gathering: the hemi-plane (docs/METHOD.md §6.2-6.3). From each texel
 /// centre the AIM-lit scene is rendered onto one plane of half-width a at unit distance along
 /// the normal, each pixel is weighted by dA / (pi (x^2 + y^2 + 1)^2), the weighted radiance is
-/// summed in 32-bit float by a compute shader, and E = pi * sum / F(a).
+/// summed in 32-bit float by a compute shader, and E = pi * sum / F(a). A pixel where nothing
+/// was drawn looks out of the level and reads the atlas's skies along its direction (as the CPU
+/// gather's escaping rays do), through a SkyTexture.
 ///
 /// Batching: a batch of texels_per_batch texels renders into one tile atlas (one
 /// resolution^2 tile per texel) with one instanced draw per object (instance = texel; clip
@@ -54,8 +56,9 @@ struct HemiPlaneStats {
 ///
 /// What is re-read per gather() call: object transforms (dynamic objects move), the object id
 /// set (objects added or removed are uploaded or freed automatically: RayScene never reuses an
-/// id or edits a mesh in place), the atlas's surface_page table, and every page whose version
-/// (or storage) changed. refresh_geometry() forces every object to be uploaded again.
+/// id or edits a mesh in place), the atlas's surface_page table, every page whose version
+/// (or storage) changed, and the atlas's skies. refresh_geometry() forces every object to be
+/// uploaded again.
 class HemiPlaneGatherer final : public IrradianceGatherer {
   public:
     /// Loads the shaders from the default ShaderLibrary search paths. Throws ShaderError when

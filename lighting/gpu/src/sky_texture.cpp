@@ -1,11 +1,11 @@
-#include "sky_texture.hpp"
+#include "luxel/lighting/gpu/sky_texture.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/constants.hpp>
 
-namespace luxel::renderer {
+namespace luxel::lighting {
 namespace {
 
 /// Texels per full turn and per half turn at least: a grid coarser than this (a uniform sky
@@ -14,16 +14,14 @@ namespace {
 constexpr int kMinWidth = 512;
 constexpr int kMinHeight = 256;
 
-bool same(const std::vector<lighting::RadianceAtlas::Sky>& a,
-          const std::vector<lighting::RadianceAtlas::Sky>& b) {
+bool same(const std::vector<RadianceAtlas::Sky>& a, const std::vector<RadianceAtlas::Sky>& b) {
     return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const auto& x, const auto& y) {
         return x.radiance == y.radiance && x.scale == y.scale;
     });
 }
 
 /// One sky's cells times its scale, each repeated to at least kMinWidth x kMinHeight texels.
-std::vector<glm::vec3> texels_of(const lighting::SkyRadiance& sky, float scale, int& width,
-                                 int& height) {
+std::vector<glm::vec3> texels_of(const SkyRadiance& sky, float scale, int& width, int& height) {
     const int repeat_x = std::max(1, (kMinWidth + sky.width() - 1) / sky.width());
     const int repeat_y = std::max(1, (kMinHeight + sky.height() - 1) / sky.height());
     width = sky.width() * repeat_x;
@@ -43,7 +41,7 @@ std::vector<glm::vec3> texels_of(const lighting::SkyRadiance& sky, float scale, 
 }
 
 /// Several skies summed, each looked up at the centre of every texel of a 1024 x 512 grid.
-std::vector<glm::vec3> sum_of(const lighting::RadianceAtlas& atlas, int& width, int& height) {
+std::vector<glm::vec3> sum_of(const RadianceAtlas& atlas, int& width, int& height) {
     width = 2 * kMinWidth;
     height = 2 * kMinHeight;
     const double pi = glm::pi<double>();
@@ -65,11 +63,12 @@ std::vector<glm::vec3> sum_of(const lighting::RadianceAtlas& atlas, int& width, 
 
 }  // namespace
 
-bool SkyTexture::sync(const lighting::RadianceAtlas& atlas) {
+bool SkyTexture::sync(const RadianceAtlas& atlas) {
     if (same(shown_, atlas.skies)) {
         return present();
     }
     shown_ = atlas.skies;
+    ++changes_;
     texture_ = gl::Texture();
     if (shown_.empty()) {
         return false;
@@ -90,4 +89,4 @@ bool SkyTexture::sync(const lighting::RadianceAtlas& atlas) {
     return true;
 }
 
-}  // namespace luxel::renderer
+}  // namespace luxel::lighting
