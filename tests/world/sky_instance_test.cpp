@@ -183,6 +183,14 @@ TEST(SkyInstance, TheGroundIsLitByTheSkyAndBySunAsItIsNow) {
     ASSERT_EQ(world::update_sky(registry), 1u);
     EXPECT_NEAR(ground().g, expected(10.0f, 0.0f), 1e-4 * expected(10.0f, 0.0f));
     EXPECT_EQ(world::update_sky(registry), 0u);
+    // A sun of NaN irradiance lights the ground with nothing, once: no rebuild every frame.
+    registry.patch<lighting::DirectionalLight>(sun, [](lighting::DirectionalLight& d) {
+        d.enabled = true;
+        d.irradiance = glm::vec3(std::nanf(""));
+    });
+    EXPECT_EQ(world::update_sky(registry), 0u);  // the same as off: nothing to rebuild
+    EXPECT_EQ(world::update_sky(registry), 0u);
+    EXPECT_TRUE(std::isfinite(ground().g));
     // Without a ground, below the horizon stays black.
     auto plain = two_suns();
     plain->sky = scene::parse_sky("daylight:1.5,3");

@@ -102,10 +102,20 @@ glm::vec3 scene_sun_irradiance(const scene::Scene& scene) {
     return scene.lights.at(static_cast<std::size_t>(node.light)).irradiance();
 }
 
-/// The irradiance the sun entity gives now: its DirectionalLight's, 0 while it is off.
+/// The irradiance the sun entity gives now: its DirectionalLight's, 0 while it is off; a
+/// negative or non-finite channel reads 0 (a NaN would never compare equal, and rebuild the sky
+/// every frame).
 glm::vec3 sun_light_now(const ecs::Registry& registry, ecs::Entity sun) {
     const auto* light = registry.try_get<lighting::DirectionalLight>(sun);
-    return light != nullptr && light->enabled ? light->irradiance : glm::vec3(0.0f);
+    if (light == nullptr || !light->enabled) {
+        return glm::vec3(0.0f);
+    }
+    glm::vec3 out(0.0f);
+    for (int c = 0; c < 3; ++c) {
+        const float v = light->irradiance[c];
+        out[c] = std::isfinite(v) && v > 0.0f ? v : 0.0f;
+    }
+    return out;
 }
 
 }  // namespace
