@@ -93,18 +93,10 @@ SkyRadiance daylight_sky(const glm::vec3& towards_sun, float turbidity,
 
     constexpr int kWidth = 128;
     constexpr int kHeight = 64;
-    std::vector<glm::dvec3> cells(static_cast<std::size_t>(kWidth) * kHeight, glm::dvec3(0.0));
-    double horizontal = 0.0;  // the irradiance's luminance on an upward face, before scaling
+    std::vector<glm::vec3> cells(static_cast<std::size_t>(kWidth) * kHeight, glm::vec3(0.0f));
     for (int row = 0; row < kHeight / 2; ++row) {  // the upper hemisphere's rows
-        const double top = kPi * row / kHeight;
-        const double bottom = kPi * (row + 1) / kHeight;
-        const double theta = 0.5 * (top + bottom);
+        const double theta = kPi * (row + 0.5) / kHeight;
         const double cos_theta = std::cos(theta);
-        // The cell's integral of cos over its solid angle: (cos^2 top - cos^2 bottom) / 2 per
-        // radian of azimuth.
-        const double cos_weight =
-            0.5 * (std::cos(top) * std::cos(top) - std::cos(bottom) * std::cos(bottom)) *
-            (2.0 * kPi / kWidth);
         for (int col = 0; col < kWidth; ++col) {
             const double phi = 2.0 * kPi * (col + 0.5) / kWidth;
             const glm::dvec3 view(std::sin(theta) * std::cos(phi), cos_theta,
@@ -114,22 +106,26 @@ SkyRadiance daylight_sky(const glm::vec3& towards_sun, float turbidity,
                 zenith_luminance * perez(luminance, cos_theta, gamma) / f0_luminance;
             const double x_chroma = zenith_x * perez(chroma_x, cos_theta, gamma) / f0_x;
             const double y_chroma = zenith_y * perez(chroma_y, cos_theta, gamma) / f0_y;
-            const glm::dvec3 rgb =
-                glm::max(xyY_to_linear_srgb(x_chroma, y_chroma, y_value), glm::dvec3(0.0));
-            cells[static_cast<std::size_t>(row) * kWidth + static_cast<std::size_t>(col)] = rgb;
-            horizontal += (0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b) * cos_weight;
+            cells[static_cast<std::size_t>(row) * kWidth + static_cast<std::size_t>(col)] =
+                glm::vec3(
+                    glm::max(xyY_to_linear_srgb(x_chroma, y_chroma, y_value), glm::dvec3(0.0)));
         }
     }
+    // Scaled so that the irradiance's luminance on an upward face is the one asked for, by the
+    // same exact cell integrals a ground below it uses (horizontal_irradiance).
+    const glm::dvec3 horizontal =
+        lighting::horizontal_irradiance(SkyRadiance(kWidth, kHeight, cells));
+    const double luminance_now =
+        0.2126 * horizontal.r + 0.7152 * horizontal.g + 0.0722 * horizontal.b;
     const double wanted = std::isfinite(horizontal_irradiance)
                               ? std::max(static_cast<double>(horizontal_irradiance), 0.0)
                               : 0.0;
-    const double scale = horizontal > 0.0 && std::isfinite(horizontal) ? wanted / horizontal : 0.0;
-    std::vector<glm::vec3> scaled;
-    scaled.reserve(cells.size());
-    for (const glm::dvec3& cell : cells) {
-        scaled.emplace_back(cell * scale);
+    const double scale =
+        luminance_now > 0.0 && std::isfinite(luminance_now) ? wanted / luminance_now : 0.0;
+    for (glm::vec3& cell : cells) {
+        cell = glm::vec3(glm::dvec3(cell) * scale);
     }
-    return SkyRadiance(kWidth, kHeight, std::move(scaled));
+    return SkyRadiance(kWidth, kHeight, std::move(cells));
 }
 
 }  // namespace luxel::lighting

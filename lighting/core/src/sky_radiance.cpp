@@ -162,8 +162,8 @@ SkyRadiance with_ground(const SkyRadiance& sky, const glm::vec3& albedo,
     std::vector<glm::vec3> cells = sky.cells();
     const int width = sky.width();
     const int height = sky.height();
-    for (int row = (height + 1) / 2; row < height;
-         ++row) {  // rows whose upper edge is at or below 0
+    // The rows whose upper edge is at or below the horizon.
+    for (int row = (height + 1) / 2; row < height; ++row) {
         for (int col = 0; col < width; ++col) {
             cells[static_cast<std::size_t>(row) * static_cast<std::size_t>(width) +
                   static_cast<std::size_t>(col)] = glm::vec3(ground);
