@@ -1,6 +1,8 @@
 // Reflection, refraction and Fresnel reflectance against analytic values.
 
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
@@ -92,6 +94,67 @@ TEST(Halton, RadicalInverseDigitsAndStratification) {
     for (int count : cells) {
         EXPECT_EQ(count, 1);
     }
+}
+
+/// Phi_b(i) exactly: the digits of i reversed into a numerator over b^k by long division,
+/// independently of the library's code (b^k < 2^40 for the indices below 2^32 it is used for).
+struct ExactRadicalInverse {
+    std::uint64_t numerator = 0;
+    std::uint64_t denominator = 1;
+};
+ExactRadicalInverse exact_radical_inverse(std::uint32_t base, std::uint64_t index) {
+    ExactRadicalInverse exact;
+    for (; index > 0; index /= base) {
+        exact.numerator = exact.numerator * base + index % base;
+        exact.denominator *= base;
+    }
+    return exact;
+}
+
+TEST(Halton, RadicalInverseIsTheCorrectlyRoundedQuotientInEveryPhotonDimension) {
+    std::vector<std::uint64_t> indices;
+    for (std::uint64_t i = 0; i < 3000; ++i) {
+        indices.push_back(i);
+    }
+    for (std::uint64_t i = 1; i < 64; ++i) {  // scattered up to 2^32 - 1
+        indices.push_back((i * 0x9E3779B97F4A7C15ull) >> 32);
+    }
+    indices.push_back(0xFFFFFFFFull);
+    for (std::uint32_t dim = 0; dim < kHaltonPrimes.size(); ++dim) {
+        const std::uint32_t base = kHaltonPrimes[dim];
+        for (const std::uint64_t index : indices) {
+            const ExactRadicalInverse exact = exact_radical_inverse(base, index);
+            // Below 2^32, numerator and b^k fit 53 bits: their double quotient is the value
+            // correctly rounded.
+            ASSERT_LT(exact.denominator, std::uint64_t{1} << 53);
+            const double expected =
+                static_cast<double>(exact.numerator) / static_cast<double>(exact.denominator);
+            const double value = radical_inverse_in_dimension(dim, index);
+            ASSERT_EQ(value, expected) << "base " << base << ", index " << index;
+            ASSERT_EQ(radical_inverse(base, index), expected);
+            ASSERT_GE(value, 0.0);
+            ASSERT_LT(value, 1.0);
+            // The sum of rounded terms (the definition) agrees to rounding.
+            ASSERT_NEAR(radical_inverse_sum(base, index), expected, 1e-15);
+        }
+    }
+}
+
+TEST(Halton, RadicalInverseOfLargeIndices) {
+    // Base 2 reverses bits, exact to 2^53; other bases fall back to the sum past 2^32.
+    for (const std::uint64_t index :
+         {std::uint64_t{1} << 32, (std::uint64_t{1} << 40) + 12345, (std::uint64_t{1} << 53) - 1}) {
+        EXPECT_EQ(radical_inverse_in_dimension(0, index), radical_inverse_sum(2, index));
+        for (std::uint32_t dim = 1; dim < kHaltonPrimes.size(); ++dim) {
+            const double value = radical_inverse_in_dimension(dim, index);
+            EXPECT_EQ(value, radical_inverse_sum(kHaltonPrimes[dim], index));
+            EXPECT_GE(value, 0.0);
+            EXPECT_LT(value, 1.0);
+        }
+    }
+    // No digits in base 0 or 1: zero, not an endless loop or a division by zero.
+    EXPECT_EQ(radical_inverse(0, 17), 0.0);
+    EXPECT_EQ(radical_inverse(1, 17), 0.0);
 }
 
 }  // namespace

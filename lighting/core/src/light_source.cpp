@@ -255,14 +255,17 @@ void orthonormal_basis(const glm::vec3& n, glm::vec3& tangent, glm::vec3& bitang
 }
 
 glm::vec3 cosine_direction(const glm::vec3& n, const glm::dvec2& u) {
-    const double r = std::sqrt(u.x);
-    const double phi = kTwoPi * u.y;
+    // In float: the result is a float direction, and double sin and cos were 8% of a photon
+    // trace's profile.
+    const auto ux = static_cast<float>(u.x);
+    const float r = std::sqrt(ux);
+    const auto phi = static_cast<float>(kTwoPi * u.y);
     glm::vec3 t;
     glm::vec3 b;
     orthonormal_basis(n, t, b);
-    const auto x = static_cast<float>(r * std::cos(phi));
-    const auto y = static_cast<float>(r * std::sin(phi));
-    const auto z = static_cast<float>(std::sqrt(std::max(0.0, 1.0 - u.x)));
+    const float x = r * std::cos(phi);
+    const float y = r * std::sin(phi);
+    const float z = std::sqrt(std::max(0.0f, 1.0f - ux));
     return glm::normalize(x * t + y * b + z * n);
 }
 
@@ -347,12 +350,12 @@ EmittedPhoton PhotonEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
     switch (light_.kind) {
         case LightKind::Point: {
             const double z = 1.0 - 2.0 * d.x;
-            const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-            const double phi = kTwoPi * d.y;
+            const auto r = static_cast<float>(std::sqrt(std::max(0.0, 1.0 - z * z)));
+            // The azimuth's sin and cos in float, as in cosine_direction.
+            const auto phi = static_cast<float>(kTwoPi * d.y);
             photon.origin = light_.position;
             photon.direction =
-                glm::vec3(static_cast<float>(r * std::cos(phi)),
-                          static_cast<float>(r * std::sin(phi)), static_cast<float>(z));
+                glm::vec3(r * std::cos(phi), r * std::sin(phi), static_cast<float>(z));
             break;
         }
         case LightKind::Spot: {

@@ -11,10 +11,6 @@
 namespace luxel::lighting {
 namespace {
 
-constexpr std::array<std::uint32_t, 32> kPrimes = {2,  3,  5,  7,   11,  13,  17,  19,  23,  29, 31,
-                                                   37, 41, 43, 47,  53,  59,  61,  67,  71,  73, 79,
-                                                   83, 89, 97, 101, 103, 107, 109, 113, 127, 131};
-
 /// SplitMix64's finaliser: a well-mixed 64-bit hash.
 std::uint64_t mix(std::uint64_t x) {
     x += 0x9E3779B97F4A7C15ull;
@@ -30,8 +26,8 @@ double unit_from_bits(std::uint64_t bits) {
 }  // namespace
 
 double photon_sample(std::uint64_t index, std::uint32_t dim, std::uint32_t seed) {
-    if (dim < kPrimes.size()) {
-        const double value = radical_inverse(kPrimes[dim], index);
+    if (dim < kHaltonPrimes.size()) {
+        const double value = radical_inverse_in_dimension(dim, index);
         if (dim < 4) {
             return value;
         }
