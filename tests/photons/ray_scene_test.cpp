@@ -1,7 +1,10 @@
 // The Embree ray scene: hits report what the tracer needs, dynamic objects move by transform
 // only, and ray offsets avoid self-intersection at any scene scale.
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
@@ -192,6 +195,107 @@ TEST(RaySceneCoincidentFaces, EachSideSeesTheFaceTurnedTowardsIt) {
         EXPECT_LT(glm::dot(from_west->geometric_normal, glm::vec3(1, 0, 0)), 0.0f);
         EXPECT_GT(glm::dot(from_east->geometric_normal, glm::vec3(1, 0, 0)), 0.0f);
         EXPECT_NE(from_west->surface, from_east->surface);
+    }
+}
+
+/// Every field intersect_from reports must be what intersect gives for the same ray: the stream
+/// is a faster way to ask, not another answer.
+void expect_same_hit(const std::optional<RayHit>& stream, const std::optional<RayHit>& single) {
+    ASSERT_EQ(stream.has_value(), single.has_value());
+    if (!single) {
+        return;
+    }
+    EXPECT_EQ(stream->object, single->object);
+    EXPECT_EQ(stream->triangle, single->triangle);
+    EXPECT_EQ(stream->surface, single->surface);
+    EXPECT_EQ(stream->material, single->material);
+    EXPECT_NEAR(stream->distance, single->distance, 1e-5f * single->distance);
+    EXPECT_LT(glm::length(stream->position - single->position), 1e-5f);
+    EXPECT_LT(glm::length(stream->geometric_normal - single->geometric_normal), 1e-5f);
+    EXPECT_LT(glm::length(stream->shading_normal - single->shading_normal), 1e-5f);
+    EXPECT_LT(glm::length(stream->lightmap_uv - single->lightmap_uv), 1e-5f);
+}
+
+TEST(RaySceneStream, IntersectFromAnswersEveryRayAsIntersectDoes) {
+    RayScene scene;
+    scene.add_object(square(4.0f, 0, 0), glm::mat4(1.0f), false);   // floor
+    scene.add_object(back_to_back_wall(), glm::mat4(1.0f), false);  // x = 0, both sides
+    const ObjectId box =
+        scene.add_object(square(0.4f, 5, 2),
+                         glm::translate(glm::mat4(1.0f), {1.5f, 0.6f, 0.3f}) *
+                             glm::rotate(glm::mat4(1.0f), 0.7f, glm::vec3(1.0f, 0.0f, 0.0f)),
+                         true);
+    const ObjectId gone = scene.add_object(
+        square(0.5f, 9, 1), glm::translate(glm::mat4(1.0f), {-1.5f, 0.5f, 0.0f}), true);
+    scene.commit();
+
+    const auto compare_from = [&](const glm::vec3& origin, std::size_t rays, std::uint64_t salt) {
+        std::vector<glm::vec3> directions;
+        for (std::size_t i = 0; i < rays; ++i) {
+            // Directions over the whole sphere (some miss everything, some meet the wall's two
+            // coincident faces, the moving square or the floor from below).
+            const double z = 1.0 - 2.0 * radical_inverse(2, i + salt);
+            const double phi = glm::two_pi<double>() * radical_inverse(3, i + salt);
+            const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+            directions.emplace_back(static_cast<float>(r * std::cos(phi)), static_cast<float>(z),
+                                    static_cast<float>(r * std::sin(phi)));
+        }
+        std::vector<std::optional<RayHit>> hits(rays);
+        scene.intersect_from(origin, directions, 20.0f, hits);
+        std::size_t found = 0;
+        for (std::size_t i = 0; i < rays; ++i) {
+            expect_same_hit(hits[i], scene.intersect(origin, directions[i], 20.0f));
+            found += hits[i] ? 1 : 0;
+        }
+        return found;
+    };
+    // From both sides of the wall, above and below the floor.
+    EXPECT_GT(compare_from({-1.0f, 0.3f, 0.1f}, 64, 1), 32u);
+    EXPECT_GT(compare_from({1.0f, 0.3f, -0.1f}, 200, 7), 100u);
+    EXPECT_GT(compare_from({0.5f, -1.0f, 0.2f}, 37, 11), 0u);
+
+    // Straight at the coincident faces: the face turned towards the ray, as intersect says.
+    std::vector<glm::vec3> at_wall(16, glm::vec3(1.0f, 0.0f, 0.0f));
+    std::vector<std::optional<RayHit>> hits(at_wall.size());
+    scene.intersect_from({-2.0f, 0.25f, 0.1f}, at_wall, 20.0f, hits);
+    for (const auto& hit : hits) {
+        ASSERT_TRUE(hit);
+        EXPECT_LT(glm::dot(hit->geometric_normal, glm::vec3(1, 0, 0)), 0.0f);
+    }
+
+    // A moved object is met where it is now; a removed one, not even before the commit.
+    scene.set_transform(box, glm::translate(glm::mat4(1.0f), {2.5f, 0.6f, 0.3f}));
+    scene.remove_object(gone);
+    scene.commit();
+    EXPECT_GT(compare_from({1.0f, 0.3f, -0.1f}, 128, 3), 64u);
+    std::vector<glm::vec3> down(4, glm::vec3(0.0f, -1.0f, 0.0f));
+    hits.assign(down.size(), std::nullopt);
+    scene.intersect_from({-1.5f, 2.0f, 0.0f}, down, 20.0f, hits);
+    for (const auto& hit : hits) {
+        ASSERT_TRUE(hit);
+        EXPECT_EQ(hit->surface, 0);  // the floor, not the removed square
+    }
+
+    // No rays, or fewer hit slots than rays: only as many answers as slots.
+    scene.intersect_from({0.0f, 1.0f, 0.0f}, {}, 20.0f, hits);
+    std::vector<std::optional<RayHit>> one(1);
+    scene.intersect_from({-1.5f, 2.0f, 0.0f}, down, 20.0f, one);
+    EXPECT_TRUE(one[0].has_value());
+}
+
+TEST(RaySceneStream, AnEmptySceneHitsNothing) {
+    RayScene scene;
+    std::vector<glm::vec3> directions(8, glm::vec3(0.0f, -1.0f, 0.0f));
+    std::vector<std::optional<RayHit>> hits(8, RayHit{});
+    scene.intersect_from({0.0f, 1.0f, 0.0f}, directions, 10.0f, hits);  // never committed
+    for (const auto& hit : hits) {
+        EXPECT_FALSE(hit.has_value());
+    }
+    scene.commit();
+    hits.assign(8, RayHit{});
+    scene.intersect_from({0.0f, 1.0f, 0.0f}, directions, 10.0f, hits);
+    for (const auto& hit : hits) {
+        EXPECT_FALSE(hit.has_value());
     }
 }
 

@@ -1,8 +1,11 @@
 #include "luxel/lighting/core/cpu_gather.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include <glm/gtc/constants.hpp>
@@ -103,30 +106,44 @@ glm::vec3 CpuGatherer::gather_one(const GatherTexel& texel) const {
     const auto seed = static_cast<std::uint32_t>(rotation.x * 4294967295.0);
     // Summed in double: thousands of rays per texel, and the mean must not depend on order.
     glm::dvec3 sum(0.0);
-    for (std::uint32_t i = 0; i < rays; ++i) {
-        const PatternPoint point = i < pattern.size() ? pattern[i] : pattern_point(i);
-        double u = point.radius_squared + rotation.x;
-        u -= std::floor(u);
-        const double r = std::sqrt(u);
-        const auto x =
-            static_cast<float>(r * (point.cos_phi * cos_rotation - point.sin_phi * sin_rotation));
-        const auto y =
-            static_cast<float>(r * (point.sin_phi * cos_rotation + point.cos_phi * sin_rotation));
-        const auto z = static_cast<float>(std::sqrt(std::max(0.0, 1.0 - u)));
-        const glm::vec3 direction = glm::normalize(x * tangent + y * bitangent + z * normal);
-        const glm::vec3 radiance = trace(origin, direction, i, seed);
-        if (finite_vector(radiance)) {
-            sum += glm::dvec3(glm::max(radiance, glm::vec3(0.0f)));
+    // The rays leave in bundles from the texel: one coherent stream each (intersect_from).
+    constexpr std::uint32_t kBundle = 64;
+    std::array<glm::vec3, kBundle> directions;
+    std::array<std::optional<RayHit>, kBundle> hits;
+    for (std::uint32_t first = 0; first < rays; first += kBundle) {
+        const std::uint32_t count = std::min(kBundle, rays - first);
+        for (std::uint32_t k = 0; k < count; ++k) {
+            const std::uint32_t i = first + k;
+            const PatternPoint point = i < pattern.size() ? pattern[i] : pattern_point(i);
+            double u = point.radius_squared + rotation.x;
+            u -= std::floor(u);
+            const double r = std::sqrt(u);
+            const auto x = static_cast<float>(
+                r * (point.cos_phi * cos_rotation - point.sin_phi * sin_rotation));
+            const auto y = static_cast<float>(
+                r * (point.sin_phi * cos_rotation + point.cos_phi * sin_rotation));
+            const auto z = static_cast<float>(std::sqrt(std::max(0.0, 1.0 - u)));
+            directions[k] = glm::normalize(x * tangent + y * bitangent + z * normal);
+        }
+        scene_->intersect_from(origin, std::span(directions.data(), count), settings_.max_distance,
+                               std::span(hits.data(), count));
+        for (std::uint32_t k = 0; k < count; ++k) {
+            const glm::vec3 radiance = trace(origin, directions[k], hits[k], first + k, seed);
+            if (finite_vector(radiance)) {
+                sum += glm::dvec3(glm::max(radiance, glm::vec3(0.0f)));
+            }
         }
     }
     return glm::vec3(sum * (glm::pi<double>() / static_cast<double>(rays)));
 }
 
-glm::vec3 CpuGatherer::trace(glm::vec3 origin, glm::vec3 direction, std::uint32_t ray,
-                             std::uint32_t seed) const {
+glm::vec3 CpuGatherer::trace(glm::vec3 origin, glm::vec3 direction, std::optional<RayHit> hit,
+                             std::uint32_t ray, std::uint32_t seed) const {
     glm::vec3 weight(1.0f);
     for (std::uint32_t interaction = 0; interaction <= settings_.max_specular; ++interaction) {
-        const auto hit = scene_->intersect(origin, direction, settings_.max_distance);
+        if (interaction > 0) {
+            hit = scene_->intersect(origin, direction, settings_.max_distance);
+        }
         if (!hit) {
             // Left the level: the sky (black without one).
             return atlas_->skies.empty() ? glm::vec3(0.0f) : weight * atlas_->sky(direction);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "luxel/lighting/core/gather.hpp"
@@ -52,8 +53,10 @@ class CpuGatherer final : public IrradianceGatherer {
     [[nodiscard]] const CpuGatherSettings& settings() const { return settings_; }
 
   private:
-    [[nodiscard]] glm::vec3 trace(glm::vec3 origin, glm::vec3 direction, std::uint32_t ray,
-                                  std::uint32_t seed) const;
+    /// The radiance a gather ray brings back, from its first hit (`hit`, already traced) on
+    /// through mirrors and glass.
+    [[nodiscard]] glm::vec3 trace(glm::vec3 origin, glm::vec3 direction, std::optional<RayHit> hit,
+                                  std::uint32_t ray, std::uint32_t seed) const;
 
     const RayScene* scene_;
     const std::vector<TraceMaterial>* materials_ = nullptr;

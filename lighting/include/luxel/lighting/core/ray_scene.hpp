@@ -4,6 +4,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -11,9 +12,11 @@
 /// The Embree ray scene the photon tracer and the CPU gather shoot rays into.
 ///
 /// Structure: every static object is baked into world space and goes into one Embree scene
-/// (one BVH); each dynamic object has its own scene in object space. The top-level scene
-/// instances the static scene once (identity) and each dynamic scene with its transform, so
-/// moving an object updates one instance transform and recommits only the small top level.
+/// (one BVH), which rays traverse directly; each dynamic object has its own scene in object
+/// space, instanced with its transform by a top-level scene of the dynamic objects alone, so
+/// moving an object updates one instance transform and recommits only the small top level. A
+/// ray meets the static BVH first and then the top level, cut at the static hit (skipped when
+/// nothing is dynamic): static geometry, most of a level, is traced at flat-BVH speed.
 namespace luxel::lighting {
 
 using ObjectId = std::uint32_t;
@@ -81,6 +84,12 @@ class RayScene {
     [[nodiscard]] std::optional<RayHit> intersect(
         const glm::vec3& origin, const glm::vec3& direction,
         float max_distance = std::numeric_limits<float>::infinity()) const;
+    /// The closest hit of each ray from one origin (a texel's gather rays), as intersect()
+    /// gives it, traced as one coherent stream: Embree shares the traversal of rays that
+    /// start together and point alike. hits[i] answers directions[i] (the shorter span decides
+    /// how many). Thread-safe between commits.
+    void intersect_from(const glm::vec3& origin, std::span<const glm::vec3> directions,
+                        float max_distance, std::span<std::optional<RayHit>> hits) const;
     /// Whether anything lies along the ray in (0, max_distance).
     [[nodiscard]] bool occluded(const glm::vec3& origin, const glm::vec3& direction,
                                 float max_distance) const;
@@ -101,6 +110,10 @@ class RayScene {
     [[nodiscard]] glm::mat4 transform(ObjectId object) const;
 
   private:
+    /// `hit` unless it is a back face with a front face at the same distance (that one).
+    [[nodiscard]] std::optional<RayHit> facing_the_ray(const glm::vec3& origin,
+                                                       const glm::vec3& direction,
+                                                       std::optional<RayHit> hit) const;
     [[nodiscard]] std::optional<RayHit> intersect_any_face(const glm::vec3& origin,
                                                            const glm::vec3& direction,
                                                            float max_distance,
