@@ -1,5 +1,8 @@
 #include "sandbox_app.hpp"
 
+#include <cmath>
+#include <cstdio>
+
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/log.hpp"
 #include "luxel/scene/gltf.hpp"
@@ -9,12 +12,14 @@
 namespace luxel::sandbox {
 namespace {
 
-/// "lighting warm-up converged after 120 updates (3400 ms)", or why it stopped. One that could
+/// "lighting warm-up converged after 120 updates (3400 ms: iim_gather 2900 ms, ...)", or why
+/// it stopped. One that could
 /// not progress is a warning naming the level: it stays dark or without indirect light.
 void log_warm_up(const scene::Scene& level, const lighting::WarmUpResult& warm_up, double ms) {
-    const std::string took = std::to_string(warm_up.updates) +
-                             (warm_up.updates == 1 ? " update (" : " updates (") +
-                             std::to_string(static_cast<int>(ms)) + " ms)";
+    const std::string spent = lighting::describe_time(warm_up);
+    const std::string took =
+        std::to_string(warm_up.updates) + (warm_up.updates == 1 ? " update (" : " updates (") +
+        std::to_string(static_cast<int>(ms)) + " ms" + (spent.empty() ? "" : ": " + spent) + ")";
     if (warm_up.end == lighting::WarmUpEnd::Converged) {
         log::info("lighting warm-up converged after " + took);
         return;
@@ -75,7 +80,15 @@ SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const Shade
     // The loading screen: the first photon maps, AIMs and IIMs are built at once, so the game
     // starts lit and the per-frame budget only has to follow changes.
     const Stopwatch warming;
-    const lighting::WarmUpResult warm_up = lighting_->warm_up(0.0, settings.warm_up_ms);
+    // A progress line, rewritten in place as the frame counter is: the loading takes seconds.
+    const auto show = [](const lighting::WarmUpProgress& progress) {
+        std::fprintf(stderr, "  lighting warm-up %3d%% after %.1f s\r",
+                     static_cast<int>(std::floor(100.0 * progress.share)),
+                     progress.elapsed_ms / 1000.0);
+        std::fflush(stderr);
+    };
+    const lighting::WarmUpResult warm_up = lighting_->warm_up(0.0, settings.warm_up_ms, show);
+    std::fputs("\n", stderr);
     warm_up_ms_ = warming.elapsed_ms();
     log_warm_up(*scene_, warm_up, warm_up_ms_);
     log::info("level '" + level_name_ + "' from " + level_file_.string() + ": " +

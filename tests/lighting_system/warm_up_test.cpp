@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -84,6 +86,57 @@ TEST(WarmUp, ATimeLimitStillEndsAWarmUpThatCouldGoOn) {
     EXPECT_EQ(result.end, WarmUpEnd::TimeLimit);
     EXPECT_GE(result.updates, 1);
     EXPECT_EQ(describe(result), "time limit reached, not converged");
+}
+
+TEST(WarmUp, ProgressRisesToCompletionAndTheTimeIsAccountedByKind) {
+    Level level(luxel::testing::prepared_cornell());
+    std::vector<WarmUpProgress> seen;
+    const WarmUpResult result = level.lighting->warm_up(
+        0.0, kLimitMs, [&](const WarmUpProgress& progress) { seen.push_back(progress); }, 50.0);
+    ASSERT_EQ(result.end, WarmUpEnd::Converged) << describe(result);
+    // Reported every 50 ms of the clock and once at the end, rising to all of the passes.
+    ASSERT_GE(seen.size(), 3u);
+    for (std::size_t i = 1; i < seen.size(); ++i) {
+        EXPECT_GE(seen[i].share, seen[i - 1].share);
+        EXPECT_GT(seen[i].elapsed_ms, seen[i - 1].elapsed_ms);
+        EXPECT_GE(seen[i].updates, seen[i - 1].updates);
+    }
+    for (std::size_t i = 0; i + 1 < seen.size(); ++i) {
+        EXPECT_GE(seen[i + 1].elapsed_ms - seen[i].elapsed_ms, 50.0 * (i + 2 < seen.size()));
+    }
+    EXPECT_LT(seen.front().share, 1.0);
+    EXPECT_DOUBLE_EQ(seen.back().share, 1.0);
+    EXPECT_EQ(seen.back().updates, result.updates);
+    EXPECT_DOUBLE_EQ(level.lighting->maps().refined_share(), 1.0);
+    // The kinds' times are the scheduler's: gathers and AIM rebuilds ran, and the line names
+    // the largest first.
+    const auto ms = [&](WorkKind kind) { return result.kind_ms[static_cast<std::size_t>(kind)]; };
+    EXPECT_GT(ms(WorkKind::IimGather), 0.0);
+    EXPECT_GT(ms(WorkKind::AimRebuild), 0.0);
+    const std::string line = describe_time(result);
+    EXPECT_NE(line.find("iim_gather "), std::string::npos) << line;
+    EXPECT_NE(line.find(" ms"), std::string::npos) << line;
+    double largest = 0.0;
+    std::string first;
+    for (std::size_t kind = 0; kind < kWorkKindCount; ++kind) {
+        if (result.kind_ms[kind] > largest) {
+            largest = result.kind_ms[kind];
+            first = std::string(name(static_cast<WorkKind>(kind)));
+        }
+    }
+    EXPECT_EQ(line.rfind(first + " ", 0), 0u) << line;
+}
+
+TEST(WarmUp, AWarmUpThatStopsAtOnceReportsOnce) {
+    Level level(luxel::testing::without_light(luxel::testing::prepared_cornell()));
+    std::vector<WarmUpProgress> seen;
+    const WarmUpResult result = level.lighting->warm_up(
+        0.0, kLimitMs, [&](const WarmUpProgress& progress) { seen.push_back(progress); });
+    EXPECT_EQ(result.end, WarmUpEnd::NoProgress);
+    ASSERT_EQ(seen.size(), 1u);  // the end's report
+    EXPECT_EQ(seen.front().updates, result.updates);
+    EXPECT_GE(seen.front().share, 0.0);
+    EXPECT_LE(seen.front().share, 1.0);
 }
 
 }  // namespace

@@ -134,6 +134,26 @@ bool IimGatherPasses::lighting_changed(std::uint32_t s, bool aims_are_current) c
            (state.read_stale_aim && aims_are_current) || (state.changed_count > 0 && !keeps_mean());
 }
 
+double IimGatherPasses::refined_share() const {
+    const std::uint32_t wanted = keeps_mean() ? settings_.refine_passes : 1u;
+    double done = 0.0;
+    double total = 0.0;
+    for (std::uint32_t s = 0; s < states_.size(); ++s) {
+        const std::size_t texels =
+            registry_.live(s) ? registry_.surface(s).texels.texels.size() : 0;
+        const RefinementStats& refinement = refinements_[s];
+        if (refinement.texel_passes.size() == texels && texels > 0) {
+            for (const std::uint32_t passes : refinement.texel_passes) {
+                done += static_cast<double>(std::min(passes, wanted));
+            }
+        } else if (states_[s].completed_once) {
+            done += static_cast<double>(texels);
+        }
+        total += static_cast<double>(texels) * wanted;
+    }
+    return total > 0.0 ? std::min(done / total, 1.0) : 1.0;
+}
+
 bool IimGatherPasses::wants_refinement(std::uint32_t s) const {
     const GatherPassState& state = states_[s];
     const RefinementStats& refinement = refinements_[s];

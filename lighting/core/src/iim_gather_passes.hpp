@@ -57,6 +57,9 @@ class IimGatherPasses {
         return refinements_.at(s);
     }
     [[nodiscard]] std::uint64_t passes() const { return passes_; }
+    /// Of the texel passes the surfaces want (refine_passes each, one without refinement),
+    /// the share averaged so far, in [0, 1] (1 with no texels): a loading screen's progress.
+    [[nodiscard]] double refined_share() const;
     [[nodiscard]] std::uint64_t texels_gathered() const { return texels_gathered_; }
     [[nodiscard]] std::uint64_t texels_kept() const { return texels_kept_; }
 

@@ -55,6 +55,10 @@ bool IlluminationMaps::aims_ready() const {
     return aims_->ready();
 }
 
+double IlluminationMaps::refined_share() const {
+    return gathers_->refined_share();
+}
+
 bool IlluminationMaps::aims_current() const {
     return aims_->current();
 }

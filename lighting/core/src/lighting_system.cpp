@@ -1,6 +1,8 @@
 #include "luxel/lighting/core/lighting_system.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <limits>
 
 namespace luxel::lighting {
@@ -52,6 +54,25 @@ std::string describe(const WarmUpResult& result) {
     return "not converged";
 }
 
+std::string describe_time(const WarmUpResult& result) {
+    std::array<std::size_t, kWorkKindCount> order{};
+    for (std::size_t kind = 0; kind < kWorkKindCount; ++kind) {
+        order[kind] = kind;
+    }
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return result.kind_ms[a] > result.kind_ms[b];
+    });
+    std::string text;
+    for (const std::size_t kind : order) {
+        if (!(result.kind_ms[kind] >= 1.0)) {
+            continue;
+        }
+        text += (text.empty() ? "" : ", ") + std::string(name(static_cast<WorkKind>(kind))) + " " +
+                std::to_string(static_cast<long long>(std::lround(result.kind_ms[kind]))) + " ms";
+    }
+    return text;
+}
+
 std::string LightingSystem::warm_up_stall(int idle_updates) const {
     if (!plan_.photon_tracing()) {
         // "no light in the scene: no lighting work", "no light-mapped surface: ...".
@@ -63,7 +84,8 @@ std::string LightingSystem::warm_up_stall(int idle_updates) const {
     return std::to_string(idle_updates) + " updates in a row traced, rebuilt and gathered nothing";
 }
 
-WarmUpResult LightingSystem::warm_up(double now_seconds, double max_ms) {
+WarmUpResult LightingSystem::warm_up(double now_seconds, double max_ms,
+                                     const WarmUpProgressFn& progress, double progress_every_ms) {
     // Updates in a row whose units traced, rebuilt and gathered nothing before the warm-up gives
     // up: units can run without effect (gathers waiting for an AIM that no unit will build), and
     // a pass's last filter slices gather nothing but take at most one update on a surface within
@@ -71,14 +93,35 @@ WarmUpResult LightingSystem::warm_up(double now_seconds, double max_ms) {
     constexpr int kIdleUpdates = 8;
     const Stopwatch watch(*clock_);
     WarmUpResult result;
+    const SchedulerTotals before = scheduler_.totals();
+    double reported_ms = 0.0;
+    const auto report = [&] {
+        if (progress) {
+            reported_ms = watch.elapsed_ms();
+            progress({reported_ms, result.updates, maps_->refined_share()});
+        }
+    };
+    const auto finish = [&](WarmUpEnd end, std::string why) {
+        report();
+        result.end = end;
+        result.why = std::move(why);
+        for (std::size_t kind = 0; kind < kWorkKindCount; ++kind) {
+            result.kind_ms[kind] =
+                scheduler_.totals().kinds[kind].actual_ms - before.kinds[kind].actual_ms;
+        }
+        return result;
+    };
     int idle = 0;
     while (watch.elapsed_ms() < max_ms) {
         // Stamped one blend time early: what the loading screen built shows in full at
         // `now_seconds` instead of fading in from black.
         update(std::numeric_limits<double>::infinity(), now_seconds - config_.maps.blend_seconds);
         ++result.updates;
+        if (progress && watch.elapsed_ms() - reported_ms >= progress_every_ms) {
+            report();
+        }
         if (plan_.census().converged) {
-            return result;
+            return finish(WarmUpEnd::Converged, {});
         }
         const bool worked = stats_.photons_traced + stats_.caustic_photons_traced +
                                 stats_.aim_texels + stats_.texels_gathered >
@@ -91,13 +134,10 @@ WarmUpResult LightingSystem::warm_up(double now_seconds, double max_ms) {
         // game warms up later.
         const bool unlit = stats_.census.lights_enabled == 0;
         if (unlit || stats_.schedule.units_done == 0 || idle >= kIdleUpdates) {
-            result.end = WarmUpEnd::NoProgress;
-            result.why = warm_up_stall(idle);
-            return result;
+            return finish(WarmUpEnd::NoProgress, warm_up_stall(idle));
         }
     }
-    result.end = WarmUpEnd::TimeLimit;
-    return result;
+    return finish(WarmUpEnd::TimeLimit, {});
 }
 
 void LightingSystem::set_gatherer(IrradianceGatherer* gatherer) {

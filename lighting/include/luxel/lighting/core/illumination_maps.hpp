@@ -80,6 +80,9 @@ class IlluminationMaps {
     /// sorting them all: what a gather unit works on when it runs (nullopt: nothing to gather).
     [[nodiscard]] std::optional<std::uint32_t> next_gather_surface() const;
 
+    /// Of the texel passes the surfaces' refinement wants, the share gathered so far, in [0, 1]:
+    /// what a loading screen shows as its progress.
+    [[nodiscard]] double refined_share() const;
     /// Whether every surface holding photons has had its first AIM (gather passes wait).
     [[nodiscard]] bool aims_ready() const;
     /// Whether no AIM needs rebuilding (aim_requests() is empty).

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -68,14 +69,30 @@ enum class WarmUpEnd : std::uint8_t {
 struct WarmUpResult {
     int updates = 0;
     WarmUpEnd end = WarmUpEnd::Converged;
+    /// Measured time of each kind's units during the warm-up (the scheduler's own accounting),
+    /// for the log line: where a loading screen's seconds went.
+    PerKind<double> kind_ms{};
     /// For NoProgress, why nothing could be done, in the FeaturePlan's words ("no light in the
     /// scene: no lighting work", "no light-mapped surface: ..."); empty otherwise.
     std::string why;
 };
 
+/// How far a warm-up has come, for a loading screen.
+struct WarmUpProgress {
+    double elapsed_ms = 0.0;
+    int updates = 0;
+    /// Of the texel passes the light maps' refinement wants, the share gathered (gathers are
+    /// most of a warm-up's time), in [0, 1].
+    double share = 0.0;
+};
+using WarmUpProgressFn = std::function<void(const WarmUpProgress&)>;
+
 /// How it ended, for a log line: "converged", "time limit reached, not converged", "no progress
 /// possible (<why>)".
 [[nodiscard]] std::string describe(const WarmUpResult& result);
+/// Where its time went, largest first, kinds that took under a millisecond left out:
+/// "iim_gather 6120 ms, aim_rebuild 1210 ms, group_retrace 320 ms".
+[[nodiscard]] std::string describe_time(const WarmUpResult& result);
 
 /// The one façade a game drives lighting with:
 ///
@@ -106,7 +123,10 @@ class LightingSystem {
     /// nothing it could do (no light, nothing light-mapped: it would never converge), or
     /// `max_ms` has passed on the system's clock. The first maps then do not have to be built
     /// a budget's worth at a time while the player watches.
-    WarmUpResult warm_up(double now_seconds, double max_ms);
+    /// `progress`, when given, is called after an update whenever `progress_every_ms` have
+    /// passed on the system's clock since the last call, and once at the end.
+    WarmUpResult warm_up(double now_seconds, double max_ms, const WarmUpProgressFn& progress = {},
+                         double progress_every_ms = 500.0);
 
     /// Replaces the gather backend (e.g. lighting/gpu's HemiPlaneGatherer); null restores the
     /// CPU one. The gatherer must outlive its use here.
