@@ -4,7 +4,9 @@
 // Time is the injected clock's, which ticks on every reading: the limit is far beyond what a
 // converging warm-up needs, and a warm-up that reached it failed.
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -44,10 +46,10 @@ struct Level {
     TickingClock clock;
     std::unique_ptr<LightingSystem> lighting;
 
-    explicit Level(scene::Scene level) {
+    explicit Level(scene::Scene level, LightingConfig config = small_config()) {
         instance = world::instantiate(registry, std::make_shared<scene::Scene>(std::move(level)));
         ecs::TransformSystem(registry).update();
-        lighting = std::make_unique<LightingSystem>(registry, jobs, small_config(), clock);
+        lighting = std::make_unique<LightingSystem>(registry, jobs, config, clock);
     }
 };
 
@@ -137,6 +139,73 @@ TEST(WarmUp, AWarmUpThatStopsAtOnceReportsOnce) {
     EXPECT_EQ(seen.front().updates, result.updates);
     EXPECT_GE(seen.front().share, 0.0);
     EXPECT_LE(seen.front().share, 1.0);
+}
+
+TEST(WarmUp, LargerUnitsChangeTheUpdatesItTakesNotTheMaps) {
+    // The warm-up's units are warm_up_unit_scale times the frame's: no budget to fit. Fewer
+    // updates, the same light maps.
+    LightingConfig frame_sized = small_config();
+    frame_sized.texels_per_gather_unit = 16;
+    frame_sized.warm_up_unit_scale = 1;
+    LightingConfig scaled = frame_sized;
+    scaled.warm_up_unit_scale = 16;
+    scaled.scheduler.record_units = true;
+    Level small_units(luxel::testing::prepared_cornell(), frame_sized);
+    Level large_units(luxel::testing::prepared_cornell(), scaled);
+    const WarmUpResult small_result = small_units.lighting->warm_up(0.0, kLimitMs);
+    const WarmUpResult large_result = large_units.lighting->warm_up(0.0, kLimitMs);
+    ASSERT_EQ(small_result.end, WarmUpEnd::Converged) << describe(small_result);
+    ASSERT_EQ(large_result.end, WarmUpEnd::Converged) << describe(large_result);
+    EXPECT_LT(large_result.updates * 2, small_result.updates);
+    std::printf("[ figures  ] cornell warm-up: %d updates with frame-sized units, %d at 16x\n",
+                small_result.updates, large_result.updates);
+    const auto small_pages = small_units.lighting->maps().iim_pages();
+    const auto large_pages = large_units.lighting->maps().iim_pages();
+    ASSERT_EQ(small_pages.size(), large_pages.size());
+    // Passes can start in another order relative to the AIM rebuilds (a pass that read an AIM
+    // rebuilt under it gathers again, with the next pass's pattern), so texels hold other
+    // samples of the same estimate: the maps agree in their totals and within the gathers'
+    // noise per texel, not bit for bit.
+    glm::dvec3 small_total(0.0);
+    glm::dvec3 large_total(0.0);
+    double squared_difference = 0.0;
+    double squared_value = 0.0;
+    for (std::size_t p = 0; p < small_pages.size(); ++p) {
+        const auto& a = small_pages[p].current.texels;
+        const auto& b = large_pages[p].current.texels;
+        ASSERT_EQ(a.size(), b.size());
+        for (std::size_t t = 0; t < a.size(); ++t) {
+            small_total += glm::dvec3(a[t]);
+            large_total += glm::dvec3(b[t]);
+            squared_difference += glm::dot(glm::dvec3(a[t] - b[t]), glm::dvec3(a[t] - b[t]));
+            squared_value += glm::dot(glm::dvec3(a[t]), glm::dvec3(a[t]));
+        }
+    }
+    ASSERT_GT(squared_value, 0.0);
+    const double total_ratio = (large_total.x + large_total.y + large_total.z) /
+                               (small_total.x + small_total.y + small_total.z);
+    const double relative_rms = std::sqrt(squared_difference / squared_value);
+    std::printf("[ figures  ] IIM at 16x units against frame-sized: total %.5f, relRMS %.4f\n",
+                total_ratio, relative_rms);
+    EXPECT_NEAR(total_ratio, 1.0, 0.005);
+    EXPECT_LT(relative_rms, 0.02);
+    // After the warm-up a frame's units are the frame's size again: the light dims, and the
+    // gathers it causes come in units of 16 texels.
+    large_units.registry.view<PointLight>().each([&](ecs::Entity light, PointLight&) {
+        large_units.registry.patch<PointLight>(light,
+                                               [](PointLight& point) { point.power *= 0.5f; });
+    });
+    std::size_t gather_units = 0;
+    for (int frame = 0; frame < 200 && gather_units == 0; ++frame) {
+        const LightingStats& stats = large_units.lighting->update(1e9, 1.0);
+        for (const UnitRecord& unit : stats.schedule.units) {
+            if (unit.kind == WorkKind::IimGather) {
+                EXPECT_EQ(unit.size, 16.0);
+                ++gather_units;
+            }
+        }
+    }
+    EXPECT_GT(gather_units, 0u);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "luxel/lighting/core/photon_density.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
 #include "luxel/lighting/core/surface_deltas.hpp"
+#include "luxel/runtime/jobs.hpp"
 #include "map_registry.hpp"
 
 namespace luxel::lighting {
@@ -41,7 +42,7 @@ class AimRebuilder {
     /// The first of requests(), by one scan.
     [[nodiscard]] std::optional<std::uint32_t> next_surface() const;
     /// See IlluminationMaps::rebuild_aim.
-    std::size_t rebuild(std::uint32_t surface, std::size_t max_texels);
+    std::size_t rebuild(std::uint32_t surface, std::size_t max_texels, JobSystem* jobs = nullptr);
 
     /// Whether every surface holding photons has had its first AIM (gather passes wait).
     [[nodiscard]] bool ready() const;

@@ -30,8 +30,9 @@ std::vector<MapRequest> IlluminationMaps::aim_requests() const {
     return aims_->requests();
 }
 
-std::size_t IlluminationMaps::rebuild_aim(std::uint32_t surface, std::size_t max_texels) {
-    return aims_->rebuild(surface, max_texels);
+std::size_t IlluminationMaps::rebuild_aim(std::uint32_t surface, std::size_t max_texels,
+                                          JobSystem* jobs) {
+    return aims_->rebuild(surface, max_texels, jobs);
 }
 
 std::optional<std::uint32_t> IlluminationMaps::next_aim_surface() const {

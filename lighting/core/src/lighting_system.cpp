@@ -93,6 +93,12 @@ WarmUpResult LightingSystem::warm_up(double now_seconds, double max_ms,
     constexpr int kIdleUpdates = 8;
     const Stopwatch watch(*clock_);
     WarmUpResult result;
+    // Larger units while no frame waits; back to the frame's size however the warm-up ends.
+    struct UnitScale {
+        std::uint32_t& scale;
+        ~UnitScale() { scale = 1; }
+    } const unit_scale{unit_scale_};
+    unit_scale_ = std::max<std::uint32_t>(config_.warm_up_unit_scale, 1);
     const SchedulerTotals before = scheduler_.totals();
     double reported_ms = 0.0;
     const auto report = [&] {
@@ -273,7 +279,9 @@ void LightingSystem::queue_map_units() {
     // queue time cannot follow what the frame's own retraces and rebuilds change: after a move
     // the units queued for refinement passes find their surfaces no longer refining and do
     // nothing, while the passes the move needs wait for the next frame's queue.
-    const std::size_t slice = std::max<std::uint32_t>(config_.texels_per_aim_unit, 1);
+    const std::size_t slice =
+        static_cast<std::size_t>(std::max<std::uint32_t>(config_.texels_per_aim_unit, 1)) *
+        unit_scale_;
     // One unit per slice of each requested surface: a unit never crosses to the next surface,
     // so a slice larger than a surface still takes one unit per surface.
     std::size_t aim_slices = 0;
@@ -288,7 +296,7 @@ void LightingSystem::queue_map_units() {
         scheduler_.enqueue({WorkKind::AimRebuild, unit, rank_priority(unit, aim_units),
                             [this, slice] {
                                 if (const auto surface = maps_->next_aim_surface()) {
-                                    maps_->rebuild_aim(*surface, slice);
+                                    maps_->rebuild_aim(*surface, slice, &jobs_);
                                 }
                             },
                             static_cast<double>(slice)});
@@ -298,7 +306,7 @@ void LightingSystem::queue_map_units() {
     }
     queued_aim_units_ = aim_units;
     const std::uint32_t texels_per_unit =
-        std::max<std::uint32_t>(config_.texels_per_gather_unit, 1);
+        std::max<std::uint32_t>(config_.texels_per_gather_unit, 1) * unit_scale_;
     // Gathers, like AIM rebuilds, are slices of "the next gather work" (the maps' first request:
     // the pass furthest along), so passes complete one after another.
     std::size_t gather_slices = 0;

@@ -60,8 +60,10 @@ class IlluminationMaps {
     /// units small so they fit a budget): the tree lives until the pass completes, and
     /// aim_requests() lists the pass in progress first. While a pass of another surface is in
     /// progress, the call continues that pass instead. Returns the texels done.
+    /// With `jobs`, the slice's texels are estimated in parallel (the same values).
     std::size_t rebuild_aim(std::uint32_t surface,
-                            std::size_t max_texels = std::numeric_limits<std::size_t>::max());
+                            std::size_t max_texels = std::numeric_limits<std::size_t>::max(),
+                            JobSystem* jobs = nullptr);
     /// The first of aim_requests(), without listing and sorting them all: what an AIM unit
     /// works on when it runs (nullopt: nothing to rebuild).
     [[nodiscard]] std::optional<std::uint32_t> next_aim_surface() const;
