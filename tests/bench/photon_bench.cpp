@@ -4,7 +4,7 @@
 //        level's light, traced group by group through RayScene as a retrace does, without the
 //        PhotonMap update) against rtcIntersect1 rays per second replaying the same rays in a
 //        flat Embree scene of the same triangles built here; both on the same JobSystem, timed
-//        alternately within each iteration. Counter `ratio` = segments/s over rays/s (goal 0.6),
+//        alternately within each iteration. Counter `ratio` = segments/s over rays/s (goal 0.8),
 //        `cpu_ratio` the same per CPU-second; `scene_ratio` is RayScene::intersect alone on the
 //        same rays over raw Embree.
 //   FullTrace          PhotonWorld sync + update of the whole level (every group traced and
