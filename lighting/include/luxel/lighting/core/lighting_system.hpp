@@ -45,8 +45,8 @@ struct LightingConfig {
     std::uint32_t groups_per_retrace_unit = 2;
     /// During warm_up the gather and AIM units are this many times larger: there is no frame
     /// budget to fit, and fewer, larger units spend less on scheduling and on starting each
-    /// unit's parallel loop (the sandbox level's warm-up: 301 updates and 6.0 s at 1, 34 and
-    /// 5.3 s at 16).
+    /// unit's parallel loop (the sandbox level's warm-up, docs/PERFORMANCE.md "Warm-up": 301
+    /// updates and 5.7 s at 1, 34 and 5.3 s at 16, 19 and 5.2 s at 64).
     std::uint32_t warm_up_unit_scale = 64;
 };
 
