@@ -305,8 +305,11 @@ void LightingSystem::queue_map_units() {
         scheduler_.cancel(WorkKind::AimRebuild, unit);
     }
     queued_aim_units_ = aim_units;
-    const std::uint32_t texels_per_unit =
-        std::max<std::uint32_t>(config_.texels_per_gather_unit, 1) * unit_scale_;
+    // Saturating: a huge configured unit times the warm-up's scale must not wrap to a small one.
+    const auto texels_per_unit = static_cast<std::uint32_t>(std::min<std::uint64_t>(
+        static_cast<std::uint64_t>(std::max<std::uint32_t>(config_.texels_per_gather_unit, 1)) *
+            unit_scale_,
+        std::numeric_limits<std::uint32_t>::max()));
     // Gathers, like AIM rebuilds, are slices of "the next gather work" (the maps' first request:
     // the pass furthest along), so passes complete one after another.
     std::size_t gather_slices = 0;
