@@ -5,14 +5,21 @@
 //        and p99 of (update time / budget) — `p99_ratio` is the goal (<= 1.1) — and the same for
 //        the scheduler's own run (`sched_p99_ratio`), which is what the budget governs (sync of
 //        moved objects happens before the scheduler and is outside its control).
+//   BudgetUnderLoad/B  the same, once on the idle machine and once with a busy thread on every
+//        core (a game's other work, or another process) for the length of the run, in the same
+//        iteration: `p99_ratio` (loaded p99 / budget, goal <= 1.1), `idle_p99_ratio`, and
+//        `p99_vs_idle` (loaded p99 over idle p99).
 //   Unbudgeted         the same frames with an unlimited budget: what the work costs when all of
 //        it runs every frame (the baseline the budgets spread out).
 
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <thread>
 #include <vector>
 
 #include "luxel/ecs/transform_system.hpp"
@@ -92,6 +99,66 @@ void BudgetAdherence(benchmark::State& state) {
     state.counters["p99_ms"] = quantile(run.update_ms, 0.99);
 }
 BENCHMARK(BudgetAdherence)
+    ->Arg(1)
+    ->Arg(2)
+    ->Arg(4)
+    ->Arg(8)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
+
+/// One thread per core spinning on integer work while it lives: load that competes with the
+/// job threads for the cores, as a game's own threads or another process would.
+class BusyCores {
+  public:
+    BusyCores() {
+        const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+        for (unsigned i = 0; i < cores; ++i) {
+            threads_.emplace_back([this, i] {
+                std::uint64_t x = 0x9E3779B97F4A7C15ull + i;
+                while (!stop_.load(std::memory_order_relaxed)) {
+                    for (int k = 0; k < 4096; ++k) {
+                        x ^= x << 13;
+                        x ^= x >> 7;
+                        x ^= x << 17;
+                    }
+                    sink_.fetch_add(x & 1u, std::memory_order_relaxed);
+                }
+            });
+        }
+    }
+    ~BusyCores() {
+        stop_.store(true);
+        for (std::thread& thread : threads_) {
+            thread.join();
+        }
+    }
+    BusyCores(const BusyCores&) = delete;
+    BusyCores& operator=(const BusyCores&) = delete;
+
+  private:
+    std::atomic<bool> stop_{false};
+    std::atomic<std::uint64_t> sink_{0};
+    std::vector<std::thread> threads_;
+};
+
+void BudgetUnderLoad(benchmark::State& state) {
+    const double budget = static_cast<double>(state.range(0));
+    Run idle;
+    Run loaded;
+    for (auto _ : state) {
+        idle = run_level(budget, 60, 600);
+        const BusyCores busy;
+        loaded = run_level(budget, 60, 600);
+    }
+    const double idle_p99 = quantile(idle.update_ms, 0.99);
+    const double loaded_p99 = quantile(loaded.update_ms, 0.99);
+    state.counters["p99_ratio"] = loaded_p99 / budget;
+    state.counters["median_ratio"] = quantile(loaded.update_ms, 0.5) / budget;
+    state.counters["idle_p99_ratio"] = idle_p99 / budget;
+    state.counters["p99_vs_idle"] = idle_p99 > 0.0 ? loaded_p99 / idle_p99 : 0.0;
+    state.counters["sched_p99_ratio"] = quantile(loaded.scheduler_ms, 0.99) / budget;
+}
+BENCHMARK(BudgetUnderLoad)
     ->Arg(1)
     ->Arg(2)
     ->Arg(4)
