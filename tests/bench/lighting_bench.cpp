@@ -98,13 +98,11 @@ void BudgetAdherence(benchmark::State& state) {
     state.counters["median_ms"] = quantile(run.update_ms, 0.5);
     state.counters["p99_ms"] = quantile(run.update_ms, 0.99);
 }
-BENCHMARK(BudgetAdherence)
-    ->Arg(1)
-    ->Arg(2)
-    ->Arg(4)
-    ->Arg(8)
-    ->Iterations(1)
-    ->Unit(benchmark::kMillisecond);
+/// The budgets both budget benchmarks run: 1, 2, 4 and 8 ms, one iteration each.
+void budgets(benchmark::internal::Benchmark* benchmark) {
+    benchmark->Arg(1)->Arg(2)->Arg(4)->Arg(8)->Iterations(1)->Unit(benchmark::kMillisecond);
+}
+BENCHMARK(BudgetAdherence)->Apply(budgets);
 
 /// One thread per core spinning on integer work while it lives: load that competes with the
 /// job threads for the cores, as a game's own threads or another process would.
@@ -158,13 +156,7 @@ void BudgetUnderLoad(benchmark::State& state) {
     state.counters["p99_vs_idle"] = idle_p99 > 0.0 ? loaded_p99 / idle_p99 : 0.0;
     state.counters["sched_p99_ratio"] = quantile(loaded.scheduler_ms, 0.99) / budget;
 }
-BENCHMARK(BudgetUnderLoad)
-    ->Arg(1)
-    ->Arg(2)
-    ->Arg(4)
-    ->Arg(8)
-    ->Iterations(1)
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BudgetUnderLoad)->Apply(budgets);
 
 void Unbudgeted(benchmark::State& state) {
     Run run;

@@ -15,6 +15,8 @@
 //        frames. Each iteration is one 1/30 s frame; the time is PhotonWorld's work only (sync,
 //        probes, group retraces, one caustic slice), with median and 95th percentile counters of
 //        wall time and of process CPU time (summed over the job threads).
+//   RadicalInverse     the photon samples' radical inverses as computed now against the sum of
+//        digit weights they replaced; counter `ratio` = the old way's time over the new's.
 //   ExactInvalidation  the whole level traced and stored with exact invalidation's path index
 //        against without, alternately; counters `ratio` (on / off, median), `index_bytes_per_hit`,
 //        `segments_per_hit`, `query_us` (one query for a 0.5 m box) and `groups_found`.
@@ -35,6 +37,7 @@
 
 #include "luxel/ecs/transform.hpp"
 #include "luxel/ecs/transform_system.hpp"
+#include "luxel/lighting/core/halton.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/scene/gltf.hpp"
@@ -437,6 +440,42 @@ BENCHMARK(PaperFrame)
     ->Iterations(200)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
+
+/// photon_sample's Halton dimensions: the per-prime quotient of the reversed digits
+/// (radical_inverse_in_dimension) against the sum of the digits' weights with a division per
+/// digit (radical_inverse_sum, what photon_sample used before issue 24), over the same 32
+/// dimensions and the indices of a million photons, timed alternately in each iteration.
+/// Counters: `ratio` (sum's time over the quotient's: the speed-up), ns per sample of each.
+void RadicalInverse(benchmark::State& state) {
+    constexpr std::uint64_t kIndices = 1u << 20;
+    constexpr std::uint64_t kStride = 97;  // 10,811 indices spread over the million
+    double quotient_seconds = 0.0;
+    double sum_seconds = 0.0;
+    std::uint64_t samples = 0;
+    for (auto _ : state) {
+        double total = 0.0;
+        Stopwatch quotient_clock;
+        for (std::uint64_t index = 0; index < kIndices; index += kStride) {
+            for (std::uint32_t dim = 0; dim < lighting::kHaltonPrimes.size(); ++dim) {
+                total += lighting::radical_inverse_in_dimension(dim, index);
+            }
+        }
+        quotient_seconds += to_seconds(quotient_clock.elapsed());
+        Stopwatch sum_clock;
+        for (std::uint64_t index = 0; index < kIndices; index += kStride) {
+            for (std::uint32_t dim = 0; dim < lighting::kHaltonPrimes.size(); ++dim) {
+                total -= lighting::radical_inverse_sum(lighting::kHaltonPrimes[dim], index);
+            }
+        }
+        sum_seconds += to_seconds(sum_clock.elapsed());
+        benchmark::DoNotOptimize(total);
+        samples += ((kIndices + kStride - 1) / kStride) * lighting::kHaltonPrimes.size();
+    }
+    state.counters["ratio"] = quotient_seconds > 0.0 ? sum_seconds / quotient_seconds : 0.0;
+    state.counters["quotient_ns"] = 1e9 * quotient_seconds / static_cast<double>(samples);
+    state.counters["sum_ns"] = 1e9 * sum_seconds / static_cast<double>(samples);
+}
+BENCHMARK(RadicalInverse)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -106,7 +106,7 @@ glm::vec3 CpuGatherer::gather_one(const GatherTexel& texel) const {
     const auto seed = static_cast<std::uint32_t>(rotation.x * 4294967295.0);
     // Summed in double: thousands of rays per texel, and the mean must not depend on order.
     glm::dvec3 sum(0.0);
-    // The rays leave in bundles from the texel: one coherent stream each (intersect_from).
+    // The rays leave in bundles from the texel: one stream each (intersect_from).
     constexpr std::uint32_t kBundle = 64;
     std::array<glm::vec3, kBundle> directions;
     std::array<std::optional<RayHit>, kBundle> hits;

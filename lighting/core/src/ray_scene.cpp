@@ -120,6 +120,7 @@ struct RayScene::Impl {
     // a measurable part of a photon's trace.
     std::vector<const Object*> static_owner;
     std::vector<const Object*> instance_owner;
+    std::size_t dynamic_count = 0;      // dynamic objects now
     std::size_t committed_dynamic = 0;  // dynamic objects in the top level as last committed
     ObjectId next_id = 0;
     bool static_dirty = true;
@@ -294,6 +295,7 @@ ObjectId RayScene::add_object(TriangleMesh mesh, const glm::mat4& transform, boo
             impl_->instance_owner.resize(added.instance_id + 1, nullptr);
         }
         impl_->instance_owner[added.instance_id] = &added;
+        ++impl_->dynamic_count;
     }
     return id;
 }
@@ -318,6 +320,7 @@ void RayScene::remove_object(ObjectId id) {
     if (object.dynamic) {
         rtcDetachGeometry(impl_->top.get(), object.instance_id);
         impl_->instance_owner[object.instance_id] = nullptr;
+        --impl_->dynamic_count;
         impl_->top_dirty = true;
     } else {
         std::replace(impl_->static_owner.begin(), impl_->static_owner.end(),
@@ -336,19 +339,19 @@ bool RayScene::is_dynamic(ObjectId id) const {
 }
 
 void RayScene::commit() {
+    const bool changed = impl_->static_dirty || impl_->top_dirty;
     if (impl_->static_dirty) {
         impl_->rebuild_static();
         impl_->static_dirty = false;
-        impl_->recompute_bounds();
     }
     if (impl_->top_dirty) {
         rtcCommitScene(impl_->top.get());
-        impl_->committed_dynamic = static_cast<std::size_t>(
-            std::count_if(impl_->objects.begin(), impl_->objects.end(),
-                          [](const auto& entry) { return entry.second.dynamic; }));
-        impl_->recompute_bounds();
+        impl_->committed_dynamic = impl_->dynamic_count;
         impl_->top_dirty = false;
         ++impl_->top_commits;
+    }
+    if (changed) {
+        impl_->recompute_bounds();
     }
 }
 
@@ -397,7 +400,8 @@ std::optional<RayHit> RayScene::facing_the_ray(const glm::vec3& origin, const gl
 namespace {
 
 /// Sets up `query` in place for a closest-hit query (building a temporary and copying it in
-/// made the stream's setup stall on store forwarding: a tenth of a warm-up's samples).
+/// made the stream's setup stall on store forwarding: a tenth of the samples of a `perf record`
+/// of the sandbox level's warm-up).
 void set_ray_query(RTCRayHit& query, const glm::vec3& origin, const glm::vec3& direction,
                    float max_distance) {
     query.ray.org_x = origin.x;

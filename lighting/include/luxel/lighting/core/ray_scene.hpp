@@ -85,9 +85,9 @@ class RayScene {
         const glm::vec3& origin, const glm::vec3& direction,
         float max_distance = std::numeric_limits<float>::infinity()) const;
     /// The closest hit of each ray from one origin (a texel's gather rays), as intersect()
-    /// gives it, traced as one coherent stream: Embree shares the traversal of rays that
-    /// start together and point alike. hits[i] answers directions[i] (the shorter span decides
-    /// how many). Thread-safe between commits.
+    /// gives it, traced as one Embree stream (rtcIntersect1M): cheaper per ray than one call
+    /// each (17% on the gather, docs/PERFORMANCE.md). hits[i] answers directions[i] (the shorter
+    /// span decides how many). Thread-safe between commits.
     void intersect_from(const glm::vec3& origin, std::span<const glm::vec3> directions,
                         float max_distance, std::span<std::optional<RayHit>> hits) const;
     /// Whether anything lies along the ray in (0, max_distance).
