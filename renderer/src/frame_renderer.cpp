@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "edge_anti_aliasing.hpp"
 #include "fill_budget.hpp"
 #include "frame_lights.hpp"
 #include "frame_targets.hpp"
@@ -62,7 +63,7 @@ void clear_colour(GLuint framebuffer, GLint buffer = 0) {
 
 std::string_view name(RenderPass pass) {
     static constexpr std::array<std::string_view, kRenderPassCount> names = {
-        "shadows", "gbuffer", "direct", "indirect", "specular", "composite"};
+        "shadows", "gbuffer", "direct", "indirect", "specular", "composite", "anti_aliasing"};
     return names[static_cast<std::size_t>(pass)];
 }
 
@@ -92,6 +93,7 @@ struct FrameRenderer::Impl {
     lighting::LightmapTextures lightmaps;
     lighting::SkyTexture sky;  ///< the lighting system's skies, behind everything drawn
     SpecularCubeMaps cube_maps;
+    std::optional<EdgeAntiAliasing> anti_aliasing;  ///< FrameSettings::anti_aliasing
     PassTimer timer;
     FrameTimings timings;
     FrameCounters counters;
@@ -128,12 +130,15 @@ struct FrameRenderer::Impl {
                                           {ShaderStage::Fragment, "render/indirect.frag"}})),
           composite_program(shaders.build({{ShaderStage::Vertex, "post/fullscreen.vert"},
                                            {ShaderStage::Fragment, "render/composite.frag"}})),
-          targets(s.width, s.height),
+          targets(s.width, s.height, s.anti_aliasing),
           shadows(s.cube_shadow_size, s.map_shadow_size, s.filtered_shadows),
           cube_maps(shaders, s.specular_cube_size, s.specular_faces_per_frame),
           shader_library(shaders),
           mesh_changes(r.observe<scene::MeshInstance>(ecs::ObserverStart::WithExisting)),
           moves(r.observe<ecs::WorldTransform>()) {
+        if (s.anti_aliasing) {
+            anti_aliasing.emplace(shaders);
+        }
         const std::array<std::uint16_t, 4> zero{};  // half floats: 0
         glTextureSubImage2D(black.id(), 0, 0, 0, 1, 1, GL_RGBA, GL_HALF_FLOAT, zero.data());
         gl::check_error("FrameRenderer");
@@ -278,7 +283,8 @@ struct FrameRenderer::Impl {
     }
 
     void composite_pass(const FrameCamera& camera, bool direct, bool indirect, bool specular) {
-        const GLuint fbo = targets.frame_target.id();
+        // With anti-aliasing the sum goes to the composed target, which the edge pass reads.
+        const GLuint fbo = anti_aliasing ? targets.composed_target.id() : targets.frame_target.id();
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
         glViewport(0, 0, targets.width, targets.height);
         const bool caustic = terms.caustics && caustics.texture != 0;
@@ -436,6 +442,11 @@ struct FrameRenderer::Impl {
         timer.begin(RenderPass::Composite);
         composite_pass(camera, direct, indirect, specular);
         timer.end(RenderPass::Composite);
+        if (anti_aliasing) {
+            timer.begin(RenderPass::AntiAliasing);
+            anti_aliasing->run(targets);
+            timer.end(RenderPass::AntiAliasing);
+        }
         if (!caustic_stage) {
             caustics = external;  // the own pass's texture is not an external term
         }
@@ -485,7 +496,7 @@ void FrameRenderer::resize(int width, int height) {
     settings.width = width;
     settings.height = height;
     validate(settings);
-    impl_->targets = FrameTargets(width, height);
+    impl_->targets = FrameTargets(width, height, settings.anti_aliasing);
     impl_->settings = settings;
     impl_->own_caustics.reset();  // made again at the new size by the next frame that needs it
 }

@@ -25,7 +25,7 @@ gl::Framebuffer single_target(const gl::Texture& texture, const char* what) {
 
 }  // namespace
 
-FrameTargets::FrameTargets(int w, int h) : width(w), height(h) {
+FrameTargets::FrameTargets(int w, int h, bool anti_aliasing) : width(w), height(h) {
     albedo = target_texture(GL_RGBA16F, w, h);
     normal = target_texture(GL_RGBA16F, w, h);
     position = target_texture(GL_RGBA32F, w, h);
@@ -60,6 +60,12 @@ FrameTargets::FrameTargets(int w, int h) : width(w), height(h) {
     specular_target.check_complete("specular target");
     frame = target_texture(GL_RGBA32F, w, h);
     frame_target = single_target(frame, "frame target");
+    if (anti_aliasing) {
+        composed = target_texture(GL_RGBA32F, w, h);
+        glTextureParameteri(composed.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(composed.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        composed_target = single_target(composed, "composed target");
+    }
     gl::check_error("FrameTargets");
 }
 

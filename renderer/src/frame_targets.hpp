@@ -30,10 +30,15 @@ struct FrameTargets {
     gl::Framebuffer specular_target;
     gl::Texture frame;
     gl::Framebuffer frame_target;
+    /// With anti-aliasing only: the composite's sum, before the edges are smoothed into
+    /// `frame`. Bilinear, since the edge pass reads between pixels. Without anti-aliasing the
+    /// composite writes `frame` and these stay empty.
+    gl::Texture composed;
+    gl::Framebuffer composed_target;
 
     /// Allocates everything at `width` x `height` (throws luxel::Error for a bad size or an
-    /// incomplete framebuffer).
-    FrameTargets(int width, int height);
+    /// incomplete framebuffer); `anti_aliasing` adds the composed target.
+    FrameTargets(int width, int height, bool anti_aliasing);
     FrameTargets() = default;
 };
 

@@ -146,6 +146,11 @@ int run(int argc, char** argv) {
         },
         "lighting terms to draw, comma-separated: direct, indirect, caustics, specular, "
         "emission, or all (default all)");
+    app.add_option_function<std::string>(
+           "--aa", [&](const std::string& text) { options.app.anti_aliasing = text == "on"; },
+           "anti-aliasing of the frame's geometric edges (docs/METHOD.md 8.4)")
+        ->check(CLI::IsMember({"on", "off"}))
+        ->default_str("on");
     Size size;
     app.add_option_function<std::string>(
         "--size",

@@ -76,6 +76,7 @@ SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const Shade
     renderer::FrameSettings frame;
     frame.width = width_;
     frame.height = height_;
+    frame.anti_aliasing = settings.anti_aliasing;
     renderer_ = std::make_unique<renderer::FrameRenderer>(registry_, *lighting_, frame, shaders);
     // The loading screen: the first photon maps, AIMs and IIMs are built at once, so the game
     // starts lit and the per-frame budget only has to follow changes.

@@ -31,6 +31,7 @@ struct AppSettings {
     scene::LoadOptions load_limits;     ///< --limit
     std::optional<scene::SkySpec> sky;  ///< --sky: instead of the level's
     prep::AutoPrepSettings auto_prep;   ///< --no-auto-prep, --prep-cache
+    bool anti_aliasing = true;          ///< --aa: smooth the frame's geometric edges
 };
 
 /// The game: a level in an ECS registry, the game systems that move it, the lighting system and

@@ -42,7 +42,7 @@ std::string BenchConfig::knobs() const {
         << " texels_per_unit=" << texels_per_unit << " filter=" << filter << " refine=" << refine
         << " local=" << local << " change_blend=" << change_blend << " exact=" << exact
         << " keep=" << keep << " caustics=" << caustic_photons << "x" << caustic_slices
-        << " backend=" << backend << " kernel=" << kernel;
+        << " backend=" << backend << " kernel=" << kernel << " aa=" << aa;
     return out.str();
 }
 
@@ -88,6 +88,8 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.backend = value;
             } else if (sweep.knob == "kernel") {
                 c.kernel = value;
+            } else if (sweep.knob == "aa") {
+                c.aa = value;
             } else {
                 continue;  // budget: handled above
             }

@@ -39,6 +39,9 @@ struct BenchConfig {
     /// The screen-space caustic filter of the frame (CausticPass): larsen, box, cone (the round
     /// cone) or world (the world-space cone). Changes only the image and its caustic pass time.
     std::string kernel = "larsen";
+    /// The frame's anti-aliasing of geometric edges (FrameSettings::anti_aliasing): "on" or
+    /// "off". Changes only the image and its anti-aliasing pass time.
+    std::string aa = "on";
 
     [[nodiscard]] lighting::LightingConfig lighting() const;
     /// "groups=77 per_group=40 ..." for logs and the Markdown table.

@@ -80,6 +80,10 @@ Sweep parse_sweep(const std::string& text) {
                 throw Error(what + ": '" + value +
                             "' is not a caustic kernel (larsen, box, cone, world)");
             }
+        } else if (sweep.knob == "aa") {
+            if (value != "on" && value != "off") {
+                throw Error(what + ": '" + value + "' is not on or off");
+            }
         } else if (sweep.knob == "filter") {
             const double v = number(value, what);
             if (v < 0.0 || v > 16.0 || v != std::floor(v)) {
@@ -108,7 +112,7 @@ Sweep parse_sweep(const std::string& text) {
         } else {
             throw Error("--sweep " + sweep.knob +
                         ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, filter, "
-                        "refine, local, change_blend, exact, keep, caustics, backend, kernel)");
+                        "refine, local, change_blend, exact, keep, caustics, backend, kernel, aa)");
         }
     }
     return sweep;
@@ -209,10 +213,9 @@ void validate(const Options& options) {
         throw Error("--image-spp: need at least one sample per pixel");
     }
     for (const Sweep& sweep : options.sweeps) {
-        if (sweep.knob == "kernel" && !options.image.enabled) {
-            throw Error(
-                "--sweep kernel: the caustic kernel only changes the image, which "
-                "--no-image turns off");
+        if ((sweep.knob == "kernel" || sweep.knob == "aa") && !options.image.enabled) {
+            throw Error("--sweep " + sweep.knob +
+                        ": it only changes the image, which --no-image turns off");
         }
     }
 }

@@ -133,7 +133,8 @@ ConfigRun::ConfigRun(const LevelRunContext& context, const BenchConfig& config)
             camera_ = ref::default_camera(options_.image.width, options_.image.height);
         }
         view_ = std::make_unique<FrameView>(registry_, *lighting_, *camera_,
-                                            parse_kernel(config.kernel), *context.shaders);
+                                            parse_kernel(config.kernel), config.aa == "on",
+                                            *context.shaders);
     }
 }
 

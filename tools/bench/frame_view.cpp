@@ -8,8 +8,9 @@ namespace luxel::bench {
 namespace {
 
 renderer::FrameSettings frame_settings(const lighting::reference::ReferenceCamera& camera,
-                                       lighting::CausticKernel kernel) {
+                                       lighting::CausticKernel kernel, bool anti_aliasing) {
     renderer::FrameSettings settings;
+    settings.anti_aliasing = anti_aliasing;
     settings.caustics = lighting::CausticPassSettings{};
     settings.caustics->kernel = kernel;
     settings.width = camera.width;
@@ -77,9 +78,10 @@ renderer::FrameCamera frame_camera(const lighting::reference::ReferenceCamera& c
 
 FrameView::FrameView(ecs::Registry& registry, const lighting::LightingSystem& lighting,
                      const lighting::reference::ReferenceCamera& camera,
-                     lighting::CausticKernel kernel, const ShaderLibrary& shaders)
+                     lighting::CausticKernel kernel, bool anti_aliasing,
+                     const ShaderLibrary& shaders)
     : camera_(frame_camera(camera)),
-      renderer_(registry, lighting, frame_settings(camera, kernel), shaders) {}
+      renderer_(registry, lighting, frame_settings(camera, kernel, anti_aliasing), shaders) {}
 
 FrameShot FrameView::render(double now_seconds) {
     // As the sandbox: the renderer's own caustic pass runs between its G-buffer and its

@@ -43,7 +43,7 @@ class FrameView {
   public:
     FrameView(ecs::Registry& registry, const lighting::LightingSystem& lighting,
               const lighting::reference::ReferenceCamera& camera, lighting::CausticKernel kernel,
-              const ShaderLibrary& shaders);
+              bool anti_aliasing, const ShaderLibrary& shaders);
     FrameView(const FrameView&) = delete;
     FrameView& operator=(const FrameView&) = delete;
 

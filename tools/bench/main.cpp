@@ -96,7 +96,7 @@ int run(int argc, char** argv) {
                    "KNOB=V1,V2,... (budget, photons GxM, aim_n, rays, texels_per_unit, filter, "
                    "refine, local 0|1, change_blend SECONDS, exact 0|1, keep SIGMAS, caustics NxK, "
                    "backend cpu|gpu, kernel "
-                   "larsen|box|cone|world); repeatable, "
+                   "larsen|box|cone|world, aa on|off); repeatable, "
                    "each varies one knob from the paper's configuration");
     app.add_option("--image", image_size,
                    "WIDTHxHEIGHT of the frames compared for the image error (default 160x120): "

@@ -29,6 +29,10 @@ struct FrameSettings {
     int map_shadow_size = 1024;  ///< texels per edge of 2D maps (spot, directional)
     /// 3 x 3 PCF of bilinear comparisons (soft edges); false: one hard comparison per pixel.
     bool filtered_shadows = true;
+    /// Smooths the frame's geometric edges after the composite (docs/METHOD.md §8.4): pixels
+    /// where the G-buffer shows two surfaces meeting take the mix of both sides their coverage
+    /// gives; every other pixel is the composite's exactly. false: no edge pass, no extra target.
+    bool anti_aliasing = true;
     /// Wait for this frame's GPU timer queries in render() (benchmarks, tests). Otherwise
     /// render() reports the latest frame whose queries are done, without stalling the GPU.
     bool wait_for_timings = false;
@@ -53,8 +57,16 @@ struct FrameTerms {
 };
 
 /// The GPU passes of a frame, in order.
-enum class RenderPass : std::uint8_t { Shadows, GBuffer, Direct, Indirect, Specular, Composite };
-inline constexpr std::size_t kRenderPassCount = 6;
+enum class RenderPass : std::uint8_t {
+    Shadows,
+    GBuffer,
+    Direct,
+    Indirect,
+    Specular,
+    Composite,
+    AntiAliasing
+};
+inline constexpr std::size_t kRenderPassCount = 7;
 /// "shadows", "gbuffer", ...
 [[nodiscard]] std::string_view name(RenderPass pass);
 

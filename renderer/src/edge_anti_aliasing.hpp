@@ -1,0 +1,28 @@
+#pragma once
+
+#include "frame_targets.hpp"
+#include "luxel/runtime/program.hpp"
+
+namespace luxel {
+class ShaderLibrary;
+}
+
+namespace luxel::renderer {
+
+/// Anti-aliasing of the composed frame where the G-buffer shows two surfaces meeting
+/// (shaders/post/edge_aa.frag, docs/METHOD.md §8.4): reads FrameTargets::composed and the
+/// G-buffer's positions and normals, writes FrameTargets::frame. Pixels away from geometric
+/// edges are copied exactly, so flat regions, textures, shadows and light maps are untouched.
+class EdgeAntiAliasing {
+  public:
+    explicit EdgeAntiAliasing(const ShaderLibrary& shaders);
+
+    /// Draws into targets.frame_target with a full-screen triangle; the caller binds the empty
+    /// vertex array and restores state (FrameRenderer's StateGuard).
+    void run(const FrameTargets& targets) const;
+
+  private:
+    gl::Program program_;
+};
+
+}  // namespace luxel::renderer
