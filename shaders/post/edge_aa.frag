@@ -22,8 +22,8 @@ layout(location = 0) out vec4 out_radiance;
 
 // Contrast below which an edge is left alone: 8% of the neighbourhood's brightest pixel.
 const float kMinContrast = 0.08;
-// Radiance below this is black to any exposure a level uses: the division stays finite at 0.
-const float kBlack = 1e-6;
+// A neighbourhood darker than this is black to any exposure (and 1 / it would overflow).
+const float kBlack = 1e-30;
 // A turn of the normal past 30 degrees between neighbours is a crease.
 const float kCreaseCos = 0.866;
 // A neighbour more than 0.25 of its distance off the pixel's tangent plane lies on another
@@ -96,7 +96,11 @@ void main() {
             brightest = max(brightest, luminance(radiance_at(p + ivec2(i, j))));
         }
     }
-    to_contrast = 1.0 / (brightest + kBlack);
+    if (brightest < kBlack) {
+        out_radiance = vec4(centre, 1.0);
+        return;
+    }
+    to_contrast = 1.0 / brightest;
     float c = luma(centre);
     float n = luma_at(p + ivec2(0, 1));
     float s = luma_at(p - ivec2(0, 1));

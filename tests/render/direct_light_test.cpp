@@ -37,6 +37,9 @@ renderer::FrameSettings test_settings(bool filtered = true) {
     settings.height = kSize;
     settings.filtered_shadows = filtered;
     settings.wait_for_timings = true;
+    // Every covered pixel against the analytic radiance, edges included: no edge filter
+    // (tests/render/anti_aliasing_test.cpp tests it).
+    settings.anti_aliasing = false;
     return settings;
 }
 

@@ -79,6 +79,8 @@ class Lightmaps : public ::testing::Test {
             renderer::FrameSettings settings;
             settings.width = kSize;
             settings.height = kSize;
+            // Pixel values against the IIM, edges of the plane included: no edge filter.
+            settings.anti_aliasing = false;
             renderer_ = std::make_unique<renderer::FrameRenderer>(world_.registry, *world_.lighting,
                                                                   settings);
         }

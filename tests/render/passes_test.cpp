@@ -32,6 +32,9 @@ renderer::FrameSettings settings() {
     s.width = kSize;
     s.height = kSize;
     s.wait_for_timings = true;
+    // The frame pixel by pixel against the sum of its terms: no edge filter, which mixes
+    // neighbours at edges (tests/render/anti_aliasing_test.cpp tests it).
+    s.anti_aliasing = false;
     return s;
 }
 
