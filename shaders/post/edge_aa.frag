@@ -56,10 +56,9 @@ float luma_at_uv(vec2 uv) {
     return luma(textureLod(u_frame, uv, 0.0).rgb);
 }
 
-// Whether pixels p and q show different surfaces.
-bool surfaces_differ(ivec2 p, ivec2 q) {
+// Whether the pixel at position xp with normal np and pixel q show different surfaces.
+bool surfaces_differ(vec4 xp, vec3 np, ivec2 q) {
     q = clamp(q, ivec2(0), frame_size - 1);
-    vec4 xp = texelFetch(u_position, p, 0);
     vec4 xq = texelFetch(u_position, q, 0);
     if (xp.w != xq.w) {
         return true;
@@ -67,7 +66,6 @@ bool surfaces_differ(ivec2 p, ivec2 q) {
     if (xp.w == 0.0) {
         return false;  // sky on both sides
     }
-    vec3 np = texelFetch(u_normal, p, 0).xyz;
     vec3 nq = texelFetch(u_normal, q, 0).xyz;
     if (dot(np, nq) < kCreaseCos) {
         return true;
@@ -78,8 +76,11 @@ bool surfaces_differ(ivec2 p, ivec2 q) {
 }
 
 bool on_geometric_edge(ivec2 p) {
-    return surfaces_differ(p, p + ivec2(1, 0)) || surfaces_differ(p, p - ivec2(1, 0)) ||
-           surfaces_differ(p, p + ivec2(0, 1)) || surfaces_differ(p, p - ivec2(0, 1));
+    // The pixel's own position and normal are read once for its four neighbours.
+    vec4 xp = texelFetch(u_position, p, 0);
+    vec3 np = texelFetch(u_normal, p, 0).xyz;
+    return surfaces_differ(xp, np, p + ivec2(1, 0)) || surfaces_differ(xp, np, p - ivec2(1, 0)) ||
+           surfaces_differ(xp, np, p + ivec2(0, 1)) || surfaces_differ(xp, np, p - ivec2(0, 1));
 }
 
 void main() {
