@@ -29,9 +29,10 @@ const float kCreaseCos = 0.866;
 // A neighbour more than 0.25 of its distance off the pixel's tangent plane lies on another
 // surface (a step in depth); neighbours on one plane, even at grazing angles, give 0.
 const float kOffPlane = 0.25;
-// Steps of the search along the edge, in pixels: one at a time near, longer strides far.
-const int kSearchSteps = 10;
-const float kStride[kSearchSteps] = float[](1.0, 1.0, 1.0, 1.0, 1.5, 2.0, 2.0, 4.0, 4.0, 8.0);
+// The search along the edge: a first step of one pixel each way, then these strides, one at a
+// time near and longer far (up to 25 pixels from the centre).
+const int kStrides = 9;
+const float kStride[kStrides] = float[](1.0, 1.0, 1.0, 1.5, 2.0, 2.0, 4.0, 4.0, 8.0);
 
 ivec2 frame_size;
 float to_contrast;  // 1 / the neighbourhood's brightest luminance
@@ -150,7 +151,7 @@ void main() {
     float end_ahead = luma_at_uv(uv_ahead) - edge_level;
     bool done_back = abs(end_back) >= tolerance;
     bool done_ahead = abs(end_ahead) >= tolerance;
-    for (int i = 1; i < kSearchSteps && !(done_back && done_ahead); ++i) {
+    for (int i = 0; i < kStrides && !(done_back && done_ahead); ++i) {
         if (!done_back) {
             uv_back -= kStride[i] * along;
             end_back = luma_at_uv(uv_back) - edge_level;
