@@ -111,11 +111,12 @@ ReferenceMaps reference_for(const std::filesystem::path& cache_dir, const std::s
                             JobSystem& jobs) {
     ReferenceMaps maps;
     // The version names the reference's algorithms: v2, caustic photons from its own
-    // CausticDiscEmitter instead of the real-time CausticEmitter.
+    // CausticDiscEmitter instead of the real-time CausticEmitter; v3, texel areas counting only
+    // the part no object rests on (ReferenceTexel::area).
     maps.key = pose + ";indirect_photons=" + std::to_string(spec.indirect_photons) +
                ";caustic_photons=" + std::to_string(spec.caustic_photons) +
                ";spp=" + std::to_string(spec.spp) + ";seed=" + std::to_string(spec.seed) +
-               ";texels=" + std::to_string(scene.texel_count()) + ";reference=v2";
+               ";texels=" + std::to_string(scene.texel_count()) + ";reference=v3";
     // Area lights' and skies' direct light counts as indirect (reference_settings): a level
     // that has them gets a new entry; one lit by delta lights alone keeps its reference.
     const auto lights = scene.lights();

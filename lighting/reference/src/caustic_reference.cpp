@@ -97,7 +97,7 @@ void CausticReference::trace(const Pair& pair, std::uint64_t index, Deposit& dep
                 ++counters.absorbed;
                 return;
             }
-            const std::int64_t texel = scene_->texel_at(hit->surface, hit->lightmap_uv);
+            const std::int64_t texel = scene_->open_texel_at(hit->surface, hit->lightmap_uv);
             const double area =
                 texel >= 0 ? scene_->texel(static_cast<std::size_t>(texel)).area : 0.0;
             if (texel < 0 || !(area > 0.0)) {

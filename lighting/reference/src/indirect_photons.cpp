@@ -209,7 +209,7 @@ void IndirectPhotons::trace(std::uint64_t index, std::vector<Deposit>& out,
             break;
         }
         if (diffuse_seen) {
-            const std::int64_t t = scene_->texel_at(hit->surface, hit->lightmap_uv);
+            const std::int64_t t = scene_->open_texel_at(hit->surface, hit->lightmap_uv);
             const double area = t >= 0 ? scene_->texel(static_cast<std::size_t>(t)).area : 0.0;
             if (t >= 0 && area > 0.0) {
                 const auto texel = static_cast<std::uint32_t>(t);

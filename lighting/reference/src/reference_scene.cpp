@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include <glm/gtc/constants.hpp>
@@ -18,6 +19,56 @@ namespace {
 
 glm::vec3 to_world(const glm::mat4& transform, const glm::vec3& p) {
     return glm::vec3(transform * glm::vec4(p, 1.0f));
+}
+
+/// Sub-points per texel edge at which a texel's open part is measured (kSub^2 per texel).
+constexpr int kSub = 4;
+enum : std::uint8_t { kUnknown = 0, kOpen = 1, kHidden = 2 };
+
+/// The barycentric coordinates of `q` in the triangle `uv`; all negative for a degenerate one.
+glm::dvec3 barycentric(const std::array<glm::dvec2, 3>& uv, const glm::dvec2& q) {
+    const glm::dvec2 e1 = uv[1] - uv[0];
+    const glm::dvec2 e2 = uv[2] - uv[0];
+    const glm::dvec2 d = q - uv[0];
+    const double det = e1.x * e2.y - e1.y * e2.x;
+    if (!(std::abs(det) > 0.0)) {
+        return glm::dvec3(-1.0);
+    }
+    const double b1 = (d.x * e2.y - d.y * e2.x) / det;
+    const double b2 = (e1.x * d.y - e1.y * d.x) / det;
+    return {1.0 - b1 - b2, b1, b2};
+}
+
+/// Whether a point of a light-mapped surface (world space, unit front normal `n`) is hidden by
+/// an object resting on the surface: a surface within half a texel (`near`) straight above it,
+/// as under a box standing on a bumpy floor, or the point inside a closed object: its normal and
+/// four rays 60 degrees off it all meet faces from behind, as under a crate whose bottom face
+/// lies in the floor's plane. One back face is not enough: a floor under a roof modelled facing
+/// the sky sees the roof from behind and the walls around from the front.
+bool hidden_point(const RayScene& rays, const glm::vec3& p, const glm::vec3& n, float near) {
+    const glm::vec3 origin = offset_ray_origin(p, n);
+    const std::optional<RayHit> up = rays.intersect(origin, n);
+    if (!up) {
+        return false;
+    }
+    const auto from_behind = [](const glm::vec3& d, const std::optional<RayHit>& hit) {
+        return hit && glm::dot(hit->geometric_normal, d) > 0.0f;
+    };
+    if (!from_behind(n, up)) {
+        return up->distance < near;
+    }
+    const glm::vec3 t = glm::normalize(
+        glm::cross(n, std::abs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)));
+    const glm::vec3 b = glm::cross(n, t);
+    constexpr float kCos = 0.5f;  // cos 60 degrees
+    constexpr float kSin = 0.8660254f;
+    for (const glm::vec3& side : {t, -t, b, -b}) {
+        const glm::vec3 d = kCos * n + kSin * side;
+        if (!from_behind(d, rays.intersect(origin, d))) {
+            return false;
+        }
+    }
+    return true;
 }
 
 /// Hash-grid key of a point quantised to `cell`.
@@ -213,6 +264,25 @@ std::int64_t ReferenceScene::texel_at(std::int32_t surface, const glm::vec2& uv)
     return found == lookup.end() ? -1 : static_cast<std::int64_t>(found->second);
 }
 
+std::int64_t ReferenceScene::open_texel_at(std::int32_t surface, const glm::vec2& uv) const {
+    const std::int64_t t = texel_at(surface, uv);
+    if (t < 0) {
+        return t;
+    }
+    // texel_at found the surface, so its page size is known; the sub-point is the fraction of
+    // the way across the texel.
+    const int size =
+        surfaces_[static_cast<std::size_t>(surface_slot_[static_cast<std::size_t>(surface)])]
+            .page_size;
+    const double u = static_cast<double>(uv.x) * size;
+    const double v = static_cast<double>(uv.y) * size;
+    const int i = std::clamp(static_cast<int>((u - std::floor(u)) * kSub), 0, kSub - 1);
+    const int j = std::clamp(static_cast<int>((v - std::floor(v)) * kSub), 0, kSub - 1);
+    const std::size_t at =
+        static_cast<std::size_t>(t) * kSub * kSub + static_cast<std::size_t>(j * kSub + i);
+    return at < sub_points_.size() && sub_points_[at] == kHidden ? -1 : t;
+}
+
 void ReferenceScene::find_emitters() {
     // An area light arrives as world-space triangles; the ray scene reports (object,
     // triangle). They are matched by centroid in a hash grid whose cell is the tolerance, so
@@ -294,7 +364,15 @@ void ReferenceScene::find_specular_objects() {
 
 void ReferenceScene::measure_texels() {
     // Areas: every light-mapped triangle's UV footprint clipped against the texel squares it
-    // overlaps, scaled by the triangle's world-to-UV area ratio (exact for an affine map).
+    // overlaps, scaled by the triangle's world-to-UV area ratio (exact for an affine map), times
+    // the share of it a camera can see: of the kSub x kSub sub-points of the texel that lie in
+    // the triangle, those no object rests on (hidden_point). A texel half under a box's edge
+    // then counts half its area, and the photons binned in it (indirect_photons.cpp,
+    // caustic_reference.cpp) give the light on its open half: what a player sees beside the
+    // box, not that light averaged with the dark under it, which no view shows and which a
+    // light map holding it would paint along the box's base as a dark band. Each sub-point is
+    // tested once, whichever of the (possibly coincident) triangles over it comes first.
+    sub_points_.assign(texel_count_ * kSub * kSub, kUnknown);
     for (ObjectId object : rays_->objects()) {
         const TriangleMesh& mesh = rays_->mesh(object);
         if (mesh.lightmap_uvs.size() != mesh.positions.size()) {
@@ -325,6 +403,9 @@ void ReferenceScene::measure_texels() {
                 continue;
             }
             const double scale = world_area / uv_area;
+            const glm::vec3 normal(
+                glm::normalize(glm::cross(world[1] - world[0], world[2] - world[0])));
+            const auto near = static_cast<float>(0.5 * std::sqrt(scale));  // half a texel
             // Clipped to the page: texels exist only there, and UVs far off it (a hostile file)
             // must not make the loop walk thousands of pages of nothing.
             const glm::dvec2 lo = glm::clamp(glm::min(uv[0], glm::min(uv[1], uv[2])),
@@ -341,7 +422,38 @@ void ReferenceScene::measure_texels() {
                         continue;
                     }
                     const double inside = scene::triangle_area_in_texel(uv[0], uv[1], uv[2], x, y);
-                    surface.texels[found->second - surface.first_texel].area += inside * scale;
+                    if (!(inside > 0.0)) {
+                        continue;
+                    }
+                    // A sub-point on the triangle's edge is shared with the triangle across
+                    // it: each counts it half (a quad's diagonal runs through texel corners).
+                    double in_triangle = 0.0;
+                    double open = 0.0;
+                    for (int j = 0; j < kSub; ++j) {
+                        for (int i = 0; i < kSub; ++i) {
+                            const glm::dvec2 q(x + (i + 0.5) / kSub, y + (j + 0.5) / kSub);
+                            const glm::dvec3 w = barycentric(uv, q);
+                            const double least = std::min(w.x, std::min(w.y, w.z));
+                            if (!(least >= -1e-12)) {
+                                continue;
+                            }
+                            const double weight = least > 1e-12 ? 1.0 : 0.5;
+                            in_triangle += weight;
+                            std::uint8_t& state =
+                                sub_points_[static_cast<std::size_t>(found->second) * kSub * kSub +
+                                            static_cast<std::size_t>(j * kSub + i)];
+                            if (state == kUnknown) {
+                                const glm::vec3 point(w.x * world[0] + w.y * world[1] +
+                                                      w.z * world[2]);
+                                state = hidden_point(*rays_, point, normal, near) ? kHidden : kOpen;
+                            }
+                            open += state == kOpen ? weight : 0.0;
+                        }
+                    }
+                    // A sliver with no sub-point in it counts as open.
+                    const double seen = in_triangle > 0.0 ? open / in_triangle : 1.0;
+                    surface.texels[found->second - surface.first_texel].area +=
+                        inside * scale * seen;
                 }
             }
         }

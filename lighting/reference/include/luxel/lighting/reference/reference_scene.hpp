@@ -33,8 +33,10 @@ struct ReferenceTexel {
     glm::vec3 geometric{0.0f, 1.0f, 0.0f};
     std::int32_t x = 0;  ///< page texel
     std::int32_t y = 0;
-    /// World m^2 of the surface inside the texel's square (less than a full texel at a chart's
-    /// border); the weight of docs/METHOD.md §10.2's relRMSE and the divisor of the caustic bins.
+    /// World m^2 of the surface inside the texel's square that a camera can see (less than a
+    /// full texel at a chart's border, and under an object resting on the surface: measured at
+    /// 4 x 4 points per texel); the weight of docs/METHOD.md §10.2's relRMSE and the divisor of
+    /// the photon bins. 0 for a texel wholly under an object: it has no reference value.
     double area = 0.0;
 };
 
@@ -110,6 +112,11 @@ class ReferenceScene {
     /// The global texel a hit's light-map UV falls into, or -1 (surface without a light map,
     /// or a UV outside the surface's texels).
     [[nodiscard]] std::int64_t texel_at(std::int32_t surface, const glm::vec2& lightmap_uv) const;
+    /// As texel_at, or -1 where the point lies in the part of its texel an object rests on
+    /// (ReferenceTexel::area leaves it out): photons landing there are not binned, so a bin
+    /// holds the light on the part of the texel that counts.
+    [[nodiscard]] std::int64_t open_texel_at(std::int32_t surface,
+                                             const glm::vec2& lightmap_uv) const;
     /// Bounding spheres of every object with specular (mirror or dielectric) triangles, around
     /// those triangles: what caustic photons are aimed at. Derived from the geometry, not from
     /// CausticGenerator components, so untagged specular objects are not missed.
@@ -129,6 +136,9 @@ class ReferenceScene {
     std::vector<std::int32_t> surface_slot_;  ///< PhotonWorld surface id -> surfaces_ index
     /// Per surface slot: page texel (y * size + x) -> global texel index.
     std::vector<std::unordered_map<std::int64_t, std::uint32_t>> texel_lookup_;
+    /// Per global texel, 4 x 4 sub-points (row by row): 2 where an object
+    /// rests on the surface there (measure_texels), else open.
+    std::vector<std::uint8_t> sub_points_;
     /// (object << 32 | triangle) -> light index, for area lights' triangles.
     std::unordered_map<std::uint64_t, EmitterHit> emitters_;
     std::vector<BoundingSphere> specular_;

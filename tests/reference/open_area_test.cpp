@@ -1,0 +1,123 @@
+// The reference's texel area counts only the part of a texel a camera can see: a box resting on
+// a floor hides the texels under it, and those its edge crosses count the part beside it
+// (ReferenceTexel::area). Photons landing on the hidden part are not binned (open_texel_at), so
+// a bin holds the light on the visible part, which is what a light map beside the box must show.
+
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "luxel/lighting/reference/reference_scene.hpp"
+#include "scene_builder.hpp"
+
+namespace {
+
+using namespace luxel;
+using namespace luxel::lighting;
+using namespace luxel::lighting::reference;
+
+constexpr float kHalf = 2.0f;  // the floor spans 4 x 4 m
+constexpr int kSize = 16;      // texels per edge: 0.25 m texels
+constexpr double kTexelArea = 0.0625;
+
+/// A closed box [-a, a] x [bottom, top] x [-a, a], faces outward, not light-mapped.
+TriangleMesh box(float a, float bottom, float top) {
+    TriangleMesh mesh;
+    const glm::vec3 c[8] = {{-a, bottom, -a}, {a, bottom, -a}, {a, top, -a}, {-a, top, -a},
+                            {-a, bottom, a},  {a, bottom, a},  {a, top, a},  {-a, top, a}};
+    const int faces[6][4] = {{3, 2, 1, 0}, {4, 5, 6, 7}, {0, 4, 7, 3},
+                             {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}};
+    for (const auto& face : faces) {
+        const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+        for (int k = 0; k < 4; ++k) {
+            mesh.positions.push_back(c[face[k]]);
+        }
+        mesh.indices.insert(mesh.indices.end(),
+                            {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+    mesh.surface_ids.assign(12, -1);
+    mesh.material_ids.assign(12, 0);
+    return mesh;
+}
+
+/// The floor's texel areas with `extra` in the scene.
+std::vector<double> floor_areas(const std::vector<TriangleMesh>& extra) {
+    RayScene rays;
+    rays.add_object(luxel::testing::horizontal_quad(0.0f, kHalf, true, 0, 0), glm::mat4(1.0f),
+                    false);
+    for (const TriangleMesh& mesh : extra) {
+        rays.add_object(mesh, glm::mat4(1.0f), false);
+    }
+    rays.commit();
+    const ReferenceScene scene(rays, {TraceMaterial{}}, {},
+                               {luxel::testing::quad_texels(0, 0.0f, kHalf, true, kSize)});
+    return scene.texel_areas();
+}
+
+/// The share of the texel at page (x, y) under [-a, a]^2, texels 0.25 m from -2 m.
+double covered(int x, int y, double a) {
+    const auto overlap = [&](int i) {
+        const double lo = -2.0 + 0.25 * i;
+        return std::max(0.0, std::min(lo + 0.25, a) - std::max(lo, -a)) / 0.25;
+    };
+    return overlap(x) * overlap(y);
+}
+
+void expect_open_areas(const std::vector<double>& areas, double a, const char* what) {
+    ASSERT_EQ(areas.size(), static_cast<std::size_t>(kSize * kSize));
+    int partial = 0;
+    for (int y = 0; y < kSize; ++y) {
+        for (int x = 0; x < kSize; ++x) {
+            const double open = 1.0 - covered(x, y, a);
+            partial += open > 0.0 && open < 1.0 ? 1 : 0;
+            EXPECT_NEAR(areas[static_cast<std::size_t>(y * kSize + x)], open * kTexelArea, 1e-9)
+                << what << ": texel " << x << ", " << y;
+        }
+    }
+    EXPECT_EQ(partial, 20) << what;  // 4 x 4 under it, a ring of 16 halves and 4 corners
+}
+
+TEST(ReferenceOpenArea, ABoxOnTheFloorHidesWhatItStandsOnAndHalfOfWhatItsEdgeCrosses) {
+    // 1.25 m box: its edges run through the middle of texels (x = +-0.625 m), so 4 x 4 texels
+    // lie wholly under it, 16 half and 4 corner texels three quarters open.
+    expect_open_areas(floor_areas({box(0.625f, 0.0f, 0.5f)}), 0.625, "bottom in the floor");
+    // The same box 5 mm above the floor (a bumpy floor's gap): hidden as well.
+    expect_open_areas(floor_areas({box(0.625f, 0.005f, 0.5f)}), 0.625, "5 mm gap");
+}
+
+TEST(ReferenceOpenArea, AFloorUnderARoofSeenFromBehindOrATableTopStaysOpen) {
+    // A 1 m roof patch 1 m up facing the sky (its back towards the floor), and a table top
+    // 0.7 m up facing the floor: neither rests on the floor.
+    TriangleMesh roof = luxel::testing::horizontal_quad(1.0f, 0.5f, true, -1, 0);
+    roof.surface_ids.assign(2, -1);
+    TriangleMesh table = luxel::testing::horizontal_quad(0.7f, 0.5f, false, -1, 0);
+    table.surface_ids.assign(2, -1);
+    for (const TriangleMesh& above : {roof, table}) {
+        for (double area : floor_areas({above})) {
+            EXPECT_NEAR(area, kTexelArea, 1e-9);
+        }
+    }
+}
+
+TEST(ReferenceOpenArea, PhotonsOnTheHiddenPartAreNotBinned) {
+    RayScene rays;
+    rays.add_object(luxel::testing::horizontal_quad(0.0f, kHalf, true, 0, 0), glm::mat4(1.0f),
+                    false);
+    rays.add_object(box(0.625f, 0.0f, 0.5f), glm::mat4(1.0f), false);
+    rays.commit();
+    const ReferenceScene scene(rays, {TraceMaterial{}}, {},
+                               {luxel::testing::quad_texels(0, 0.0f, kHalf, true, kSize)});
+    // Texel (5, 8) spans x in [-0.75, -0.5]: the box covers its right half (x > -0.625).
+    const auto uv = [](double x, double z) {
+        return glm::vec2(static_cast<float>((x + 2.0) / 4.0), static_cast<float>((z + 2.0) / 4.0));
+    };
+    const std::int64_t texel = scene.texel_at(0, uv(-0.70, 0.1));
+    ASSERT_EQ(texel, 8 * kSize + 5);
+    EXPECT_EQ(scene.open_texel_at(0, uv(-0.70, 0.1)), texel);  // beside the box
+    EXPECT_EQ(scene.open_texel_at(0, uv(-0.55, 0.1)), -1);     // under it
+    EXPECT_EQ(scene.texel_at(0, uv(-0.55, 0.1)), texel);
+    EXPECT_EQ(scene.open_texel_at(0, uv(1.5, 1.5)), scene.texel_at(0, uv(1.5, 1.5)));
+    EXPECT_EQ(scene.open_texel_at(1, uv(1.5, 1.5)), -1);  // no such surface
+}
+
+}  // namespace
