@@ -33,6 +33,7 @@ lighting::LightingConfig BenchConfig::lighting() const {
     config.maps.change_blend_seconds = change_blend;
     config.maps.change_test_sigmas = keep;
     config.photons.selective.exact_invalidation = exact != 0;
+    config.maps.contact_texels = contact != 0;
     return config;
 }
 
@@ -41,8 +42,8 @@ std::string BenchConfig::knobs() const {
     out << "photons=" << groups << "x" << per_group << " aim_n=" << aim_n << " rays=" << rays
         << " texels_per_unit=" << texels_per_unit << " filter=" << filter << " refine=" << refine
         << " local=" << local << " change_blend=" << change_blend << " exact=" << exact
-        << " keep=" << keep << " caustics=" << caustic_photons << "x" << caustic_slices
-        << " backend=" << backend << " kernel=" << kernel << " aa=" << aa;
+        << " contact=" << contact << " keep=" << keep << " caustics=" << caustic_photons << "x"
+        << caustic_slices << " backend=" << backend << " kernel=" << kernel << " aa=" << aa;
     return out.str();
 }
 
@@ -80,6 +81,8 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.local = whole(value);
             } else if (sweep.knob == "exact") {
                 c.exact = whole(value);
+            } else if (sweep.knob == "contact") {
+                c.contact = whole(value);
             } else if (sweep.knob == "change_blend") {
                 c.change_blend = std::stod(value);
             } else if (sweep.knob == "keep") {

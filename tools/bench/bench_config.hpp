@@ -26,6 +26,9 @@ struct BenchConfig {
     std::uint32_t refine = 16;  ///< gather passes averaged while lighting is unchanged (default)
     /// Exact invalidation of photon groups whose paths cross moved geometry (1: on, default).
     std::uint32_t exact = 1;
+    /// Texels under an object's edge gathered beside it (IlluminationSettings::contact_texels;
+    /// 1: on, default).
+    std::uint32_t contact = 1;
     /// Seconds a local pass's texels fade in over (IlluminationSettings::change_blend_seconds).
     double change_blend = lighting::IlluminationSettings{}.change_blend_seconds;
     /// Standard deviations by which a full pass must show a texel's light changed before the

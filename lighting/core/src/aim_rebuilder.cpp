@@ -283,17 +283,21 @@ std::size_t AimRebuilder::rebuild(std::uint32_t surface, std::size_t max_texels,
             place(k);
         }
     }
+    std::vector<std::uint32_t> placed(end - first);
     for (std::size_t i = first; i < end; ++i) {
         const SurfaceTexel& texel = mapped.texels.texels[rebuild.index(i)];
         enclosed_texels_ += enclosed_here[i - first];
+        placed[i - first] = rebuild.index(i);
         x0 = std::min(x0, texel.x);
         y0 = std::min(y0, texel.y);
         x1 = std::max(x1, texel.x);
         y1 = std::max(y1, texel.y);
     }
+    contacts_.record(surface, mapped.texels.texels.size(), placed, enclosed_here);
     rebuild.cursor = end;
     const bool complete = rebuild.cursor >= rebuild.texels.size();
     if (complete) {
+        find_edges(rebuild, ray_length, jobs);
         dilate(surface, page);
         // The padding ring around the whole surface was written too.
         for (const SurfaceTexel& texel : mapped.texels.texels) {
@@ -357,6 +361,26 @@ void AimRebuilder::start(std::uint32_t surface) {
     rebuild_->subset = std::move(marks.texels);
     rebuild_->first_serial = marks.first_serial;
     rebuild_->texels = registry_.world_texels(surface, rebuild_->subset);
+}
+
+void AimRebuilder::find_edges(const RebuildState& rebuild, float ray_length, JobSystem* jobs) {
+    if (!(ray_length > 0.0f)) {
+        return;  // no enclosure rays, nothing enclosed
+    }
+    const MapSurface& mapped = registry_.surface(rebuild.surface);
+    std::vector<std::uint32_t> indices(rebuild.texels.size());
+    for (std::size_t i = 0; i < indices.size(); ++i) {
+        indices[i] = rebuild.index(i);
+    }
+    contacts_.find_edges(
+        rebuild.surface, mapped, indices, rebuild.texels,
+        [&](const glm::vec3& position, const glm::vec3& normal) {
+            GatherTexel probe;
+            probe.position = position;
+            probe.normal = normal;
+            return enclosed(probe, ray_length);
+        },
+        jobs);
 }
 
 bool AimRebuilder::enclosed(const GatherTexel& texel, float ray_length) const {

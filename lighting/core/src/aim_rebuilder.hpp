@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "contact_texels.hpp"
 #include "luxel/lighting/core/illumination_settings.hpp"
 #include "luxel/lighting/core/map_surface.hpp"
 #include "luxel/lighting/core/photon_density.hpp"
@@ -61,6 +62,9 @@ class AimRebuilder {
     [[nodiscard]] std::uint64_t local_current_through() const;
     [[nodiscard]] std::uint64_t texels() const { return texels_; }
     [[nodiscard]] std::uint64_t enclosed_texels() const { return enclosed_texels_; }
+    /// Which texels were found enclosed, and where those under an object's edge are gathered
+    /// (the gather passes read it).
+    [[nodiscard]] const ContactTexels& contacts() const { return contacts_; }
 
   private:
     struct RebuildState;
@@ -97,6 +101,8 @@ class AimRebuilder {
     /// Fills the padding texels around `surface`'s texels on `page` with the mean of their
     /// owned neighbours, so bilinear lookups at a chart's border do not fetch black.
     void dilate(std::uint32_t surface, RadiancePage& page) const;
+    /// A rebuild's last slice: its enclosed texels under an object's edge (ContactTexels).
+    void find_edges(const RebuildState& rebuild, float ray_length, JobSystem* jobs);
 
     MapRegistry& registry_;
     const PhotonWorld& world_;
@@ -118,6 +124,7 @@ class AimRebuilder {
     std::uint64_t rebuilds_ = 0;
     std::uint64_t texels_ = 0;
     std::uint64_t enclosed_texels_ = 0;
+    ContactTexels contacts_;
 };
 
 }  // namespace luxel::lighting

@@ -345,8 +345,18 @@ std::size_t IimGatherPasses::gather(std::uint32_t surface, std::size_t max_texel
                                               : state.subset[first + k];
         }
         std::vector<GatherTexel> batch = registry_.world_texels(surface, indices);
-        for (GatherTexel& texel : batch) {
-            texel.pass = state.started;
+        // A texel under an object's edge is gathered at the open point beside the object
+        // (ContactTexels), not at its centre under it.
+        const std::span<const TexelCover> cover = aims_.contacts().cover(surface);
+        const std::span<const glm::vec3> points = aims_.contacts().gather_points(surface);
+        const bool contacts =
+            settings_.contact_texels && cover.size() == mapped.texels.texels.size();
+        for (std::size_t k = 0; k < count; ++k) {
+            batch[k].pass = state.started;
+            if (contacts && cover[indices[k]] == TexelCover::Edge) {
+                batch[k].position =
+                    glm::vec3(mapped.to_world * glm::vec4(points[indices[k]], 1.0f));
+            }
         }
         std::vector<glm::vec3> out(count);
         gatherer.gather(batch, out);
@@ -510,6 +520,9 @@ void IimGatherPasses::begin_filter(std::uint32_t surface) {
     auto filter =
         std::make_unique<IimPassFilter>(mapped.texels.texels, std::move(values), std::move(noise),
                                         settings_.iim_filter_radius, sigmas);
+    if (settings_.contact_texels) {
+        filter->leave_out_enclosed(aims_.contacts().cover(surface));
+    }
     if (state.local) {
         filter->restrict_to(state.subset);
     }

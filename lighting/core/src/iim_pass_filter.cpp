@@ -82,18 +82,36 @@ void IimPassFilter::restrict_to(const std::vector<std::uint32_t>& changed) {
     cursor_ = 0;
 }
 
+void IimPassFilter::leave_out_enclosed(std::span<const TexelCover> cover) {
+    left_out_.clear();
+    // A cover of another texel count (never expected) leaves nothing out.
+    if (cover.size() != values_.size()) {
+        return;
+    }
+    for (std::size_t i = 0; i < cover.size(); ++i) {
+        if (cover[i] == TexelCover::Enclosed) {
+            left_out_.resize(values_.size(), 0);
+            left_out_[i] = 1;
+        }
+    }
+}
+
 std::size_t IimPassFilter::run(std::size_t max_texels) {
     const std::size_t end = std::min(targets_.size(), cursor_ + max_texels);
     const bool noise_aware = !noise_.empty() && sigmas_ > 0.0;
     const int radius = radius_;
     for (std::size_t t = cursor_; t < end; ++t) {
         const std::size_t i = targets_[t];
+        if (!left_out_.empty() && left_out_[i] != 0) {
+            filtered_[i] = values_[i];
+            continue;
+        }
         glm::dvec3 sum(0.0);
         double weights = 0.0;
         for (int dy = -radius; dy <= radius; ++dy) {
             for (int dx = -radius; dx <= radius; ++dx) {
                 const std::int32_t j = neighbour(i, dx, dy);
-                if (j < 0) {
+                if (j < 0 || (!left_out_.empty() && left_out_[static_cast<std::size_t>(j)] != 0)) {
                     continue;
                 }
                 const auto other = static_cast<std::size_t>(j);

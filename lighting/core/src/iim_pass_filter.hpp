@@ -2,10 +2,12 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "contact_texels.hpp"
 #include "luxel/lighting/core/surface_texels.hpp"
 
 namespace luxel::lighting {
@@ -32,6 +34,11 @@ class IimPassFilter {
     /// values, and filtering the whole of a large floor for a few hundred texels next to a
     /// moved crate held the footprint dark for frames at a small budget (docs/RESULTS.md).
     void restrict_to(const std::vector<std::uint32_t>& changed);
+    /// Per texel (in the order of the texels), its cover (ContactTexels): an Enclosed texel,
+    /// under an object and a texel or more from the open surface, holds the object's unlit
+    /// inside; it is no one's neighbour (the tent around a texel beside the object would blend
+    /// its black in) and keeps its own value. Empty: every texel is open.
+    void leave_out_enclosed(std::span<const TexelCover> cover);
     /// The texels filtered, in order: every texel, or those restrict_to() chose.
     [[nodiscard]] const std::vector<std::uint32_t>& targets() const { return targets_; }
 
@@ -51,7 +58,8 @@ class IimPassFilter {
     std::vector<glm::ivec2> positions_;  ///< texel (x, y) on the page
     std::vector<glm::vec3> values_;
     std::vector<double> noise_;
-    std::vector<std::int32_t> index_;  ///< texel index by position in the bounds; -1: none
+    std::vector<std::uint8_t> left_out_;  ///< by texel; empty: none
+    std::vector<std::int32_t> index_;     ///< texel index by position in the bounds; -1: none
     std::vector<glm::vec3> filtered_;
     std::vector<std::uint32_t> targets_;
     glm::ivec4 bounds_{0, 0, -1, -1};

@@ -57,6 +57,14 @@ struct IlluminationSettings {
     /// there passes iim_threshold, which a small object's may never do. Off: the paper's
     /// behaviour, for measuring the difference.
     bool local_passes = true;
+    /// Texels whose centre lies under an object resting on the surface but within a texel of
+    /// the open surface (an object's edge crossing them) are gathered at the nearest open point
+    /// beside the object, and deeper enclosed texels are left out of the IIM filter
+    /// (ContactTexels, docs/METHOD.md §6.9): a bilinear lookup beside the object reads these
+    /// texels, and gathered at their centres they showed as a black notch along its base. Off:
+    /// every texel is gathered at its centre and filtered with all its neighbours, for measuring
+    /// the difference.
+    bool contact_texels = true;
     /// A full pass keeps the refinement of the texels whose light it shows unchanged: a texel
     /// restarts at one pass only where the pass's mean difference from the texels' means over
     /// the neighbourhood within change_test_radius texels exceeds this many standard deviations

@@ -1,0 +1,148 @@
+#include "contact_texels.hpp"
+
+#include <algorithm>
+#include <array>
+#include <optional>
+
+#include "luxel/runtime/jobs.hpp"
+
+namespace luxel::lighting {
+
+ContactTexels::Surface& ContactTexels::surface(std::uint32_t s, std::size_t texel_count) {
+    if (surfaces_.size() <= s) {
+        surfaces_.resize(static_cast<std::size_t>(s) + 1);
+    }
+    Surface& out = surfaces_[s];
+    out.cover.resize(texel_count, TexelCover::Open);
+    out.points.resize(texel_count, glm::vec3(0.0f));
+    return out;
+}
+
+void ContactTexels::record(std::uint32_t s, std::size_t texel_count,
+                           std::span<const std::uint32_t> indices,
+                           std::span<const std::uint8_t> enclosed) {
+    Surface& out = surface(s, texel_count);
+    const std::size_t count = std::min(indices.size(), enclosed.size());
+    for (std::size_t k = 0; k < count; ++k) {
+        if (indices[k] < texel_count) {
+            out.cover[indices[k]] = enclosed[k] != 0 ? TexelCover::Enclosed : TexelCover::Open;
+        }
+    }
+}
+
+void ContactTexels::find_edges(std::uint32_t s, const MapSurface& mapped,
+                               std::span<const std::uint32_t> indices,
+                               std::span<const GatherTexel> world, const EnclosedTest& is_enclosed,
+                               JobSystem* jobs) {
+    const std::vector<SurfaceTexel>& texels = mapped.texels.texels;
+    Surface& out = surface(s, texels.size());
+    if (texels.empty()) {
+        return;
+    }
+    // The surface's texels by page position, over its bounds: the neighbours on the page are
+    // the neighbours on the surface within a chart (a texel across a chart seam is another
+    // chart's, and its centre may be far away: only the 8 around on the page are looked at, and
+    // only those of this surface).
+    int x0 = texels[0].x;
+    int y0 = texels[0].y;
+    int x1 = x0;
+    int y1 = y0;
+    for (const SurfaceTexel& t : texels) {
+        x0 = std::min(x0, t.x);
+        y0 = std::min(y0, t.y);
+        x1 = std::max(x1, t.x);
+        y1 = std::max(y1, t.y);
+    }
+    const auto width = static_cast<std::size_t>(x1 - x0 + 1);
+    const auto height = static_cast<std::size_t>(y1 - y0 + 1);
+    std::vector<std::int32_t> at(width * height, -1);
+    for (std::size_t i = 0; i < texels.size(); ++i) {
+        at[static_cast<std::size_t>(texels[i].y - y0) * width +
+           static_cast<std::size_t>(texels[i].x - x0)] = static_cast<std::int32_t>(i);
+    }
+    const auto neighbour = [&](const SurfaceTexel& t, int dx, int dy) -> std::int32_t {
+        const int x = t.x + dx - x0;
+        const int y = t.y + dy - y0;
+        if (x < 0 || y < 0 || static_cast<std::size_t>(x) >= width ||
+            static_cast<std::size_t>(y) >= height) {
+            return -1;
+        }
+        return at[static_cast<std::size_t>(y) * width + static_cast<std::size_t>(x)];
+    };
+    struct Candidate {
+        float distance;
+        std::uint32_t towards;
+        float fraction;
+    };
+    constexpr std::array<float, 4> kFractions = {0.25f, 0.5f, 0.75f, 1.0f};
+    const std::size_t count = std::min(indices.size(), world.size());
+    // The texels to look at, reset to Enclosed; then each one's search, in parallel (it reads
+    // only which texels are Open, which the searches do not change), then the results.
+    std::vector<std::size_t> enclosed;
+    for (std::size_t k = 0; k < count; ++k) {
+        const std::uint32_t i = indices[k];
+        if (i < texels.size() && out.cover[i] != TexelCover::Open) {
+            out.cover[i] = TexelCover::Enclosed;
+            enclosed.push_back(k);
+        }
+    }
+    std::vector<std::optional<glm::vec3>> found(enclosed.size());
+    const auto search = [&](std::size_t e) {
+        const std::size_t k = enclosed[e];
+        const std::uint32_t i = indices[k];
+        std::vector<Candidate> candidates;
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                const std::int32_t n = neighbour(texels[i], dx, dy);
+                if ((dx == 0 && dy == 0) || n < 0 ||
+                    out.cover[static_cast<std::size_t>(n)] != TexelCover::Open) {
+                    continue;
+                }
+                const float span =
+                    glm::distance(texels[i].position, texels[static_cast<std::size_t>(n)].position);
+                for (const float f : kFractions) {
+                    candidates.push_back({f * span, static_cast<std::uint32_t>(n), f});
+                }
+            }
+        }
+        std::sort(candidates.begin(), candidates.end(),
+                  [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
+        for (const Candidate& c : candidates) {
+            const glm::vec3 local =
+                glm::mix(texels[i].position, texels[c.towards].position, c.fraction);
+            const glm::vec3 point = glm::vec3(mapped.to_world * glm::vec4(local, 1.0f));
+            // The neighbour's own centre was found open by the rebuild: no second test.
+            if (c.fraction >= 1.0f || !is_enclosed(point, world[k].normal)) {
+                found[e] = local;
+                return;
+            }
+        }
+    };
+    if (jobs != nullptr && enclosed.size() > 1) {
+        jobs->parallel_for(0, enclosed.size(), search);
+    } else {
+        for (std::size_t e = 0; e < enclosed.size(); ++e) {
+            search(e);
+        }
+    }
+    for (std::size_t e = 0; e < enclosed.size(); ++e) {
+        if (found[e]) {
+            const std::uint32_t i = indices[enclosed[e]];
+            out.cover[i] = TexelCover::Edge;
+            out.points[i] = *found[e];
+            ++edges_found_;
+        }
+    }
+}
+
+std::span<const TexelCover> ContactTexels::cover(std::uint32_t s) const {
+    return s < surfaces_.size() ? std::span<const TexelCover>(surfaces_[s].cover)
+                                : std::span<const TexelCover>();
+}
+
+std::span<const glm::vec3> ContactTexels::gather_points(std::uint32_t s) const {
+    return s < surfaces_.size() ? std::span<const glm::vec3>(surfaces_[s].points)
+                                : std::span<const glm::vec3>();
+}
+
+}  // namespace luxel::lighting
