@@ -16,7 +16,7 @@ class JobSystem;
 
 namespace luxel::lighting {
 
-/// Where a texel's centre lies against objects resting on its surface (docs/METHOD.md §6.9).
+/// Where a texel's centre lies against objects resting on its surface (docs/METHOD.md §6.12).
 enum class TexelCover : std::uint8_t {
     Open = 0,      ///< light reaches it: gathered at its centre
     Enclosed = 1,  ///< under an object, a texel or more from the open surface

@@ -60,7 +60,7 @@ struct IlluminationSettings {
     /// Texels whose centre lies under an object resting on the surface but within a texel of
     /// the open surface (an object's edge crossing them) are gathered at the nearest open point
     /// beside the object, and deeper enclosed texels are left out of the IIM filter
-    /// (ContactTexels, docs/METHOD.md §6.9): a bilinear lookup beside the object reads these
+    /// (ContactTexels, docs/METHOD.md §6.12): a bilinear lookup beside the object reads these
     /// texels, and gathered at their centres they showed as a black notch along its base. Off:
     /// every texel is gathered at its centre and filtered with all its neighbours, for measuring
     /// the difference.
