@@ -22,7 +22,7 @@ glm::vec3 to_world(const glm::mat4& transform, const glm::vec3& p) {
 }
 
 /// Sub-points per texel edge at which a texel's open part is measured (kSub^2 per texel).
-constexpr int kSub = 4;
+constexpr int kSub = 8;
 enum : std::uint8_t { kUnknown = 0, kOpen = 1, kHidden = 2 };
 
 /// The barycentric coordinates of `q` in the triangle `uv`; all negative for a degenerate one.
@@ -41,9 +41,10 @@ glm::dvec3 barycentric(const std::array<glm::dvec2, 3>& uv, const glm::dvec2& q)
 
 /// Whether a point of a light-mapped surface (world space, unit front normal `n`) is hidden by
 /// an object resting on the surface: a surface within half a texel (`near`) straight above it,
-/// as under a box standing on a bumpy floor, or the point inside a closed object: its normal and
-/// four rays 60 degrees off it all meet faces from behind, as under a crate whose bottom face
-/// lies in the floor's plane. One back face is not enough: a floor under a roof modelled facing
+/// as under a box standing on a bumpy floor, or the point inside a closed object: its normal
+/// meets a face from behind, and four rays 60 degrees off it each meet one too or a face within
+/// `near`, as under a crate whose bottom face lies in the floor's plane (or cuts through its
+/// bumps). One back face is not enough: a floor under a roof modelled facing
 /// the sky sees the roof from behind and the walls around from the front.
 bool hidden_point(const RayScene& rays, const glm::vec3& p, const glm::vec3& n, float near) {
     const glm::vec3 origin = offset_ray_origin(p, n);
@@ -63,8 +64,11 @@ bool hidden_point(const RayScene& rays, const glm::vec3& p, const glm::vec3& n, 
     constexpr float kCos = 0.5f;  // cos 60 degrees
     constexpr float kSin = 0.8660254f;
     for (const glm::vec3& side : {t, -t, b, -b}) {
+        // Closed that way: a face from behind, or any face within `near` (the bumps of a
+        // floor inside the object).
         const glm::vec3 d = kCos * n + kSin * side;
-        if (!from_behind(d, rays.intersect(origin, d))) {
+        const std::optional<RayHit> hit = rays.intersect(origin, d);
+        if (!from_behind(d, hit) && !(hit && hit->distance < near)) {
             return false;
         }
     }
@@ -426,7 +430,26 @@ void ReferenceScene::measure_texels() {
                         continue;
                     }
                     // A sub-point on the triangle's edge is shared with the triangle across
-                    // it: each counts it half (a quad's diagonal runs through texel corners).
+                    // it: each counts it half (a quad's diagonal runs through texel corners). A
+                    // sliver holding no sub-point (a finely meshed bumpy floor has many) takes
+                    // the sub-point nearest its centroid, on its plane.
+                    const glm::dvec2 centroid = (uv[0] + uv[1] + uv[2]) / 3.0;
+                    const auto nearest_sub = [&](double c, int base) {
+                        return std::clamp(static_cast<int>(std::floor((c - base) * kSub)), 0,
+                                          kSub - 1);
+                    };
+                    const int fallback_i = nearest_sub(centroid.x, x);
+                    const int fallback_j = nearest_sub(centroid.y, y);
+                    const auto state_at = [&](int i, int j, const glm::dvec3& w) {
+                        std::uint8_t& state =
+                            sub_points_[static_cast<std::size_t>(found->second) * kSub * kSub +
+                                        static_cast<std::size_t>(j * kSub + i)];
+                        if (state == kUnknown) {
+                            const glm::vec3 point(w.x * world[0] + w.y * world[1] + w.z * world[2]);
+                            state = hidden_point(*rays_, point, normal, near) ? kHidden : kOpen;
+                        }
+                        return state;
+                    };
                     double in_triangle = 0.0;
                     double open = 0.0;
                     for (int j = 0; j < kSub; ++j) {
@@ -439,19 +462,16 @@ void ReferenceScene::measure_texels() {
                             }
                             const double weight = least > 1e-12 ? 1.0 : 0.5;
                             in_triangle += weight;
-                            std::uint8_t& state =
-                                sub_points_[static_cast<std::size_t>(found->second) * kSub * kSub +
-                                            static_cast<std::size_t>(j * kSub + i)];
-                            if (state == kUnknown) {
-                                const glm::vec3 point(w.x * world[0] + w.y * world[1] +
-                                                      w.z * world[2]);
-                                state = hidden_point(*rays_, point, normal, near) ? kHidden : kOpen;
-                            }
-                            open += state == kOpen ? weight : 0.0;
+                            open += state_at(i, j, w) == kOpen ? weight : 0.0;
                         }
                     }
-                    // A sliver with no sub-point in it counts as open.
-                    const double seen = in_triangle > 0.0 ? open / in_triangle : 1.0;
+                    double seen = in_triangle > 0.0 ? open / in_triangle : 1.0;
+                    if (!(in_triangle > 0.0)) {
+                        const glm::dvec2 q(x + (fallback_i + 0.5) / kSub,
+                                           y + (fallback_j + 0.5) / kSub);
+                        seen = state_at(fallback_i, fallback_j, barycentric(uv, q)) == kOpen ? 1.0
+                                                                                             : 0.0;
+                    }
                     surface.texels[found->second - surface.first_texel].area +=
                         inside * scale * seen;
                 }

@@ -35,7 +35,7 @@ struct ReferenceTexel {
     std::int32_t y = 0;
     /// World m^2 of the surface inside the texel's square that a camera can see (less than a
     /// full texel at a chart's border, and under an object resting on the surface: measured at
-    /// 4 x 4 points per texel); the weight of docs/METHOD.md §10.2's relRMSE and the divisor of
+    /// 8 x 8 points per texel); the weight of docs/METHOD.md §10.2's relRMSE and the divisor of
     /// the photon bins. 0 for a texel wholly under an object: it has no reference value.
     double area = 0.0;
 };
@@ -136,7 +136,7 @@ class ReferenceScene {
     std::vector<std::int32_t> surface_slot_;  ///< PhotonWorld surface id -> surfaces_ index
     /// Per surface slot: page texel (y * size + x) -> global texel index.
     std::vector<std::unordered_map<std::int64_t, std::uint32_t>> texel_lookup_;
-    /// Per global texel, 4 x 4 sub-points (row by row): 2 where an object
+    /// Per global texel, 8 x 8 sub-points (row by row): 2 where an object
     /// rests on the surface there (measure_texels), else open.
     std::vector<std::uint8_t> sub_points_;
     /// (object << 32 | triangle) -> light index, for area lights' triangles.
