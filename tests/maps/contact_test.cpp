@@ -31,7 +31,6 @@ using namespace luxel;
 
 constexpr float kSide = 4.0f;
 constexpr float kTexel = 0.1f;
-constexpr int kTexels = 40;    // kSide / kTexel
 constexpr float kHalf = 0.5f;  // the box's half edge
 constexpr float kTurnDegrees = 30.0f;
 constexpr float kSkyRadiance = 1.0f;
@@ -49,18 +48,8 @@ struct BoxOnPlane {
         const ecs::Entity plane = registry.create();
         registry.emplace<scene::MeshInstance>(
             plane, luxel::testing::lightmapped_plane(kSide, 8, kTexel, 64, glm::vec3(0.5f)), 0);
-        scene::LightmapLayout layout;
-        layout.texel_size = kTexel;
-        layout.page_size = 64;
-        scene::LightmapSurface surface;
-        surface.id = 0;
-        surface.primitive = 0;
-        surface.rect = {2, 2, kTexels, kTexels};
-        surface.charts = {surface.rect};
-        surface.area = static_cast<double>(kSide) * kSide;
-        surface.texels = kTexels * kTexels;
-        layout.surfaces.push_back(surface);
-        registry.emplace<lighting::LightmappedSurface>(plane, layout);
+        registry.emplace<lighting::LightmappedSurface>(
+            plane, luxel::testing::plane_layout(kSide, kTexel, 64));
         registry.emplace<ecs::Transform>(plane, ecs::Transform{});
 
         const ecs::Entity box = registry.create();

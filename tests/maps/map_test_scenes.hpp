@@ -83,6 +83,25 @@ inline int converge(ecs::TransformSystem& transforms, lighting::LightingSystem& 
 
 /// A registry holding one light-mapped plane entity, a PhotonWorld without lights (the test
 /// stores photons itself) and the maps over it.
+/// The light-map layout of lightmapped_plane(side, ..., texel_size, page_size, ...): one
+/// surface whose chart starts at page texel (2, 2).
+inline scene::LightmapLayout plane_layout(float side, float texel_size, int page_size) {
+    scene::LightmapLayout layout;
+    layout.texel_size = texel_size;
+    layout.page_size = page_size;
+    scene::LightmapSurface surface;
+    surface.id = 0;
+    surface.primitive = 0;
+    surface.page = 0;
+    const int texels = static_cast<int>(std::lround(side / texel_size));
+    surface.rect = {2, 2, texels, texels};
+    surface.charts = {surface.rect};
+    surface.area = static_cast<double>(side) * side;
+    surface.texels = static_cast<std::int64_t>(texels) * texels;
+    layout.surfaces.push_back(surface);
+    return layout;
+}
+
 struct PlaneWorld {
     ecs::Registry registry;
     ecs::TransformSystem transforms{registry};
@@ -97,20 +116,8 @@ struct PlaneWorld {
         plane = registry.create();
         registry.emplace<scene::MeshInstance>(
             plane, lightmapped_plane(side, 8, texel_size, page_size, albedo), 0);
-        scene::LightmapLayout layout;
-        layout.texel_size = texel_size;
-        layout.page_size = page_size;
-        scene::LightmapSurface surface;
-        surface.id = 0;
-        surface.primitive = 0;
-        surface.page = 0;
-        const int texels = static_cast<int>(std::lround(side / texel_size));
-        surface.rect = {2, 2, texels, texels};
-        surface.charts = {surface.rect};
-        surface.area = static_cast<double>(side) * side;
-        surface.texels = static_cast<std::int64_t>(texels) * texels;
-        layout.surfaces.push_back(surface);
-        registry.emplace<lighting::LightmappedSurface>(plane, layout);
+        registry.emplace<lighting::LightmappedSurface>(plane,
+                                                       plane_layout(side, texel_size, page_size));
         ecs::Transform t;
         t.translation = glm::vec3(transform[3]);
         registry.emplace<ecs::Transform>(plane, t);

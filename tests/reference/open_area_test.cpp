@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "cube_scene.hpp"
 #include "luxel/lighting/reference/reference_scene.hpp"
 #include "scene_builder.hpp"
 
@@ -26,18 +27,7 @@ constexpr double kTexelArea = 0.0625;
 /// A closed box [-a, a] x [bottom, top] x [-a, a], faces outward, not light-mapped.
 TriangleMesh box(float a, float bottom, float top) {
     TriangleMesh mesh;
-    const glm::vec3 c[8] = {{-a, bottom, -a}, {a, bottom, -a}, {a, top, -a}, {-a, top, -a},
-                            {-a, bottom, a},  {a, bottom, a},  {a, top, a},  {-a, top, a}};
-    const int faces[6][4] = {{3, 2, 1, 0}, {4, 5, 6, 7}, {0, 4, 7, 3},
-                             {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}};
-    for (const auto& face : faces) {
-        const auto base = static_cast<std::uint32_t>(mesh.positions.size());
-        for (int k = 0; k < 4; ++k) {
-            mesh.positions.push_back(c[face[k]]);
-        }
-        mesh.indices.insert(mesh.indices.end(),
-                            {base, base + 1, base + 2, base, base + 2, base + 3});
-    }
+    luxel::testing::append_box({-a, bottom, -a}, {a, top, a}, mesh.positions, mesh.indices);
     mesh.surface_ids.assign(12, -1);
     mesh.material_ids.assign(12, 0);
     return mesh;
