@@ -138,12 +138,13 @@ TEST(AimAnalytic, FewerThanNPhotonsUseTheCappedRadius) {
     }
 }
 
-TEST(AimEnclosure, TexelsUnderAnObjectRestingOnTheSurfaceGetNoLight) {
+TEST(AimEnclosure, TexelsUnderAnObjectGetNoLightAndThoseUnderItsEdgeTheLightBesideIt) {
     // A 0.5 m cube resting 1 mm above the middle of the plane, and photons of a constant
     // 10 W/m^2 everywhere, under the cube too (stored by the test, as light leaking in would
     // be). The texels under the cube are enclosed (every probe ray meets the cube within 1.5
-    // texels) and get no light; those beside it keep the field: the density estimate there is
-    // the plain one.
+    // texels): those deeper than a texel get no light, and the ring under its edge (edge
+    // texels, docs/METHOD.md §6.12) the light at the open point beside it; those beside it keep
+    // the field: the density estimate there is the plain one.
     luxel::testing::PlaneWorld world(kSide, kTexel, kPage, kAlbedo);
     const ecs::Entity cube = world.registry.create();
     world.registry.emplace<scene::MeshInstance>(
@@ -168,17 +169,24 @@ TEST(AimEnclosure, TexelsUnderAnObjectRestingOnTheSurfaceGetNoLight) {
     world.maps->rebuild_aim(0);
     const lighting::RadiancePage& page = world.maps->aim().pages.at(0);
     int under = 0;
+    int deep = 0;
     int beside = 0;
     double worst_beside = 0.0;
+    double worst_edge = 0.0;
     for (const lighting::SurfaceTexel& texel : world.maps->surfaces()[0].texels.texels) {
         // Distance of the texel centre outside the cube's footprint [0.75, 1.25]^2 (negative
         // inside).
         const double outside =
             std::max(std::abs(texel.position.x - 1.0), std::abs(texel.position.z - 1.0)) - 0.25;
         const glm::vec3 radiance = page.at(texel.x, texel.y);
-        if (outside < -0.01) {
+        if (outside < -kTexel) {
             EXPECT_EQ(radiance, glm::vec3(0.0f))
                 << "under the cube at " << texel.position.x << ", " << texel.position.z;
+            ++under;
+            ++deep;
+        } else if (outside < -0.01) {
+            const double e = radiance.g * glm::pi<double>() / kAlbedo.g;
+            worst_edge = std::max(worst_edge, std::abs(e / 10.0 - 1.0));
             ++under;
         } else if (outside > kTexel) {
             const double e = radiance.g * glm::pi<double>() / kAlbedo.g;
@@ -194,15 +202,19 @@ TEST(AimEnclosure, TexelsUnderAnObjectRestingOnTheSurfaceGetNoLight) {
     // 10 x 10 texels of 5 cm have their centres under the 0.5 m cube, and only they are
     // enclosed: the ring around it sees the sky half of its probes.
     EXPECT_EQ(under, 10 * 10);
+    EXPECT_EQ(deep, 8 * 8);
     EXPECT_EQ(world.maps->counters().enclosed_texels, static_cast<std::uint64_t>(under));
     EXPECT_GT(beside, 1000);
     // As the constant field's interior (AimAnalytic.ConstantField): 3%.
     EXPECT_LE(worst_beside, 0.03);
+    // The edge texels read the field at the cube's edge (the test's photons lie under the cube
+    // too, so the estimate there is the plain one).
+    EXPECT_LE(worst_edge, 0.05);
     std::printf(
-        "[ figures  ] cube on the plane: %d texels under it dark, %llu enclosed in all; "
-        "worst error beside it %.2f%%\n",
-        under, static_cast<unsigned long long>(world.maps->counters().enclosed_texels),
-        100.0 * worst_beside);
+        "[ figures  ] cube on the plane: %d texels under it (%d deeper than a texel, dark), %llu "
+        "enclosed in all; worst error beside it %.2f%%, of the ring under its edge %.2f%%\n",
+        under, deep, static_cast<unsigned long long>(world.maps->counters().enclosed_texels),
+        100.0 * worst_beside, 100.0 * worst_edge);
 }
 
 TEST(SurfaceFootprint, CornerEdgeAndInterior) {

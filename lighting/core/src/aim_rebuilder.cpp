@@ -256,6 +256,21 @@ std::size_t AimRebuilder::rebuild(std::uint32_t surface, std::size_t max_texels,
     // the slice's texels are placed in parallel when a JobSystem is given (the warm-up's AIM
     // rebuilds, serial, were a twentieth of it beside the parallel gathers).
     std::vector<std::uint8_t> enclosed_here(end - first, 0);
+    // The reflected radiance at a point of the surface near texel `index` (its centre, or an
+    // edge texel's open point).
+    const auto estimate = [&](const glm::vec3& position, const glm::vec3& normal,
+                              std::uint32_t index) {
+        glm::vec3 radiance(0.0f);
+        const DensitySample found = rebuild.density->sample(position, normal, density);
+        if (found.radius > 0.0 && metres_per_texel > 0.0) {
+            const double on_surface = mapped.footprint.fraction(
+                index, found.radius / metres_per_texel, settings_.density.kernel);
+            const double area = glm::pi<double>() * found.radius * found.radius * on_surface;
+            radiance =
+                glm::vec3(glm::dvec3(mapped.albedo) * found.power / (area * glm::pi<double>()));
+        }
+        return sanitized(radiance);
+    };
     const auto place = [&](std::size_t k) {
         const std::size_t i = first + k;
         const SurfaceTexel& texel = mapped.texels.texels[rebuild.index(i)];
@@ -264,17 +279,8 @@ std::size_t AimRebuilder::rebuild(std::uint32_t surface, std::size_t max_texels,
             enclosed_here[k] = 1;
             return;
         }
-        glm::vec3 radiance(0.0f);
-        const DensitySample found =
-            rebuild.density->sample(rebuild.texels[i].position, rebuild.texels[i].normal, density);
-        if (found.radius > 0.0 && metres_per_texel > 0.0) {
-            const double on_surface = mapped.footprint.fraction(
-                rebuild.index(i), found.radius / metres_per_texel, settings_.density.kernel);
-            const double area = glm::pi<double>() * found.radius * found.radius * on_surface;
-            radiance =
-                glm::vec3(glm::dvec3(mapped.albedo) * found.power / (area * glm::pi<double>()));
-        }
-        page.at(texel.x, texel.y) = sanitized(radiance);
+        page.at(texel.x, texel.y) =
+            estimate(rebuild.texels[i].position, rebuild.texels[i].normal, rebuild.index(i));
     };
     if (jobs != nullptr && end - first > 1) {
         jobs->parallel_for(0, end - first, place);
@@ -298,6 +304,20 @@ std::size_t AimRebuilder::rebuild(std::uint32_t surface, std::size_t max_texels,
     const bool complete = rebuild.cursor >= rebuild.texels.size();
     if (complete) {
         find_edges(rebuild, ray_length, jobs);
+        if (settings_.contact_texels) {
+            // An edge texel's AIM is the light at its open point, as its gather is: a gather ray
+            // that meets the floor right beside an object reads it bilinearly.
+            const std::span<const TexelCover> cover = contacts_.cover(surface);
+            const std::span<const glm::vec3> points = contacts_.gather_points(surface);
+            for (std::size_t i = 0; i < rebuild.texels.size(); ++i) {
+                const std::uint32_t index = rebuild.index(i);
+                if (index < cover.size() && cover[index] == TexelCover::Edge) {
+                    const SurfaceTexel& texel = mapped.texels.texels[index];
+                    const glm::vec3 point(mapped.to_world * glm::vec4(points[index], 1.0f));
+                    page.at(texel.x, texel.y) = estimate(point, rebuild.texels[i].normal, index);
+                }
+            }
+        }
         dilate(surface, page);
         // The padding ring around the whole surface was written too.
         for (const SurfaceTexel& texel : mapped.texels.texels) {
