@@ -299,12 +299,14 @@ std::size_t AimRebuilder::rebuild(std::uint32_t surface, std::size_t max_texels,
         x1 = std::max(x1, texel.x);
         y1 = std::max(y1, texel.y);
     }
-    contacts_.record(surface, mapped.texels.texels.size(), placed, enclosed_here);
+    if (settings_.contact_texels) {
+        contacts_.record(surface, mapped.texels.texels.size(), placed, enclosed_here);
+    }
     rebuild.cursor = end;
     const bool complete = rebuild.cursor >= rebuild.texels.size();
     if (complete) {
-        find_edges(rebuild, ray_length, jobs);
         if (settings_.contact_texels) {
+            find_edges(rebuild, ray_length, jobs);
             // An edge texel's AIM is the light at its open point, as its gather is: a gather ray
             // that meets the floor right beside an object reads it bilinearly.
             const std::span<const TexelCover> cover = contacts_.cover(surface);

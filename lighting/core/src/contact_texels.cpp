@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <optional>
+#include <unordered_map>
 
 #include "luxel/runtime/jobs.hpp"
 
@@ -14,7 +15,9 @@ ContactTexels::Surface& ContactTexels::surface(std::uint32_t s, std::size_t texe
     }
     Surface& out = surfaces_[s];
     out.cover.resize(texel_count, TexelCover::Open);
-    out.points.resize(texel_count, glm::vec3(0.0f));
+    if (!out.points.empty()) {
+        out.points.resize(texel_count, glm::vec3(0.0f));
+    }
     return out;
 }
 
@@ -36,48 +39,8 @@ void ContactTexels::find_edges(std::uint32_t s, const MapSurface& mapped,
                                JobSystem* jobs) {
     const std::vector<SurfaceTexel>& texels = mapped.texels.texels;
     Surface& out = surface(s, texels.size());
-    if (texels.empty()) {
-        return;
-    }
-    // The surface's texels by page position, over its bounds: the neighbours on the page are
-    // the neighbours on the surface within a chart (a texel across a chart seam is another
-    // chart's, and its centre may be far away: only the 8 around on the page are looked at, and
-    // only those of this surface).
-    int x0 = texels[0].x;
-    int y0 = texels[0].y;
-    int x1 = x0;
-    int y1 = y0;
-    for (const SurfaceTexel& t : texels) {
-        x0 = std::min(x0, t.x);
-        y0 = std::min(y0, t.y);
-        x1 = std::max(x1, t.x);
-        y1 = std::max(y1, t.y);
-    }
-    const auto width = static_cast<std::size_t>(x1 - x0 + 1);
-    const auto height = static_cast<std::size_t>(y1 - y0 + 1);
-    std::vector<std::int32_t> at(width * height, -1);
-    for (std::size_t i = 0; i < texels.size(); ++i) {
-        at[static_cast<std::size_t>(texels[i].y - y0) * width +
-           static_cast<std::size_t>(texels[i].x - x0)] = static_cast<std::int32_t>(i);
-    }
-    const auto neighbour = [&](const SurfaceTexel& t, int dx, int dy) -> std::int32_t {
-        const int x = t.x + dx - x0;
-        const int y = t.y + dy - y0;
-        if (x < 0 || y < 0 || static_cast<std::size_t>(x) >= width ||
-            static_cast<std::size_t>(y) >= height) {
-            return -1;
-        }
-        return at[static_cast<std::size_t>(y) * width + static_cast<std::size_t>(x)];
-    };
-    struct Candidate {
-        float distance;
-        std::uint32_t towards;
-        float fraction;
-    };
-    constexpr std::array<float, 4> kFractions = {0.25f, 0.5f, 0.75f, 1.0f};
     const std::size_t count = std::min(indices.size(), world.size());
-    // The texels to look at, reset to Enclosed; then each one's search, in parallel (it reads
-    // only which texels are Open, which the searches do not change), then the results.
+    // The texels to look at, reset to Enclosed. Most surfaces have none: nothing more is made.
     std::vector<std::size_t> enclosed;
     for (std::size_t k = 0; k < count; ++k) {
         const std::uint32_t i = indices[k];
@@ -86,6 +49,33 @@ void ContactTexels::find_edges(std::uint32_t s, const MapSurface& mapped,
             enclosed.push_back(k);
         }
     }
+    if (enclosed.empty()) {
+        return;
+    }
+    // The surface's texels by page position: the neighbours on the page are the neighbours on
+    // the surface within a chart (a texel across a chart seam is another chart's, and its
+    // centre may be far away: only the 8 around on the page are looked at, and only those of
+    // this surface). A map, not a grid over the surface's bounds: charts spread over a large
+    // page would make that grid the page's size.
+    const auto key = [](std::int64_t x, std::int64_t y) { return (y << 32) ^ (x & 0xFFFFFFFF); };
+    std::unordered_map<std::int64_t, std::uint32_t> at;
+    at.reserve(texels.size());
+    for (std::size_t i = 0; i < texels.size(); ++i) {
+        at.emplace(key(texels[i].x, texels[i].y), static_cast<std::uint32_t>(i));
+    }
+    const auto neighbour = [&](const SurfaceTexel& t, int dx, int dy) -> std::int32_t {
+        const auto found =
+            at.find(key(static_cast<std::int64_t>(t.x) + dx, static_cast<std::int64_t>(t.y) + dy));
+        return found == at.end() ? -1 : static_cast<std::int32_t>(found->second);
+    };
+    struct Candidate {
+        float distance;
+        std::uint32_t towards;
+        float fraction;
+    };
+    constexpr std::array<float, 4> kFractions = {0.25f, 0.5f, 0.75f, 1.0f};
+    // Each one's search in parallel (it reads only which texels are Open, which the searches do
+    // not change), then the results.
     std::vector<std::optional<glm::vec3>> found(enclosed.size());
     const auto search = [&](std::size_t e) {
         const std::size_t k = enclosed[e];
@@ -129,6 +119,7 @@ void ContactTexels::find_edges(std::uint32_t s, const MapSurface& mapped,
         if (found[e]) {
             const std::uint32_t i = indices[enclosed[e]];
             out.cover[i] = TexelCover::Edge;
+            out.points.resize(texels.size(), glm::vec3(0.0f));
             out.points[i] = *found[e];
             ++edges_found_;
         }

@@ -57,7 +57,7 @@ class ContactTexels {
     /// Per texel of surface `s`, its cover; empty before its first rebuild.
     [[nodiscard]] std::span<const TexelCover> cover(std::uint32_t s) const;
     /// Per texel of surface `s`, where an Edge texel is gathered, in the mesh's own frame
-    /// (meaningful for Edge texels only); empty before its first rebuild.
+    /// (meaningful for Edge texels only); empty until the surface has had one.
     [[nodiscard]] std::span<const glm::vec3> gather_points(std::uint32_t s) const;
     /// Edge texels found since construction.
     [[nodiscard]] std::uint64_t edges_found() const { return edges_found_; }
