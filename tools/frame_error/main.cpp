@@ -1,0 +1,149 @@
+// luxel-frame-error: the error of a frame against a reference frame, over the whole frame and
+// over regions of it, where a user would see a local failure that a whole-frame figure hides.
+//   luxel-frame-error FRAME.exr REFERENCE.exr [--region X0,Y0,X1,Y1]... [--block N]
+// Both are linear RGB EXRs of the same size (luxel-sandbox --exr, luxel-ref -o). Per region
+// (pixels X0 <= x < X1, Y0 <= y < Y1, rows from the top): relRMSE over RGB (docs/METHOD.md
+// §10.2's image error) and the ratio of the means. --block N first averages N x N pixel blocks
+// in both frames, which lowers a path-traced reference's own noise by N where the error looked
+// for is wider than a block (docs/RESULTS.md, "Contact").
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "luxel/runtime/cli.hpp"
+#include "luxel/runtime/error.hpp"
+#include "luxel/runtime/image.hpp"
+#include "luxel/runtime/tool_main.hpp"
+
+namespace {
+
+struct Region {
+    int x0 = 0;
+    int y0 = 0;
+    int x1 = 0;
+    int y1 = 0;
+    std::string name;
+};
+
+Region parse_region(const std::string& text) {
+    Region r;
+    char tail = 0;
+    if (std::sscanf(text.c_str(), "%d,%d,%d,%d%c", &r.x0, &r.y0, &r.x1, &r.y1, &tail) != 4) {
+        throw luxel::UsageError("--region " + text + ": not X0,Y0,X1,Y1 (whole pixels)");
+    }
+    r.name = "region " + text;
+    return r;
+}
+
+struct Figures {
+    double relative_rmse = 0.0;
+    double mean_ratio = 0.0;
+    long blocks = 0;
+};
+
+/// relRMSE and the ratio of means over `r`, on N x N blocks (a block partly outside `r` is
+/// left out). A black reference with a non-black frame reads infinity, as METHOD §10.2 says.
+Figures compare(const luxel::Image& frame, const luxel::Image& reference, const Region& r,
+                int block) {
+    double error = 0.0;
+    double signal = 0.0;
+    double frame_sum = 0.0;
+    double reference_sum = 0.0;
+    Figures out;
+    for (int y = r.y0; y + block <= r.y1; y += block) {
+        for (int x = r.x0; x + block <= r.x1; x += block) {
+            glm::dvec3 a(0.0);
+            glm::dvec3 b(0.0);
+            for (int dy = 0; dy < block; ++dy) {
+                for (int dx = 0; dx < block; ++dx) {
+                    a += glm::dvec3(glm::vec3(frame.pixel(x + dx, y + dy)));
+                    b += glm::dvec3(glm::vec3(reference.pixel(x + dx, y + dy)));
+                }
+            }
+            const glm::dvec3 d = a - b;
+            error += glm::dot(d, d);
+            signal += glm::dot(b, b);
+            frame_sum += a.x + a.y + a.z;
+            reference_sum += b.x + b.y + b.z;
+            ++out.blocks;
+        }
+    }
+    const double inf = std::numeric_limits<double>::infinity();
+    out.relative_rmse = signal > 0.0 ? std::sqrt(error / signal) : (error > 0.0 ? inf : 0.0);
+    out.mean_ratio =
+        reference_sum > 0.0 ? frame_sum / reference_sum : (frame_sum > 0.0 ? inf : 1.0);
+    return out;
+}
+
+void check_finite(const luxel::Image& image, const std::string& file) {
+    for (std::size_t i = 0; i < image.rgba.size(); ++i) {
+        if (!std::isfinite(image.rgba[i])) {
+            const auto pixel = static_cast<long>(i / 4);
+            throw luxel::Error(file + ": pixel " + std::to_string(pixel % image.width) + ", " +
+                               std::to_string(pixel / image.width) + " is not finite");
+        }
+    }
+}
+
+int run(int argc, char** argv) {
+    CLI::App app{
+        "The error of a linear EXR frame against a reference frame of the same size: relRMSE "
+        "over RGB and the ratio of means, over the whole frame and over regions of it."};
+    std::string frame_file;
+    std::string reference_file;
+    std::vector<std::string> regions_text;
+    int block = 1;
+    app.add_option("frame", frame_file, "the frame (EXR)")->required();
+    app.add_option("reference", reference_file, "the reference frame (EXR)")->required();
+    app.add_option("--region", regions_text,
+                   "X0,Y0,X1,Y1: pixels X0 <= x < X1, Y0 <= y < Y1, rows from the top "
+                   "(repeatable)");
+    app.add_option("--block", block, "average N x N pixel blocks before comparing")
+        ->check(CLI::Range(1, 4096))
+        ->capture_default_str();
+    if (!luxel::cli::parse(app, argc, argv)) {
+        return 0;
+    }
+    std::vector<Region> regions;
+    for (const std::string& text : regions_text) {
+        regions.push_back(parse_region(text));
+    }
+    const luxel::Image frame = luxel::read_exr(frame_file);
+    const luxel::Image reference = luxel::read_exr(reference_file);
+    if (frame.width != reference.width || frame.height != reference.height) {
+        throw luxel::Error(reference_file + ": " + std::to_string(reference.width) + "x" +
+                           std::to_string(reference.height) + ", the frame " + frame_file + " is " +
+                           std::to_string(frame.width) + "x" + std::to_string(frame.height));
+    }
+    check_finite(frame, frame_file);
+    check_finite(reference, reference_file);
+    Region whole{0, 0, frame.width, frame.height, "whole frame"};
+    regions.insert(regions.begin(), whole);
+    for (const Region& r : regions) {
+        if (r.x0 < 0 || r.y0 < 0 || r.x1 > frame.width || r.y1 > frame.height ||
+            r.x1 - r.x0 < block || r.y1 - r.y0 < block) {
+            throw luxel::UsageError(r.name + ": not inside the " + std::to_string(frame.width) +
+                                    "x" + std::to_string(frame.height) +
+                                    " frame, or smaller than one block");
+        }
+        const Figures f = compare(frame, reference, r, block);
+        char line[256];
+        std::snprintf(line, sizeof(line),
+                      "%s: relRMSE %.2f%%, mean ratio %.4f (%ld blocks of %dx%d)", r.name.c_str(),
+                      100.0 * f.relative_rmse, f.mean_ratio, f.blocks, block, block);
+        std::cout << line << "\n";
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    return luxel::run_tool("luxel-frame-error", run, argc, argv);
+}
