@@ -111,9 +111,10 @@ struct ContactFigures {
     double mean = 0.0;    ///< mean lookup / gather
     int points = 0;
     std::uint64_t enclosed = 0;
+    std::uint64_t edges = 0;
 };
 
-/// Along the four edges of the box's base, 3 cm outside (a third of a texel), 160 points: the
+/// Along the four edges of the box's base, 1 cm outside (a tenth of a texel), 160 points: the
 /// IIM lookup against a 4,096-ray gather at the point itself.
 ContactFigures along_the_base(bool contact_texels) {
     BoxOnPlane world(contact_texels);
@@ -121,6 +122,7 @@ ContactFigures along_the_base(bool contact_texels) {
     ContactFigures figures;
     const lighting::IlluminationMaps& maps = world.lighting->maps();
     figures.enclosed = maps.counters().enclosed_texels;
+    figures.edges = maps.counters().edge_texels;
     // The texel layout lookup() assumes.
     for (const lighting::SurfaceTexel& texel : maps.surfaces()[0].texels.texels) {
         EXPECT_NEAR(texel.position.x, (static_cast<float>(texel.x - 2) + 0.5f) * kTexel, 1e-4f);
@@ -161,6 +163,11 @@ TEST(ContactLight, TheFloorBesideABoxReadsTheLightThereNotTheBoxsUnlitInside) {
         centres.worst, centres.mean);
     ASSERT_EQ(beside.points, 160);
     EXPECT_GT(beside.enclosed, 0u);
+    // The ring under the box's edges: texels with an open neighbour (of the 200 enclosed at the
+    // first rebuild, about its perimeter in texels); none without the contact texels.
+    EXPECT_GT(beside.edges, 20u);
+    EXPECT_LT(beside.edges, beside.enclosed);
+    EXPECT_EQ(centres.edges, 0u);
     // Gathered beside the box, the texels under its edge hold the light there: the lookup agrees
     // with the point's own gather up to the bilinear blend with texels further out, which see
     // more sky (it reads a little bright, never dark).

@@ -59,7 +59,8 @@ class ContactTexels {
     /// Per texel of surface `s`, where an Edge texel is gathered, in the mesh's own frame
     /// (meaningful for Edge texels only); empty until the surface has had one.
     [[nodiscard]] std::span<const glm::vec3> gather_points(std::uint32_t s) const;
-    /// Edge texels found since construction.
+    /// Edge texels found since construction, counted at each rebuild that found them
+    /// (MapCounters::edge_texels).
     [[nodiscard]] std::uint64_t edges_found() const { return edges_found_; }
 
   private:

@@ -101,6 +101,7 @@ MapCounters IlluminationMaps::counters() const {
     counters.aim_rebuilds = aims_->rebuilds();
     counters.aim_texels = aims_->texels();
     counters.enclosed_texels = aims_->enclosed_texels();
+    counters.edge_texels = aims_->contacts().edges_found();
     counters.gather_passes = gathers_->passes();
     counters.texels_kept = gathers_->texels_kept();
     counters.texels_gathered = gathers_->texels_gathered();

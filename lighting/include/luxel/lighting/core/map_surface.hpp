@@ -111,6 +111,9 @@ struct MapCounters {
     std::uint64_t gather_passes = 0;
     std::uint64_t texels_gathered = 0;
     std::uint64_t enclosed_texels = 0;  ///< AIM texels found enclosed (set to 0)
+    /// Enclosed texels found under an object's edge, gathered at the open point beside it
+    /// (docs/METHOD.md §6.12), counted at each rebuild that found them.
+    std::uint64_t edge_texels = 0;
     /// Texels that a full pass found unchanged and folded into their mean (their refinement
     /// kept: IlluminationSettings::change_test_sigmas).
     std::uint64_t texels_kept = 0;
