@@ -16,6 +16,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "luxel/lighting/reference/error_metrics.hpp"
 #include "luxel/runtime/cli.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/image.hpp"
@@ -47,35 +48,44 @@ struct Figures {
     long blocks = 0;
 };
 
-/// relRMSE and the ratio of means over `r`, on N x N blocks (a block partly outside `r` is
-/// left out). A black reference with a non-black frame reads infinity, as METHOD §10.2 says.
-Figures compare(const luxel::Image& frame, const luxel::Image& reference, const Region& r,
-                int block) {
-    double error = 0.0;
-    double signal = 0.0;
-    double frame_sum = 0.0;
-    double reference_sum = 0.0;
-    Figures out;
-    for (int y = r.y0; y + block <= r.y1; y += block) {
-        for (int x = r.x0; x + block <= r.x1; x += block) {
-            glm::dvec3 a(0.0);
-            glm::dvec3 b(0.0);
+/// The N x N block means of `image` over `r` (a block partly outside `r` is left out), as an
+/// image of its own.
+luxel::Image blocks_of(const luxel::Image& image, const Region& r, int block) {
+    luxel::Image out((r.x1 - r.x0) / block, (r.y1 - r.y0) / block);
+    const auto area = static_cast<float>(block * block);
+    for (int by = 0; by < out.height; ++by) {
+        for (int bx = 0; bx < out.width; ++bx) {
+            glm::vec4 sum(0.0f);
             for (int dy = 0; dy < block; ++dy) {
                 for (int dx = 0; dx < block; ++dx) {
-                    a += glm::dvec3(glm::vec3(frame.pixel(x + dx, y + dy)));
-                    b += glm::dvec3(glm::vec3(reference.pixel(x + dx, y + dy)));
+                    sum += image.pixel(r.x0 + bx * block + dx, r.y0 + by * block + dy);
                 }
             }
-            const glm::dvec3 d = a - b;
-            error += glm::dot(d, d);
-            signal += glm::dot(b, b);
-            frame_sum += a.x + a.y + a.z;
-            reference_sum += b.x + b.y + b.z;
-            ++out.blocks;
+            out.set_pixel(bx, by, sum / area);
+        }
+    }
+    return out;
+}
+
+/// relRMSE (the image error of docs/METHOD.md §10.2, the same function luxel-bench uses) and the
+/// ratio of means over `r`, on N x N blocks. A black reference with a non-black frame reads
+/// infinity.
+Figures compare(const luxel::Image& frame, const luxel::Image& reference, const Region& r,
+                int block) {
+    const luxel::Image a = blocks_of(frame, r, block);
+    const luxel::Image b = blocks_of(reference, r, block);
+    Figures out;
+    out.relative_rmse = luxel::lighting::reference::image_relative_rmse(a, b);
+    out.blocks = static_cast<long>(a.width) * a.height;
+    double frame_sum = 0.0;
+    double reference_sum = 0.0;
+    for (std::size_t i = 0; i < a.rgba.size(); i += 4) {
+        for (std::size_t c = 0; c < 3; ++c) {
+            frame_sum += a.rgba[i + c];
+            reference_sum += b.rgba[i + c];
         }
     }
     const double inf = std::numeric_limits<double>::infinity();
-    out.relative_rmse = signal > 0.0 ? std::sqrt(error / signal) : (error > 0.0 ? inf : 0.0);
     out.mean_ratio =
         reference_sum > 0.0 ? frame_sum / reference_sum : (frame_sum > 0.0 ? inf : 1.0);
     return out;
