@@ -51,7 +51,8 @@ struct GpuLight {
     glm::vec4 intensity_shadow{0.0f};
     glm::vec4 params{0.0f};
     glm::mat4 shadow_matrix{1.0f};
+    glm::mat4 shadow_inverse{1.0f};
 };
-static_assert(sizeof(GpuLight) == 128);
+static_assert(sizeof(GpuLight) == 192);
 
 }  // namespace luxel::renderer

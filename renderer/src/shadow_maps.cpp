@@ -228,6 +228,10 @@ void ShadowMaps::describe(const ShadowMap& map, GpuLight& light) {
     light.params.z = map.texel;
     light.params.w = static_cast<float>(map.kind);
     light.shadow_matrix = map.matrix;
+    // The shader walks from a 2D map's texel centres back into the world (the receiver plane's
+    // depth at each tap); one inverse per light a frame instead of one per pixel.
+    light.shadow_inverse =
+        map.kind == ShadowKind::Cube ? glm::mat4(1.0f) : glm::inverse(map.matrix);
 }
 
 }  // namespace luxel::renderer

@@ -18,6 +18,7 @@ struct Light {
     vec4 params;            // x cos inner, y cos outer, z shadow texel size (per metre of
                             // distance; ortho: metres), w shadow map kind
     mat4 shadow_matrix;     // world to the 2D map's clip space
+    mat4 shadow_inverse;    // the 2D map's clip space to world
 };
 
 // Irradiance (W/m^2) that `light` delivers to a surface at p with normal n, unshadowed. Point:

@@ -1,47 +1,53 @@
-// Shadow-map lookups. Maps hold linear depth (see shadow.frag), so the bias is in metres: the
-// receiver is pushed 1.5 texels along its normal (normal offset: removes acne on surfaces the
-// light grazes) and compared one texel (more on slanted surfaces) nearer the light. Filtered
-// lookups average 3 x 3 hardware-compared bilinear taps one texel apart (PCF): a soft edge
-// about three texels wide; unfiltered ones take one tap.
+// Shadow-map lookups. Maps hold linear depth (see shadow.frag), so depths here are in metres.
+//
+// Every comparison is made at a texel centre against the depth the receiver's own plane has
+// there (receiver-plane depth), not against the receiver's depth pushed towards the light by a
+// slope-scaled bias. A slope bias must cover the plane's depth change across the filter, which
+// is texels x tan(theta) and grows without bound as the light grazes the surface: on the
+// sandbox level it reached 4 texels (6.5 cm) on a wall the sun meets at 75 degrees, more than
+// the distance to the wall beside it, and lit a bright line along every corner
+// (docs/RESULTS.md, "The sun leaks into the sandbox level's corners"). With the plane's own
+// depth at each centre, only a constant half texel is left for the rasterised occluder's
+// depth and the plane's curvature, so a corner leaks over at most that.
+//
+// Filtered lookups weigh the 3 x 3 texel centres around the receiver as 2 x 2 bilinear taps
+// half a texel either side of it would (a filter two texels wide, whose weights move smoothly
+// with the receiver); each comparison at a centre reads that one texel. Unfiltered lookups
+// compare the texel the receiver falls in. Nine comparisons either way: the nine bilinear taps
+// one texel apart used before (a 4 x 4 footprint) would take sixteen at texel centres, which
+// doubled the direct pass on llvmpipe (docs/PERFORMANCE.md).
 
 #include "render/lights.glsl"
 
-// The receiver after the normal offset, and the depth bias in metres, for a texel of world
-// size `texel` at the receiver.
-vec3 shadow_receiver(vec3 p, vec3 n, float texel) {
-    return p + n * (1.5 * texel);
+// The constant bias, in texels of the map at the receiver.
+const float kShadowBiasTexels = 0.5;
+// The steepest plane the depth walk follows: cos(theta) >= 1/8 (83 degrees). Past it the plane
+// is taken at that slope; E cos(theta) is small there, and the walk stays bounded.
+const float kShadowMinCos = 0.125;
+
+// Distance from `origin` along unit `dir` to the receiver plane (p, n). The plane is treated
+// as facing the ray (n . dir <= -kShadowMinCos): surfaces facing away get no light anyway.
+float plane_distance(vec3 origin, vec3 dir, vec3 p, vec3 n) {
+    return dot(n, origin - p) / max(-dot(n, dir), kShadowMinCos);
 }
 
-float slope_bias(float texel, float cos_theta) {
-    float c = clamp(cos_theta, 0.05, 1.0);
-    float tan_theta = sqrt(1.0 - c * c) / c;
-    return texel * (1.0 + min(tan_theta, 3.0));
+// The same from the light along `ray`, which need not be unit length, with
+// `towards_light` = n . (light - p) computed once per receiver.
+float ray_plane_distance(vec3 ray, vec3 n, float towards_light) {
+    float len = length(ray);
+    return towards_light * len / max(-dot(n, ray), kShadowMinCos * len);
 }
 
-float cube_shadow(samplerCubeShadow map, Light light, vec3 p, vec3 n, bool filtered) {
-    vec3 light_position = light.position_kind.xyz;
-    float far = light.direction_far.w;
-    float texel = light.params.z * length(p - light_position);
-    vec3 v = shadow_receiver(p, n, texel) - light_position;
-    float distance = length(v);
-    if (!(distance > 0.0)) {
-        return 1.0;
-    }
-    float reference = (distance - slope_bias(texel, dot(n, -v / distance))) / far;
-    if (!filtered) {
-        return texture(map, vec4(v, reference));
-    }
-    vec3 axis = v / distance;
-    vec3 t = normalize(cross(axis, abs(axis.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
-    vec3 b = cross(axis, t);
-    float step_size = light.params.z * distance;
-    float lit = 0.0;
-    for (int j = -1; j <= 1; ++j) {
-        for (int i = -1; i <= 1; ++i) {
-            lit += texture(map, vec4(v + (t * float(i) + b * float(j)) * step_size, reference));
-        }
-    }
-    return lit / 9.0;
+// The 1D weights of texels k - 1, k, k + 1 around a receiver `g` texels from the centre of
+// texel k (|g| <= 1/2): two bilinear taps half a texel either side of it. Unfiltered: texel k.
+vec3 filter_weights(float g, bool filtered) {
+    return filtered ? vec3(0.5 - g, 1.0, 0.5 + g) * 0.5 : vec3(0.0, 1.0, 0.0);
+}
+
+// A 2D map's ray through `centre` (map uv), as a point of the world on it: w = 0 gives a point
+// in clip space between the near and far planes.
+vec4 map_ray_point(Light light, vec2 centre) {
+    return light.shadow_inverse * vec4(centre * 2.0 - 1.0, 0.0, 1.0);
 }
 
 float map_shadow(sampler2DShadow map, Light light, vec3 p, vec3 n, bool filtered) {
@@ -49,29 +55,131 @@ float map_shadow(sampler2DShadow map, Light light, vec3 p, vec3 n, bool filtered
     vec3 origin = light.position_kind.xyz;
     vec3 direction = light.direction_far.xyz;
     float far = light.direction_far.w;
-    float texel = ortho ? light.params.z : light.params.z * length(p - origin);
-    vec3 q = shadow_receiver(p, n, texel);
-    vec4 clip = light.shadow_matrix * vec4(q, 1.0);
-    if (!(clip.w > 0.0)) {
+    vec4 clip = light.shadow_matrix * vec4(p, 1.0);
+    if (!(clip.w > 0.0) || !(far > 0.0)) {
         return 1.0;
     }
     vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
     if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) {
         return 1.0;  // outside the map: outside the spot's cone or the scene's bounds
     }
-    vec3 v = q - origin;
-    float distance = ortho ? dot(v, direction) : length(v);
-    vec3 to_light = ortho ? -direction : -normalize(v);
-    float reference = (distance - slope_bias(texel, dot(n, to_light))) / far;
-    if (!filtered) {
-        return texture(map, vec3(uv, reference));
+    float texel = ortho ? light.params.z : light.params.z * length(p - origin);
+    float bias = kShadowBiasTexels * texel;
+    vec2 size = vec2(textureSize(map, 0));
+    vec2 position = uv * size - 0.5;  // texel centres at integers
+    vec2 base = floor(position + 0.5);  // the texel the receiver is in
+    vec3 wx = filter_weights(position.x - base.x, filtered);
+    vec3 wy = filter_weights(position.y - base.y, filtered);
+    // The rays through texel `base` and the next texels in x and y. Clip space is a projective
+    // image of the world, so X.xyz - origin X.w (a spot's ray direction, unnormalised) and X.xyz
+    // (a point on the sun's ray) are affine in the texel: three matrix products give every
+    // tap's ray exactly, and along the sun's parallel rays the plane's depth is affine too.
+    vec2 c0 = (base + 0.5) / size;
+    vec4 x0 = map_ray_point(light, c0);
+    vec4 x1 = map_ray_point(light, c0 + vec2(1.0 / size.x, 0.0));
+    vec4 x2 = map_ray_point(light, c0 + vec2(0.0, 1.0 / size.y));
+    vec3 r0 = ortho ? x0.xyz / x0.w : x0.xyz - origin * x0.w;
+    vec3 rx = (ortho ? x1.xyz / x1.w : x1.xyz - origin * x1.w) - r0;
+    vec3 ry = (ortho ? x2.xyz / x2.w : x2.xyz - origin * x2.w) - r0;
+    float towards_light = dot(n, origin - p);
+    float d0 = 0.0;
+    float dx = 0.0;
+    float dy = 0.0;
+    if (ortho) {
+        d0 = dot(r0 - origin, direction) + plane_distance(r0, direction, p, n);
+        dx = dot(rx, direction) + dot(n, rx) / max(-dot(n, direction), kShadowMinCos);
+        dy = dot(ry, direction) + dot(n, ry) / max(-dot(n, direction), kShadowMinCos);
     }
-    vec2 step_size = 1.0 / vec2(textureSize(map, 0));
     float lit = 0.0;
-    for (int j = -1; j <= 1; ++j) {
-        for (int i = -1; i <= 1; ++i) {
-            lit += texture(map, vec3(uv + vec2(i, j) * step_size, reference));
+    for (int j = 0; j < 3; ++j) {
+        for (int i = 0; i < 3; ++i) {
+            float w = wx[i] * wy[j];
+            if (!filtered && w == 0.0) {
+                continue;
+            }
+            vec2 offset = vec2(i - 1, j - 1);
+            float depth = ortho ? d0 + offset.x * dx + offset.y * dy
+                                : ray_plane_distance(r0 + offset.x * rx + offset.y * ry, n,
+                                                     towards_light);
+            lit += w * texture(map, vec3(c0 + offset / size, (depth - bias) / far));
         }
     }
-    return lit / 9.0;
+    return lit;
+}
+
+// The face a direction from the light lands on: its major axis and its two minor axes as unit
+// vectors. The face's texel grid is laid over the minor axes; texel centres are symmetric about
+// the face's middle, so the face's own orientation in the cube does not matter.
+struct CubeFace {
+    vec3 major;
+    vec3 u;
+    vec3 v;
+};
+
+CubeFace cube_face(vec3 dir) {
+    vec3 a = abs(dir);
+    if (a.x >= a.y && a.x >= a.z) {
+        return CubeFace(vec3(dir.x < 0.0 ? -1.0 : 1.0, 0.0, 0.0), vec3(0.0, 0.0, 1.0),
+                        vec3(0.0, 1.0, 0.0));
+    }
+    if (a.y >= a.z) {
+        return CubeFace(vec3(0.0, dir.y < 0.0 ? -1.0 : 1.0, 0.0), vec3(1.0, 0.0, 0.0),
+                        vec3(0.0, 0.0, 1.0));
+    }
+    return CubeFace(vec3(0.0, 0.0, dir.z < 0.0 ? -1.0 : 1.0), vec3(1.0, 0.0, 0.0),
+                    vec3(0.0, 1.0, 0.0));
+}
+
+// `dir`'s position on its face in [-1, 1]^2.
+vec2 face_coordinates(CubeFace face, vec3 dir) {
+    return vec2(dot(dir, face.u), dot(dir, face.v)) / dot(dir, face.major);
+}
+
+// The direction through the centre of the texel `dir` falls in.
+vec3 cube_texel_centre(vec3 dir, float size) {
+    CubeFace face = cube_face(dir);
+    vec2 texel = clamp(floor((face_coordinates(face, dir) * 0.5 + 0.5) * size), 0.0, size - 1.0);
+    vec2 centre = (texel + 0.5) / size * 2.0 - 1.0;
+    return face.major + face.u * centre.x + face.v * centre.y;
+}
+
+// The same on a cube map, over the texel grid of the face the receiver lands on. A tap past
+// the face's edge is moved to the centre of the texel it falls in on the next face, so every
+// comparison still reads one texel against the plane's depth along that texel's own ray.
+float cube_shadow(samplerCubeShadow map, Light light, vec3 p, vec3 n, bool filtered) {
+    vec3 light_position = light.position_kind.xyz;
+    float far = light.direction_far.w;
+    vec3 v = p - light_position;
+    float distance = length(v);
+    if (!(distance > 0.0) || !(far > 0.0)) {
+        return 1.0;
+    }
+    CubeFace face = cube_face(v);
+    float size = float(textureSize(map, 0).x);
+    vec2 position = (face_coordinates(face, v) * 0.5 + 0.5) * size - 0.5;  // texel centres at integers
+    vec2 base = floor(position + 0.5);  // the texel the receiver is in
+    vec3 wx = filter_weights(position.x - base.x, filtered);
+    vec3 wy = filter_weights(position.y - base.y, filtered);
+    float bias = kShadowBiasTexels * light.params.z * distance;
+    vec2 c0 = ((base + 0.5) / size) * 2.0 - 1.0;
+    float texel_step = 2.0 / size;
+    vec3 dir0 = face.major + face.u * c0.x + face.v * c0.y;
+    float towards_light = dot(n, -v);
+    float lit = 0.0;
+    for (int j = 0; j < 3; ++j) {
+        for (int i = 0; i < 3; ++i) {
+            float w = wx[i] * wy[j];
+            if (!filtered && w == 0.0) {
+                continue;
+            }
+            vec2 offset = vec2(i - 1, j - 1) * texel_step;
+            vec3 dir = dir0 + face.u * offset.x + face.v * offset.y;
+            if (any(greaterThan(abs(c0 + offset), vec2(1.0)))) {
+                dir = cube_texel_centre(dir, size);  // past the face's edge: the next face's
+            }
+            float depth = ray_plane_distance(dir, n, towards_light);
+            lit += w * texture(map, vec4(dir, (depth - bias) / far));
+        }
+    }
+    return lit;
 }
