@@ -19,7 +19,8 @@ struct GpuLightBatch {
 
 gl::Texture unused_shadow_map(GLenum target) {
     gl::Texture texture = gl::Texture::create(target);
-    glTextureStorage2D(texture.id(), 1, GL_DEPTH_COMPONENT32F, 1, 1);
+    glTextureStorage3D(texture.id(), 1, GL_DEPTH_COMPONENT32F, 1, 1,
+                       target == GL_TEXTURE_CUBE_MAP_ARRAY ? 6 : 1);
     glTextureParameteri(texture.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glTextureParameteri(texture.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(texture.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -30,8 +31,8 @@ gl::Texture unused_shadow_map(GLenum target) {
 
 LightBatches::LightBatches()
     : block_(gl::Buffer::create(sizeof(GpuLightBatch))),
-      unused_cube_(unused_shadow_map(GL_TEXTURE_CUBE_MAP)),
-      unused_map_(unused_shadow_map(GL_TEXTURE_2D)) {}
+      unused_cube_(unused_shadow_map(GL_TEXTURE_CUBE_MAP_ARRAY)),
+      unused_map_(unused_shadow_map(GL_TEXTURE_2D_ARRAY)) {}
 
 void LightBatches::bind(const std::vector<FrameLight>& lights, std::size_t batch,
                         const ShadowMaps& shadows) {
@@ -40,25 +41,20 @@ void LightBatches::bind(const std::vector<FrameLight>& lights, std::size_t batch
     const std::size_t count =
         first < lights.size() ? std::min(kLightsPerBatch, lights.size() - first) : 0;
     data.count[0] = static_cast<std::int32_t>(count);
-    for (std::size_t slot = 0; slot < kLightsPerBatch; ++slot) {
-        GLuint cube = unused_cube_.id();
-        GLuint map_2d = unused_map_.id();
-        if (slot < count) {
-            const FrameLight& light = lights[first + slot];
-            GpuLight& gpu = data.lights[slot];
-            gpu.position_kind = glm::vec4(light.position, static_cast<float>(light.kind));
-            gpu.direction_far = glm::vec4(light.direction, 0.0f);
-            gpu.intensity_shadow = glm::vec4(light.intensity, -1.0f);
-            gpu.params = glm::vec4(light.cos_inner, light.cos_outer, 0.0f, 0.0f);
-            if (const ShadowMap* map = shadows.find(light.entity); map != nullptr && map->valid) {
-                ShadowMaps::describe(*map, gpu);
-                gpu.intensity_shadow.w = static_cast<float>(slot);
-                (map->kind == ShadowKind::Cube ? cube : map_2d) = map->depth.id();
-            }
+    for (std::size_t slot = 0; slot < count; ++slot) {
+        const FrameLight& light = lights[first + slot];
+        GpuLight& gpu = data.lights[slot];
+        gpu.position_kind = glm::vec4(light.position, static_cast<float>(light.kind));
+        gpu.direction_far = glm::vec4(light.direction, 0.0f);
+        gpu.intensity_shadow = glm::vec4(light.intensity, -1.0f);
+        gpu.params = glm::vec4(light.cos_inner, light.cos_outer, 0.0f, 0.0f);
+        if (const ShadowMap* map = shadows.find(light.entity); map != nullptr && map->valid) {
+            ShadowMaps::describe(*map, gpu);  // its layer in intensity_shadow.w
         }
-        glBindTextureUnit(kCubeUnit + static_cast<GLuint>(slot), cube);
-        glBindTextureUnit(kMapUnit + static_cast<GLuint>(slot), map_2d);
     }
+    glBindTextureUnit(kCubeUnit,
+                      shadows.cube_array() != 0 ? shadows.cube_array() : unused_cube_.id());
+    glBindTextureUnit(kMapUnit, shadows.map_array() != 0 ? shadows.map_array() : unused_map_.id());
     block_.update(0, sizeof(data), &data);
     glBindBufferBase(GL_UNIFORM_BUFFER, kBlockBinding, block_.id());
 }

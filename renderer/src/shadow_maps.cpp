@@ -97,7 +97,10 @@ FillBudget draw_casters(const DrawList& draws, const gl::Program& program, const
 }  // namespace
 
 ShadowMaps::ShadowMaps(int cube_size, int map_size, bool filtered)
-    : cube_size_(std::max(cube_size, 1)), map_size_(std::max(map_size, 1)), filtered_(filtered) {}
+    : cube_size_(std::max(cube_size, 1)),
+      map_size_(std::max(map_size, 1)),
+      cube_layers_(GL_TEXTURE_CUBE_MAP_ARRAY, cube_size_, filtered),
+      map_layers_(GL_TEXTURE_2D_ARRAY, map_size_, filtered) {}
 
 void ShadowMaps::invalidate(const Bounds& bounds) {
     for (auto& [entity, map] : maps_) {
@@ -107,28 +110,28 @@ void ShadowMaps::invalidate(const Bounds& bounds) {
     }
 }
 
-ShadowMap ShadowMaps::allocate(ShadowKind kind) const {
+ShadowMap ShadowMaps::allocate(ShadowKind kind) {
     ShadowMap map;
     map.kind = kind;
     map.size = kind == ShadowKind::Cube ? cube_size_ : map_size_;
-    const GLenum target = kind == ShadowKind::Cube ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D;
-    map.depth = gl::Texture::create(target);
-    const GLuint id = map.depth.id();
-    glTextureStorage2D(id, 1, GL_DEPTH_COMPONENT32F, map.size, map.size);
-    // Hardware comparison; with LINEAR filtering each tap is already a 2 x 2 PCF.
-    glTextureParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    glTextureParameteri(id, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    const GLint filter = filtered_ ? GL_LINEAR : GL_NEAREST;
-    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, filter);
-    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, filter);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    map.layer = layers(kind).acquire();
     map.framebuffer = gl::Framebuffer::create();
     glNamedFramebufferDrawBuffer(map.framebuffer.id(), GL_NONE);
     glNamedFramebufferReadBuffer(map.framebuffer.id(), GL_NONE);
     gl::check_error("ShadowMaps allocate");
     return map;
+}
+
+void ShadowMaps::free(ShadowMap& map) {
+    layers(map.kind).release(map.layer);
+    map.layer = -1;
+}
+
+void ShadowMaps::clear() {
+    for (auto& [entity, map] : maps_) {
+        free(map);
+    }
+    maps_.clear();
 }
 
 void ShadowMaps::note_budget(ShadowMap& map, const FillBudget& budget) {
@@ -154,8 +157,10 @@ void ShadowMaps::render(ShadowMap& map, const DrawList& draws, const gl::Program
     program.set("u_planar", map.kind == ShadowKind::Ortho ? 1 : 0);
     program.set("u_far", map.far);
     const float clear_depth = 1.0f;
+    // Attached at every draw: the array is a new texture after it grows.
+    const GLuint array = layers(map.kind).id();
     if (map.kind != ShadowKind::Cube) {
-        glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, map.depth.id(), 0);
+        glNamedFramebufferTextureLayer(fbo, GL_DEPTH_ATTACHMENT, array, 0, map.layer);
         map.framebuffer.check_complete("shadow map");
         glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &clear_depth);
         program.set("u_view_projection", map.matrix);
@@ -167,7 +172,7 @@ void ShadowMaps::render(ShadowMap& map, const DrawList& draws, const gl::Program
     const glm::mat4 projection =
         glm::perspective(glm::half_pi<float>(), 1.0f, near, 1.75f * map.far);
     for (int face = 0; face < 6; ++face) {
-        glNamedFramebufferTextureLayer(fbo, GL_DEPTH_ATTACHMENT, map.depth.id(), 0, face);
+        glNamedFramebufferTextureLayer(fbo, GL_DEPTH_ATTACHMENT, array, 0, 6 * map.layer + face);
         map.framebuffer.check_complete("shadow cube face");
         glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &clear_depth);
         const glm::mat4 view_projection = projection * cube_face_view(map.origin, face);
@@ -183,12 +188,20 @@ std::size_t ShadowMaps::update(const std::vector<FrameLight>& lights, const Draw
     for (const FrameLight& light : lights) {
         present.insert(light.entity);
     }
-    std::erase_if(maps_, [&](const auto& entry) { return !present.contains(entry.first); });
+    for (auto it = maps_.begin(); it != maps_.end();) {
+        if (present.contains(it->first)) {
+            ++it;
+        } else {
+            free(it->second);
+            it = maps_.erase(it);
+        }
+    }
 
     std::size_t rendered = 0;
     for (const FrameLight& light : lights) {
         auto found = maps_.find(light.entity);
         if (found != maps_.end() && found->second.kind != light.shadow) {
+            free(found->second);
             maps_.erase(found);  // a spot widened past kWideSpot: a different kind of map
             found = maps_.end();
         }
@@ -228,6 +241,7 @@ void ShadowMaps::describe(const ShadowMap& map, GpuLight& light) {
     light.params.z = map.texel;
     light.params.w = static_cast<float>(map.kind);
     light.shadow_matrix = map.matrix;
+    light.intensity_shadow.w = static_cast<float>(map.layer);
     // The shader walks from a 2D map's texel centres back into the world (the receiver plane's
     // depth at each tap); one inverse per light a frame instead of one per pixel.
     light.shadow_inverse =

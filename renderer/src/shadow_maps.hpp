@@ -10,6 +10,7 @@
 #include "luxel/runtime/gl_objects.hpp"
 #include "luxel/runtime/program.hpp"
 #include "scene_draws.hpp"
+#include "shadow_layers.hpp"
 
 namespace luxel::renderer {
 
@@ -17,7 +18,7 @@ namespace luxel::renderer {
 struct ShadowMap {
     ShadowKind kind = ShadowKind::Cube;
     int size = 0;
-    gl::Texture depth;  ///< DEPTH_COMPONENT32F, compare mode on (sampler*Shadow)
+    int layer = -1;  ///< its layer of ShadowMaps' cube or 2D array (cube_array(), map_array())
     gl::Framebuffer framebuffer;
     glm::mat4 matrix{1.0f};  ///< world to clip (2D maps)
     glm::vec3 origin{0.0f};  ///< the light (ortho: the map's plane origin)
@@ -50,9 +51,13 @@ class ShadowMaps {
     std::size_t update(const std::vector<FrameLight>& lights, const DrawList& draws,
                        const gl::Program& program);
     /// Frees every map.
-    void clear() { maps_.clear(); }
+    void clear();
 
     [[nodiscard]] const ShadowMap* find(ecs::Entity light) const;
+    /// The cube-map array (DEPTH_COMPONENT32F, compare mode on) holding every cube map, and the
+    /// 2D array holding the spot and sun maps; 0 while no map of that shape exists.
+    [[nodiscard]] GLuint cube_array() const { return cube_layers_.id(); }
+    [[nodiscard]] GLuint map_array() const { return map_layers_.id(); }
     /// Fills the shadow fields of a light record (direction_far.w, params.z, params.w, matrix,
     /// position for ortho maps).
     static void describe(const ShadowMap& map, GpuLight& light);
@@ -61,13 +66,18 @@ class ShadowMaps {
     [[nodiscard]] std::uint64_t skipped_casters() const { return skipped_casters_; }
 
   private:
-    ShadowMap allocate(ShadowKind kind) const;
+    ShadowMap allocate(ShadowKind kind);
+    void free(ShadowMap& map);
+    ShadowLayers& layers(ShadowKind kind) {
+        return kind == ShadowKind::Cube ? cube_layers_ : map_layers_;
+    }
     void render(ShadowMap& map, const DrawList& draws, const gl::Program& program);
     void note_budget(ShadowMap& map, const FillBudget& budget);
 
     int cube_size_;
     int map_size_;
-    bool filtered_;
+    ShadowLayers cube_layers_;
+    ShadowLayers map_layers_;
     std::map<ecs::Entity, ShadowMap> maps_;
     std::uint64_t skipped_casters_ = 0;
 };

@@ -14,7 +14,7 @@ struct Light {
     vec4 direction_far;     // xyz unit direction (spot axis, or the direction light travels),
                             // w the shadow map's far distance in metres
     vec4 intensity_shadow;  // rgb radiant intensity W/sr (directional: irradiance W/m^2),
-                            // w shadow slot in the batch (-1: no shadow map)
+                            // w the shadow map's layer in its array (-1: none)
     vec4 params;            // x cos inner, y cos outer, z shadow texel size (per metre of
                             // distance; ortho: metres), w shadow map kind
     mat4 shadow_matrix;     // world to the 2D map's clip space

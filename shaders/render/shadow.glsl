@@ -19,6 +19,13 @@
 
 #include "render/lights.glsl"
 
+// Every light's map is a layer of one of two arrays (renderer/src/shadow_layers.hpp), named by
+// the light record's intensity_shadow.w. One sampler per shape, never an array of samplers:
+// llvmpipe gave some lanes along the sandbox level's wall corners another light's map when a
+// sampler array was indexed by the batch's light index (docs/RESULTS.md).
+layout(binding = 4) uniform samplerCubeArrayShadow u_cube_shadows;
+layout(binding = 8) uniform sampler2DArrayShadow u_map_shadows;
+
 // The constant bias, in texels of the map at the receiver.
 const float kShadowBiasTexels = 0.5;
 // The steepest plane the depth walk follows: cos(theta) >= 1/8 (83 degrees). Past it the plane
@@ -50,7 +57,7 @@ vec4 map_ray_point(Light light, vec2 centre) {
     return light.shadow_inverse * vec4(centre * 2.0 - 1.0, 0.0, 1.0);
 }
 
-float map_shadow(sampler2DShadow map, Light light, vec3 p, vec3 n, bool filtered) {
+float map_shadow(Light light, vec3 p, vec3 n, bool filtered) {
     bool ortho = int(light.params.w) == SHADOW_ORTHO;
     vec3 origin = light.position_kind.xyz;
     vec3 direction = light.direction_far.xyz;
@@ -65,7 +72,8 @@ float map_shadow(sampler2DShadow map, Light light, vec3 p, vec3 n, bool filtered
     }
     float texel = ortho ? light.params.z : light.params.z * length(p - origin);
     float bias = kShadowBiasTexels * texel;
-    vec2 size = vec2(textureSize(map, 0));
+    vec2 size = vec2(textureSize(u_map_shadows, 0).xy);
+    float layer = light.intensity_shadow.w;
     vec2 position = uv * size - 0.5;  // texel centres at integers
     vec2 base = floor(position + 0.5);  // the texel the receiver is in
     vec3 wx = filter_weights(position.x - base.x, filtered);
@@ -101,7 +109,7 @@ float map_shadow(sampler2DShadow map, Light light, vec3 p, vec3 n, bool filtered
             float depth = ortho ? d0 + offset.x * dx + offset.y * dy
                                 : ray_plane_distance(r0 + offset.x * rx + offset.y * ry, n,
                                                      towards_light);
-            lit += w * texture(map, vec3(c0 + offset / size, (depth - bias) / far));
+            lit += w * texture(u_map_shadows, vec4(c0 + offset / size, layer, (depth - bias) / far));
         }
     }
     return lit;
@@ -146,7 +154,7 @@ vec3 cube_texel_centre(vec3 dir, float size) {
 // The same on a cube map, over the texel grid of the face the receiver lands on. A tap past
 // the face's edge is moved to the centre of the texel it falls in on the next face, so every
 // comparison still reads one texel against the plane's depth along that texel's own ray.
-float cube_shadow(samplerCubeShadow map, Light light, vec3 p, vec3 n, bool filtered) {
+float cube_shadow(Light light, vec3 p, vec3 n, bool filtered) {
     vec3 light_position = light.position_kind.xyz;
     float far = light.direction_far.w;
     vec3 v = p - light_position;
@@ -155,7 +163,8 @@ float cube_shadow(samplerCubeShadow map, Light light, vec3 p, vec3 n, bool filte
         return 1.0;
     }
     CubeFace face = cube_face(v);
-    float size = float(textureSize(map, 0).x);
+    float size = float(textureSize(u_cube_shadows, 0).x);
+    float layer = light.intensity_shadow.w;
     vec2 position = (face_coordinates(face, v) * 0.5 + 0.5) * size - 0.5;  // texel centres at integers
     vec2 base = floor(position + 0.5);  // the texel the receiver is in
     vec3 wx = filter_weights(position.x - base.x, filtered);
@@ -178,7 +187,7 @@ float cube_shadow(samplerCubeShadow map, Light light, vec3 p, vec3 n, bool filte
                 dir = cube_texel_centre(dir, size);  // past the face's edge: the next face's
             }
             float depth = ray_plane_distance(dir, n, towards_light);
-            lit += w * texture(map, vec4(dir, (depth - bias) / far));
+            lit += w * texture(u_cube_shadows, vec4(dir, layer), (depth - bias) / far);
         }
     }
     return lit;
