@@ -262,4 +262,43 @@ TEST_F(DirectLight, ShadowMapsAreRedrawnOnlyWhenLightOrCasterMoves) {
     EXPECT_EQ(renderer.counters().shadow_map_renders, 3u);
 }
 
+// Every light's map is a layer of one array per shape (renderer/src/shadow_layers.hpp), which
+// grows by doubling as lights arrive: the maps it held are copied, not drawn again, and still
+// shadow right. Four more point lights under the plane (they light its back, so they add
+// nothing to the frame but each takes a cube layer: 1 -> 2 -> 4 -> 8), then all but the first
+// switched off (their layers freed; the array stays while the first light's map is in it).
+TEST_F(DirectLight, ShadowMapsSurviveTheirArrayGrowing) {
+    PlaneScene scene(true);
+    renderer::FrameRenderer renderer(scene.world.registry, *scene.world.lighting, test_settings());
+    const auto frame = [&] {
+        scene.world.update();
+        renderer.render(test_camera(), scene.world.time);
+        return renderer.counters().shadow_maps_drawn;
+    };
+    const auto positions = [&] {
+        return test::read_texture(renderer.position_texture(), kSize, kSize);
+    };
+    ASSERT_EQ(frame(), 1u);
+    const UmbraCount before = count_umbra(renderer.read(renderer::FrameImage::Direct), positions());
+    std::vector<ecs::Entity> below;
+    for (int i = 0; i < 4; ++i) {
+        below.push_back(scene.world.add_point_light(
+            glm::vec3(-0.6f + 0.4f * static_cast<float>(i), -1.0f, 0.0f), kPower));
+        EXPECT_EQ(frame(), 1u) << "only the new light's map is drawn, light " << i;
+    }
+    EXPECT_EQ(renderer.shadow_map_count(), 5u);
+    const UmbraCount after = count_umbra(renderer.read(renderer::FrameImage::Direct), positions());
+    EXPECT_GT(before.umbra, 100);
+    EXPECT_EQ(after.umbra, before.umbra);
+    EXPECT_EQ(after.dark, after.umbra) << "the first light's map, copied, still casts the umbra";
+    EXPECT_EQ(before.dark, before.umbra);
+    for (const ecs::Entity light : below) {
+        scene.world.registry.patch<PointLight>(light, [](PointLight& l) { l.enabled = false; });
+    }
+    EXPECT_EQ(frame(), 0u);
+    EXPECT_EQ(renderer.shadow_map_count(), 1u);
+    const UmbraCount last = count_umbra(renderer.read(renderer::FrameImage::Direct), positions());
+    EXPECT_EQ(last.dark, last.umbra);
+}
+
 }  // namespace
