@@ -21,7 +21,6 @@ gl::Texture unused_shadow_map(GLenum target) {
     gl::Texture texture = gl::Texture::create(target);
     glTextureStorage3D(texture.id(), 1, GL_DEPTH_COMPONENT32F, 1, 1,
                        target == GL_TEXTURE_CUBE_MAP_ARRAY ? 6 : 1);
-    glTextureParameteri(texture.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
     glTextureParameteri(texture.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(texture.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     return texture;

@@ -5,8 +5,7 @@
 
 namespace luxel::renderer {
 
-ShadowLayers::ShadowLayers(GLenum target, int size, bool filtered)
-    : target_(target), size_(std::max(size, 1)), filtered_(filtered) {}
+ShadowLayers::ShadowLayers(GLenum target, int size) : target_(target), size_(std::max(size, 1)) {}
 
 int ShadowLayers::acquire() {
     const auto free = std::find(used_.begin(), used_.end(), false);
@@ -36,13 +35,10 @@ void ShadowLayers::grow(int capacity) {
     gl::Texture texture = gl::Texture::create(target_);
     const GLuint id = texture.id();
     glTextureStorage3D(id, 1, GL_DEPTH_COMPONENT32F, size_, size_, capacity * faces());
-    // Hardware comparison; the shaders compare at texel centres, where LINEAR reads one texel
-    // (docs in shaders/render/shadow.glsl).
-    glTextureParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-    glTextureParameteri(id, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
-    const GLint filter = filtered_ ? GL_LINEAR : GL_NEAREST;
-    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, filter);
-    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, filter);
+    // Raw depths read at texel centres: the shaders compare them themselves
+    // (shaders/render/shadow.glsl), so no comparison mode and no filtering.
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glTextureParameteri(id, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);

@@ -20,9 +20,9 @@ namespace luxel::renderer {
 /// layer: a level without lights of this shape holds no texture for them.
 class ShadowLayers {
   public:
-    /// `target` GL_TEXTURE_2D_ARRAY or GL_TEXTURE_CUBE_MAP_ARRAY; `size` texels per edge;
-    /// `filtered` sets bilinear (else nearest) comparison filtering.
-    ShadowLayers(GLenum target, int size, bool filtered);
+    /// `target` GL_TEXTURE_2D_ARRAY or GL_TEXTURE_CUBE_MAP_ARRAY; `size` texels per edge.
+    /// DEPTH_COMPONENT32F, nearest texels, no comparison mode: the shaders compare.
+    ShadowLayers(GLenum target, int size);
 
     /// A free layer, growing the texture when none is left.
     [[nodiscard]] int acquire();
@@ -41,7 +41,6 @@ class ShadowLayers {
 
     GLenum target_;
     int size_;
-    bool filtered_;
     int capacity_ = 0;
     gl::Texture texture_;
     std::vector<bool> used_;

@@ -96,11 +96,11 @@ FillBudget draw_casters(const DrawList& draws, const gl::Program& program, const
 
 }  // namespace
 
-ShadowMaps::ShadowMaps(int cube_size, int map_size, bool filtered)
+ShadowMaps::ShadowMaps(int cube_size, int map_size)
     : cube_size_(std::max(cube_size, 1)),
       map_size_(std::max(map_size, 1)),
-      cube_layers_(GL_TEXTURE_CUBE_MAP_ARRAY, cube_size_, filtered),
-      map_layers_(GL_TEXTURE_2D_ARRAY, map_size_, filtered) {}
+      cube_layers_(GL_TEXTURE_CUBE_MAP_ARRAY, cube_size_),
+      map_layers_(GL_TEXTURE_2D_ARRAY, map_size_) {}
 
 void ShadowMaps::invalidate(const Bounds& bounds) {
     for (auto& [entity, map] : maps_) {

@@ -42,7 +42,7 @@ class FillBudget;
 /// switched off keeps no map.
 class ShadowMaps {
   public:
-    ShadowMaps(int cube_size, int map_size, bool filtered);
+    ShadowMaps(int cube_size, int map_size);
 
     /// A mesh was added, removed or moved; `bounds` is where it was or is (world space).
     void invalidate(const Bounds& bounds);

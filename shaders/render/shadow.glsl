@@ -12,10 +12,11 @@
 //
 // Filtered lookups weigh the 3 x 3 texel centres around the receiver as 2 x 2 bilinear taps
 // half a texel either side of it would (a filter two texels wide, whose weights move smoothly
-// with the receiver); each comparison at a centre reads that one texel. Unfiltered lookups
-// compare the texel the receiver falls in. Nine comparisons either way: the nine bilinear taps
-// one texel apart used before (a 4 x 4 footprint) would take sixteen at texel centres, which
-// doubled the direct pass on llvmpipe (docs/PERFORMANCE.md).
+// with the receiver); unfiltered lookups compare the texel the receiver falls in. Nine
+// comparisons either way: the nine bilinear taps one texel apart used before (a 4 x 4
+// footprint) would take sixteen at texel centres, which doubled the direct pass on llvmpipe
+// (docs/PERFORMANCE.md). The maps hold raw depths and the comparisons are made here, so the
+// nearest occluder's distance is known too: near a contact the filter narrows (shadow_result).
 
 #include "render/lights.glsl"
 
@@ -23,8 +24,10 @@
 // the light record's intensity_shadow.w. One sampler per shape, never an array of samplers:
 // llvmpipe gave some lanes along the sandbox level's wall corners another light's map when a
 // sampler array was indexed by the batch's light index (docs/RESULTS.md).
-layout(binding = 4) uniform samplerCubeArrayShadow u_cube_shadows;
-layout(binding = 8) uniform sampler2DArrayShadow u_map_shadows;
+// The arrays hold raw depths (no hardware comparison): the comparisons are made here, so each
+// tap's depth is also known to the contact test below.
+layout(binding = 4) uniform samplerCubeArray u_cube_shadows;
+layout(binding = 8) uniform sampler2DArray u_map_shadows;
 
 // The constant bias, in texels of the map at the receiver.
 const float kShadowBiasTexels = 0.5;
@@ -43,6 +46,62 @@ float plane_distance(vec3 origin, vec3 dir, vec3 p, vec3 n) {
 float ray_plane_distance(vec3 ray, vec3 n, float towards_light) {
     float len = length(ray);
     return towards_light * len / max(-dot(n, ray), kShadowMinCos * len);
+}
+
+// An occluder standing on the receiver (a wall on the floor) is reached by the filter's taps on
+// the far side of it when it is nearer than this, in texels along the light's ray: the taps lie
+// up to 1.5 texels across the ray, which the receiver's slope stretches by 1 / cos(theta) along
+// its plane, and an occluder square to the receiver meets the ray after a further
+// 1 / sin(theta). Twice that, kept between 4 and 24 texels.
+float contact_texels(float cos_theta) {
+    float c = clamp(cos_theta, 0.05, 1.0);
+    float s = sqrt(max(1.0 - c * c, 0.0025));
+    return clamp(3.0 / (c * s), 4.0, 24.0);
+}
+
+// The comparisons of one lookup: the filter's weighted sum, the 2 x 2 texels nearest the
+// receiver (bilinear weights), and the nearest occluder in front of the receiver plane (metres
+// along the ray; 1e30: none).
+struct ShadowTaps {
+    float filtered;
+    float near;
+    float gap;
+};
+
+// One comparison: `stored` the map's depth in [0, 1] at a texel centre, `plane` the receiver
+// plane's depth in metres along that texel's ray; `w` its filter weight, `w_near` its bilinear
+// weight among the nearest four.
+void add_tap(inout ShadowTaps taps, float w, float w_near, float stored, float plane, float bias,
+             float far) {
+    float occluder = stored * far;
+    bool lit = plane - bias <= occluder;
+    taps.filtered += lit ? w : 0.0;
+    taps.near += lit ? w_near : 0.0;
+    if (!lit) {
+        taps.gap = min(taps.gap, plane - occluder);
+    }
+}
+
+// The filter smooths the map's texel steps, but where an occluder touches the receiver (a wall
+// standing on the floor) its taps reach past the occluder onto the surface's continuation on
+// the far side, which the light does reach: a bright line along every contact. Light from a
+// real source is all but hard there (the sun's half degree gives a penumbra of 1% of the
+// occluder's distance), so as the nearest occluder among the taps comes within
+// contact_texels() of the receiver, the result moves from the filter to the four texels
+// nearest the receiver (one texel wide: what is left at a contact is at most half a texel).
+float shadow_result(ShadowTaps taps, float texel, float cos_theta) {
+    float contact = contact_texels(cos_theta) * texel;
+    float t = clamp(taps.gap / max(contact, 1e-9), 0.0, 1.0);
+    return mix(taps.near, taps.filtered, t);
+}
+
+// The bilinear weights of texels k - 1, k, k + 1 for a receiver `g` texels from the centre of
+// texel k: the two nearest. Unfiltered: texel k.
+vec3 near_weights(float g, bool filtered) {
+    if (!filtered) {
+        return vec3(0.0, 1.0, 0.0);
+    }
+    return g < 0.0 ? vec3(-g, 1.0 + g, 0.0) : vec3(0.0, 1.0 - g, g);
 }
 
 // The 1D weights of texels k - 1, k, k + 1 around a receiver `g` texels from the centre of
@@ -78,6 +137,8 @@ float map_shadow(Light light, vec3 p, vec3 n, bool filtered) {
     vec2 base = floor(position + 0.5);  // the texel the receiver is in
     vec3 wx = filter_weights(position.x - base.x, filtered);
     vec3 wy = filter_weights(position.y - base.y, filtered);
+    vec3 nx = near_weights(position.x - base.x, filtered);
+    vec3 ny = near_weights(position.y - base.y, filtered);
     // The rays through texel `base` and the next texels in x and y. Clip space is a projective
     // image of the world, so X.xyz - origin X.w (a spot's ray direction, unnormalised) and X.xyz
     // (a point on the sun's ray) are affine in the texel: three matrix products give every
@@ -98,7 +159,7 @@ float map_shadow(Light light, vec3 p, vec3 n, bool filtered) {
         dx = dot(rx, direction) + dot(n, rx) / max(-dot(n, direction), kShadowMinCos);
         dy = dot(ry, direction) + dot(n, ry) / max(-dot(n, direction), kShadowMinCos);
     }
-    float lit = 0.0;
+    ShadowTaps taps = ShadowTaps(0.0, 0.0, 1e30);
     for (int j = 0; j < 3; ++j) {
         for (int i = 0; i < 3; ++i) {
             float w = wx[i] * wy[j];
@@ -109,10 +170,12 @@ float map_shadow(Light light, vec3 p, vec3 n, bool filtered) {
             float depth = ortho ? d0 + offset.x * dx + offset.y * dy
                                 : ray_plane_distance(r0 + offset.x * rx + offset.y * ry, n,
                                                      towards_light);
-            lit += w * texture(u_map_shadows, vec4(c0 + offset / size, layer, (depth - bias) / far));
+            float stored = textureLod(u_map_shadows, vec3(c0 + offset / size, layer), 0.0).r;
+            add_tap(taps, w, nx[i] * ny[j], stored, depth, bias, far);
         }
     }
-    return lit;
+    vec3 to_light = ortho ? -direction : normalize(origin - p);
+    return shadow_result(taps, texel, dot(n, to_light));
 }
 
 // The face a direction from the light lands on: its major axis and its two minor axes as unit
@@ -169,12 +232,15 @@ float cube_shadow(Light light, vec3 p, vec3 n, bool filtered) {
     vec2 base = floor(position + 0.5);  // the texel the receiver is in
     vec3 wx = filter_weights(position.x - base.x, filtered);
     vec3 wy = filter_weights(position.y - base.y, filtered);
-    float bias = kShadowBiasTexels * light.params.z * distance;
+    vec3 nx = near_weights(position.x - base.x, filtered);
+    vec3 ny = near_weights(position.y - base.y, filtered);
+    float texel = light.params.z * distance;
+    float bias = kShadowBiasTexels * texel;
     vec2 c0 = ((base + 0.5) / size) * 2.0 - 1.0;
     float texel_step = 2.0 / size;
     vec3 dir0 = face.major + face.u * c0.x + face.v * c0.y;
     float towards_light = dot(n, -v);
-    float lit = 0.0;
+    ShadowTaps taps = ShadowTaps(0.0, 0.0, 1e30);
     for (int j = 0; j < 3; ++j) {
         for (int i = 0; i < 3; ++i) {
             float w = wx[i] * wy[j];
@@ -187,8 +253,9 @@ float cube_shadow(Light light, vec3 p, vec3 n, bool filtered) {
                 dir = cube_texel_centre(dir, size);  // past the face's edge: the next face's
             }
             float depth = ray_plane_distance(dir, n, towards_light);
-            lit += w * texture(u_cube_shadows, vec4(dir, layer), (depth - bias) / far);
+            float stored = textureLod(u_cube_shadows, vec4(dir, layer), 0.0).r;
+            add_tap(taps, w, nx[i] * ny[j], stored, depth, bias, far);
         }
     }
-    return lit;
+    return shadow_result(taps, texel, dot(n, -v / distance));
 }
