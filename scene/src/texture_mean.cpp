@@ -76,6 +76,29 @@ glm::vec3 LinearImage::wrapped(std::int64_t x, std::int64_t y) const {
     return {table[texel[0]], table[texel[1]], table[texel[2]]};
 }
 
+glm::vec3 LinearImage::bilinear(const glm::vec2& uv) const {
+    if (empty()) {
+        return glm::vec3(0.0f);
+    }
+    // Only the fraction matters under REPEAT; taking it first keeps the texel indices small
+    // (and defined) for any finite UV a file holds.
+    const auto fraction = [](float t) {
+        const double d = std::isfinite(t) ? static_cast<double>(t) : 0.0;
+        return d - std::floor(d);
+    };
+    const double x = fraction(uv.x) * image_.width - 0.5;
+    const double y = fraction(uv.y) * image_.height - 0.5;
+    const double x0 = std::floor(x);
+    const double y0 = std::floor(y);
+    const auto fx = static_cast<float>(x - x0);
+    const auto fy = static_cast<float>(y - y0);
+    const auto ix = static_cast<std::int64_t>(x0);
+    const auto iy = static_cast<std::int64_t>(y0);
+    const glm::vec3 top = glm::mix(wrapped(ix, iy), wrapped(ix + 1, iy), fx);
+    const glm::vec3 bottom = glm::mix(wrapped(ix, iy + 1), wrapped(ix + 1, iy + 1), fx);
+    return glm::mix(top, bottom, fy);
+}
+
 std::int64_t texels_per_triangle(std::size_t triangles) {
     const auto share =
         kMaxTexelsPerCall / static_cast<std::int64_t>(std::max<std::size_t>(triangles, 1));

@@ -99,6 +99,11 @@ ReferenceImage reference_image_for(const std::filesystem::path& cache_dir, const
                     ";image_spp=" + std::to_string(image.spp) +
                     ";caustic_photons=" + std::to_string(spec.caustic_photons) +
                     ";seed=" + std::to_string(spec.seed) + ";frame=v2";
+    // Paths read base-colour textures per hit (HitTextures): a textured level gets a new
+    // entry; an untextured one keeps its cached frame.
+    if (scene.textured()) {
+        reference.key += ";textures=per-hit";
+    }
     reference.hash = cache_hash(reference.key);
     const std::filesystem::path stem = cache_dir / (reference.hash + ".frame");
     if (load(stem, reference, camera.width, camera.height)) {

@@ -125,6 +125,11 @@ ReferenceMaps reference_for(const std::filesystem::path& cache_dir, const std::s
             [](const lighting::reference::ReferenceLight& light) { return !light.is_delta(); })) {
         maps.key += ";gathered=indirect";
     }
+    // Paths past a texel read base-colour textures per hit (HitTextures): the same for a
+    // textured level.
+    if (scene.textured()) {
+        maps.key += ";textures=per-hit";
+    }
     maps.hash = cache_hash(maps.key);
     const std::filesystem::path file = cache_dir / (maps.hash + ".json");
     if (load(file, maps, scene.texel_count())) {

@@ -42,6 +42,9 @@ class PhotonGeometry {
     void clear_changes() { changes_.clear(); }
 
     [[nodiscard]] std::optional<ObjectId> object(ecs::Entity entity) const;
+    /// Every mesh entity mirrored, with its object: an object's vertices and triangles are its
+    /// MeshInstance's primitives concatenated in order (add_mesh).
+    [[nodiscard]] const std::map<ecs::Entity, ObjectId>& objects() const { return objects_; }
     /// The sphere around the whole scene (directional lights' discs, caustic emitters).
     [[nodiscard]] BoundingSphere sphere() const;
     [[nodiscard]] std::size_t dynamic_object_count() const;

@@ -251,6 +251,10 @@ const std::vector<SurfaceInfo>& PhotonWorld::surfaces() const {
     return geometry_->surfaces();
 }
 
+const std::map<ecs::Entity, ObjectId>& PhotonWorld::mesh_objects() const {
+    return geometry_->objects();
+}
+
 const std::vector<TraceMaterial>& PhotonWorld::materials() const {
     return geometry_->materials();
 }

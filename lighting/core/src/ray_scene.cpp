@@ -220,6 +220,7 @@ std::optional<RayHit> RayScene::Impl::make_hit(const RTCRayHit& query) const {
     hit.triangle = triangle;
     hit.surface = mesh.surface_ids[triangle];
     hit.material = mesh.material_ids[triangle];
+    hit.barycentric = glm::vec2(u, v);
     // Interpolating the triangle's own vertices is more precise than origin + t * direction
     // far from the origin; it puts the point on the triangle's plane.
     const glm::vec3 local =

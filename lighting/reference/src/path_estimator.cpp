@@ -297,7 +297,7 @@ void PathEstimator::trace(glm::vec3 origin, glm::vec3 direction, glm::dvec3 beta
         }
         first_segment = false;
         any_diffuse = true;
-        const glm::dvec3 albedo(material.albedo);
+        const glm::dvec3 albedo(scene_->diffuse_albedo(*hit, material));
         const glm::vec3& n = normals.geometric;
         const glm::dvec3 reflect = beta * albedo / kPi;
         if (settings_.caustic_bounce && !caustics_.empty() && hit->surface >= 0) {

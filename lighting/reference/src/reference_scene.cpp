@@ -11,6 +11,7 @@
 
 #include "luxel/lighting/core/illumination_maps.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
+#include "luxel/lighting/reference/hit_textures.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/scene/texel_coverage.hpp"
 
@@ -202,7 +203,19 @@ ReferenceScene ReferenceScene::from_world(const PhotonWorld& world, const Illumi
         }
         surfaces.push_back(std::move(surface));
     }
-    return {world.ray_scene(), world.materials(), std::move(lights), std::move(surfaces)};
+    ReferenceScene scene(world.ray_scene(), world.materials(), std::move(lights),
+                         std::move(surfaces));
+    scene.textures_ = HitTextures::from_world(world);
+    return scene;
+}
+
+glm::vec3 ReferenceScene::diffuse_albedo(const RayHit& hit, const TraceMaterial& material) const {
+    if (textures_ != nullptr) {
+        if (const std::optional<glm::vec3> textured = textures_->albedo(hit)) {
+            return *textured;
+        }
+    }
+    return material.albedo;
 }
 
 const ReferenceTexel& ReferenceScene::texel(std::size_t index) const {

@@ -28,6 +28,9 @@ class LinearImage {
     [[nodiscard]] bool empty() const { return image_.width <= 0 || image_.height <= 0; }
     /// Texel (x, y) under glTF's default REPEAT wrap (any integers). An empty image: 0.
     [[nodiscard]] glm::vec3 wrapped(std::int64_t x, std::int64_t y) const;
+    /// The image at `uv` as a GL sampler with LINEAR filtering and REPEAT wrap reads it (glTF's
+    /// defaults): the four nearest texels' centres, bilinearly. A non-finite UV reads as 0.
+    [[nodiscard]] glm::vec3 bilinear(const glm::vec2& uv) const;
 
   private:
     DecodedImage image_;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <span>
 #include <vector>
@@ -137,6 +138,12 @@ class PhotonWorld {
     [[nodiscard]] PhotonMap& photon_map() { return *map_; }
     [[nodiscard]] const std::vector<SurfaceInfo>& surfaces() const;
     [[nodiscard]] const std::vector<TraceMaterial>& materials() const;
+    /// The registry the world mirrors.
+    [[nodiscard]] const ecs::Registry& registry() const { return registry_; }
+    /// Every mesh entity in the ray scene and its object there: the object's vertices and
+    /// triangles are the entity's MeshInstance primitives concatenated in order, so a caller
+    /// can keep per-vertex data of its own (the reference's texture coordinates).
+    [[nodiscard]] const std::map<ecs::Entity, ObjectId>& mesh_objects() const;
     /// The light entity whose groups include global group `group`, or null_entity.
     [[nodiscard]] ecs::Entity light_of_group(std::uint32_t group) const;
     /// The emitters of the enabled lights.

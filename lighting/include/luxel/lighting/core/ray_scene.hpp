@@ -42,6 +42,9 @@ struct RayHit {
     glm::vec3 geometric_normal{0.0f};  ///< unit, facing the side the triangle winds towards
     glm::vec3 shading_normal{0.0f};    ///< unit, interpolated (geometric when no normals)
     glm::vec2 lightmap_uv{0.0f};
+    /// The hit's weights of the triangle's second and third vertices (the first's is
+    /// 1 - x - y): what a caller that keeps its own per-vertex data interpolates it with.
+    glm::vec2 barycentric{0.0f};
     std::int32_t surface = -1;
     std::uint32_t material = 0;
     ObjectId object = kNoObject;

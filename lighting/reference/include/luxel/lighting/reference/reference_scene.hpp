@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <unordered_map>
 #include <vector>
@@ -70,6 +71,8 @@ struct EmitterHit {
     std::uint32_t triangle = 0;
 };
 
+class HitTextures;
+
 class ReferenceScene {
   public:
     /// `rays` must outlive the scene and stay unchanged (committed) while it is used.
@@ -91,6 +94,11 @@ class ReferenceScene {
     [[nodiscard]] std::span<const TraceMaterial> materials() const { return materials_; }
     /// Tests edit materials (the furnace at another albedo) before integrating.
     [[nodiscard]] std::span<TraceMaterial> materials() { return materials_; }
+    /// The diffuse albedo at a hit on `material`: its base-colour texture there when the scene
+    /// came from a world with textured meshes (HitTextures), else the material's albedo.
+    [[nodiscard]] glm::vec3 diffuse_albedo(const RayHit& hit, const TraceMaterial& material) const;
+    /// Whether hits read base-colour textures (a world with textured meshes).
+    [[nodiscard]] bool textured() const { return textures_ != nullptr; }
     [[nodiscard]] std::span<const ReferenceLight> lights() const { return lights_; }
     [[nodiscard]] std::span<const ReferenceSurface> surfaces() const { return surfaces_; }
     [[nodiscard]] std::size_t texel_count() const { return texel_count_; }
@@ -130,6 +138,7 @@ class ReferenceScene {
 
     const RayScene* rays_;
     std::vector<TraceMaterial> materials_;
+    std::shared_ptr<const HitTextures> textures_;  ///< null: every hit reads its material
     std::vector<ReferenceLight> lights_;
     std::vector<ReferenceSurface> surfaces_;
     std::size_t texel_count_ = 0;
