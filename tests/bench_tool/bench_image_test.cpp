@@ -132,6 +132,34 @@ TEST(BenchImage, TheImageErrorIsAFiniteNumberInCsvAndJson) {
     EXPECT_EQ(count(read_text(out / "summary.md"), "not measured"), 0u);
 }
 
+// --camera places both compared frames (real time and reference) where luxel-ref's --camera
+// would: from the middle of cornell looking at its red wall, both halves of the side-by-side
+// picture are red.
+TEST(BenchImage, TheCameraFlagPlacesBothFrames) {
+    luxel::testing::TempDir dir("luxel-bench-camera");
+    const std::filesystem::path out = dir / "out";
+    const CommandResult run = luxel_bench(
+        "--level cornell --budgets 8 --frames 2 --after 1 --checkpoint 1 --change none "
+        "--ref-photons 100000 --ref-caustic-photons 50000 --ref-spp 1 --image 32x24 "
+        "--image-spp 16 --threads 2 --camera 0,1,0:-1,1,0:40 --out " +
+        quoted(out));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_NE(read_text(out / "summary.md").find("the --camera view"), std::string::npos);
+    const luxel::Image8 image = luxel::read_png(out / "frames/paper_8ms_static.png");
+    ASSERT_EQ(image.width, 2 * 32 + 4);
+    for (const int x0 : {0, 32 + 4}) {  // real time | 4 black pixels | reference
+        double red = 0.0;
+        double green = 0.0;
+        for (int y = 0; y < image.height; ++y) {
+            for (int x = x0; x < x0 + 32; ++x) {
+                red += image.at(x, y, 0);
+                green += image.at(x, y, 1);
+            }
+        }
+        EXPECT_GT(red, 2.0 * green) << "the half at x " << x0 << " should show the red wall";
+    }
+}
+
 TEST(BenchImage, NoImageMarksTheColumnsNotMeasuredAndMakesNoContext) {
     luxel::testing::TempDir dir("luxel-bench-no-image");
     const std::filesystem::path out = dir / "out";

@@ -129,6 +129,8 @@ INSTANTIATE_TEST_SUITE_P(Tools, ExitCodes, ::testing::Values(
     Case{kBench, "--level cornell --sweep nonsense=1", 2, "nonsense"},
     Case{kBench, "--level @/missing.glb --out @/run", 1, "@/missing.glb"},
     Case{kBench, "--level cornell --limit triangles=1G1", 2, "--limit"},
+    Case{kBench, "--level cornell --camera 1,2:3", 2, "--camera"},
+    Case{kBench, "--level cornell --camera 0,1,3:0,1,0:60 --no-image", 2, "--camera"},
     // luxel-make-levels
     Case{kMakeLevels, "--no-such-flag", 2, "--no-such-flag"},
     Case{kMakeLevels, "--level no-such-level --out @/levels", 2, "no-such-level"},

@@ -12,6 +12,7 @@
 
 #include "luxel/prep/auto_prep.hpp"
 #include "luxel/scene/gltf.hpp"
+#include "options.hpp"
 
 namespace luxel::bench {
 
@@ -48,6 +49,8 @@ struct ImageSpec {
     int width = 160;      ///< small: a 128-spp reference frame costs about half a minute
     int height = 120;
     std::uint32_t spp = 128;  ///< the reference frame's path samples per pixel
+    /// --camera (luxel-ref's syntax): both frames from here instead of the level's first camera.
+    std::optional<ref::CameraSpec> camera;
 };
 
 struct Options {

@@ -127,8 +127,14 @@ ConfigRun::ConfigRun(const LevelRunContext& context, const BenchConfig& config)
     if (options_.image.enabled) {
         // A level without a camera is seen from the default view, as luxel-sandbox and
         // luxel-ref see it (the warning at load says which).
-        camera_ =
-            ref::level_camera(registry_, instance_, options_.image.width, options_.image.height);
+        if (const auto& spec = options_.image.camera) {
+            camera_ = lighting::reference::ReferenceCamera::look_at(
+                spec->eye, spec->target, glm::radians(spec->fov_degrees), options_.image.width,
+                options_.image.height);
+        } else {
+            camera_ = ref::level_camera(registry_, instance_, options_.image.width,
+                                        options_.image.height);
+        }
         if (!camera_) {
             camera_ = ref::default_camera(options_.image.width, options_.image.height);
         }

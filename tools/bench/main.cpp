@@ -2,7 +2,7 @@
 // its cost (docs/METHOD.md §10, issue 11).
 //   luxel-bench --level NAME|PATH [--budgets 1,2,4,8] [--frames N] [--after N] [--out DIR]
 //               [--sweep KNOB=V1,V2 ...] [--change NODE:dx,dy,dz|auto|none] [--ref-* ...]
-//               [--image WxH] [--image-spp N] [--no-image]
+//               [--image WxH] [--image-spp N] [--camera x,y,z:tx,ty,tz:fov] [--no-image]
 // Writes CSV, JSON, PNG plots, frames and summary.md into DIR; references are cached in
 // DIR/cache.
 
@@ -73,6 +73,7 @@ int run(int argc, char** argv) {
     bench::Options options;
     std::string budgets;
     std::string image_size;
+    std::string camera_text;
     bool no_image = false;
     std::vector<std::string> sweeps;
     app.add_option("--level", options.level,
@@ -102,6 +103,10 @@ int run(int argc, char** argv) {
     app.add_option("--image", image_size,
                    "WIDTHxHEIGHT of the frames compared for the image error (default 160x120): "
                    "the real-time frame and a reference frame of the level's first camera");
+    app.add_option("--camera", camera_text,
+                   "x,y,z:tx,ty,tz:fov (position, target, vertical fov in degrees) of both "
+                   "frames compared for the image error, as luxel-ref's --camera; default: the "
+                   "level's first camera, else the default view");
     app.add_option("--image-spp", options.image.spp,
                    "path samples per pixel of the reference frame")
         ->capture_default_str();
@@ -146,6 +151,12 @@ int run(int argc, char** argv) {
             bench::parse_image_size(image_size, options.image);
         }
         options.image.enabled = !no_image;
+        if (!camera_text.empty()) {
+            if (no_image) {
+                throw Error("--camera and --no-image: the camera is the compared frames'");
+            }
+            options.image.camera = ref::parse_camera(camera_text);
+        }
         for (const std::string& s : sweeps) {
             options.sweeps.push_back(bench::parse_sweep(s));
         }

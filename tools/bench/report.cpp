@@ -378,8 +378,9 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
        << ". Change: " << change_text(info.change) << ".\n\n";
     if (image.enabled) {
         md << "Image error: the real-time frame (FrameRenderer + CausticPass on " << info.gl
-           << ") against a reference frame of the level's first camera, " << image.width << "x"
-           << image.height << ", " << image.spp
+           << ") against a reference frame of "
+           << (image.camera ? "the --camera view" : "the level's first camera") << ", "
+           << image.width << "x" << image.height << ", " << image.spp
            << " spp; \"image\" is its relRMSE at the last static frame, (net) the same with the "
               "reference frame's own noise taken out. Frames side by side (real time | "
               "reference) in frames/.\n\n";
