@@ -62,6 +62,21 @@ glm::quat pointing(const glm::vec3& direction) {
     return glm::quatLookAt(glm::normalize(direction), glm::vec3(0.0f, 1.0f, 0.0f));
 }
 
+/// The 4 m floor (y = 0, facing up) every scene here stands on.
+void add_floor(test::RenderWorld& world) {
+    world.add_mesh(
+        test::single_mesh_scene(test::horizontal_square(glm::vec3(0.0f), 2.0f), kAlbedo));
+}
+
+constexpr float kSunIrradiance = 50.0f;  // W/m^2 on a surface facing the sun
+
+/// A sun of kSunIrradiance whose light travels along `direction`.
+void add_sun(test::RenderWorld& world, const glm::vec3& direction) {
+    const ecs::Entity sun = world.registry.create();
+    world.registry.emplace<lighting::DirectionalLight>(sun, glm::vec3(kSunIrradiance), true);
+    world.registry.emplace<ecs::Transform>(sun, glm::vec3(0.0f), pointing(direction));
+}
+
 struct Lit {
     Image direct;
     std::vector<glm::vec4> positions;  ///< rows bottom first (GL order)
@@ -132,18 +147,14 @@ TEST_P(ShadowContact, GrazingLightDoesNotShadowTheFloorItLights) {
     const glm::vec3 target(0.0f, 0.0f, -0.3f);
     {
         test::RenderWorld world;
-        world.add_mesh(
-            test::single_mesh_scene(test::horizontal_square(glm::vec3(0.0f), 2.0f), kAlbedo));
+        add_floor(world);
         const glm::vec3 d = sun_direction(glm::radians(10.0f));
-        const float irradiance = 50.0f;
-        const ecs::Entity sun = world.registry.create();
-        world.registry.emplace<lighting::DirectionalLight>(sun, glm::vec3(irradiance), true);
-        world.registry.emplace<ecs::Transform>(sun, glm::vec3(0.0f), pointing(d));
+        add_sun(world, d);
         world.start();
         world.update();
         const Lit lit = render(world, eye, target, 1.0f, filtered);
         const FloorError error = floor_error(lit, [&](const glm::vec3&) {
-            return kAlbedo.g / glm::pi<float>() * irradiance * -d.y;
+            return kAlbedo.g / glm::pi<float>() * kSunIrradiance * -d.y;
         });
         EXPECT_GT(error.judged, kSize * kSize / 3);
         EXPECT_LT(error.worst, 0.02f) << "sun, filtered " << filtered;
@@ -207,18 +218,14 @@ TEST_P(ShadowContact, GrazingLightDoesNotShadowTheFloorItLights) {
 TEST_P(ShadowContact, WallStandingOnTheFloorShadowsItToTheCorner) {
     const bool filtered = GetParam();
     test::RenderWorld world;
-    world.add_mesh(
-        test::single_mesh_scene(test::horizontal_square(glm::vec3(0.0f), 2.0f), kAlbedo));
+    add_floor(world);
     world.add_mesh(test::single_mesh_scene(wall(), kAlbedo));
     const glm::vec3 d = sun_direction(glm::radians(20.0f));
-    const float irradiance = 50.0f;
-    const ecs::Entity sun = world.registry.create();
-    world.registry.emplace<lighting::DirectionalLight>(sun, glm::vec3(irradiance), true);
-    world.registry.emplace<ecs::Transform>(sun, glm::vec3(0.0f), pointing(d));
+    add_sun(world, d);
     world.start();
     world.update();
     const Lit lit = render(world, {0.0f, 0.45f, 0.55f}, {0.0f, 0.0f, 0.05f}, 0.6f, filtered);
-    const float unshadowed = kAlbedo.g / glm::pi<float>() * irradiance * -d.y;
+    const float unshadowed = kAlbedo.g / glm::pi<float>() * kSunIrradiance * -d.y;
     const float dark_beyond = filtered ? 0.03f : 0.018f;  // metres from the wall
     int floor_pixels = 0;
     int near_wall = 0;
