@@ -31,8 +31,6 @@ class ShadowLayers {
 
     /// The array texture; 0 while no layer is held.
     [[nodiscard]] GLuint id() const { return texture_.id(); }
-    [[nodiscard]] int size() const { return size_; }
-    [[nodiscard]] int capacity() const { return capacity_; }
     /// GL layers per map layer: 6 faces for a cube-map array, else 1.
     [[nodiscard]] int faces() const { return target_ == GL_TEXTURE_CUBE_MAP_ARRAY ? 6 : 1; }
 
