@@ -237,14 +237,17 @@ TEST_F(DirectLight, GeometryStackedOnItselfIsLeftOutPastTheFillBudget) {
         << "the G-buffer is drawn every frame; the shadow map only when something moved";
 }
 
+/// One frame of `scene` (its lighting updated, then drawn); returns the shadow maps drawn in it.
+std::size_t next_frame(PlaneScene& scene, renderer::FrameRenderer& renderer) {
+    scene.world.update();
+    renderer.render(test_camera(), scene.world.time);
+    return renderer.counters().shadow_maps_drawn;
+}
+
 TEST_F(DirectLight, ShadowMapsAreRedrawnOnlyWhenLightOrCasterMoves) {
     PlaneScene scene(true);
     renderer::FrameRenderer renderer(scene.world.registry, *scene.world.lighting, test_settings());
-    const auto frame = [&] {
-        scene.world.update();
-        renderer.render(test_camera(), scene.world.time);
-        return renderer.counters().shadow_maps_drawn;
-    };
+    const auto frame = [&] { return next_frame(scene, renderer); };
     EXPECT_EQ(frame(), 1u) << "a new light's map is drawn";
     EXPECT_EQ(frame(), 0u) << "nothing moved";
     EXPECT_EQ(frame(), 0u);
@@ -270,11 +273,7 @@ TEST_F(DirectLight, ShadowMapsAreRedrawnOnlyWhenLightOrCasterMoves) {
 TEST_F(DirectLight, ShadowMapsSurviveTheirArrayGrowing) {
     PlaneScene scene(true);
     renderer::FrameRenderer renderer(scene.world.registry, *scene.world.lighting, test_settings());
-    const auto frame = [&] {
-        scene.world.update();
-        renderer.render(test_camera(), scene.world.time);
-        return renderer.counters().shadow_maps_drawn;
-    };
+    const auto frame = [&] { return next_frame(scene, renderer); };
     const auto positions = [&] {
         return test::read_texture(renderer.position_texture(), kSize, kSize);
     };
