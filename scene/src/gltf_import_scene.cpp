@@ -65,6 +65,47 @@ float extension_number(const ImportContext& context, const nlohmann::json& exten
     return to_float(context, value.get<double>(), what + "." + key);
 }
 
+/// KHR_materials_volume: the thickness and what the inside absorbs. thicknessTexture is not
+/// read (the factor holds everywhere), which the author is told.
+void import_volume(const ImportContext& context, const nlohmann::json& volume,
+                   const std::string& where, Material& material) {
+    if (volume.is_null()) {
+        return;
+    }
+    if (!volume.is_object()) {
+        context.fail(where + ": KHR_materials_volume is not an object");
+    }
+    material.thickness =
+        extension_number(context, volume, "thicknessFactor", 0.0f, where + " volume");
+    if (material.thickness < 0.0f) {
+        context.fail(where + ": volume thicknessFactor must not be negative");
+    }
+    if (volume.contains("attenuationDistance")) {
+        material.attenuation_distance =
+            extension_number(context, volume, "attenuationDistance", 1.0f, where + " volume");
+        if (!(material.attenuation_distance > 0.0f)) {
+            context.fail(where + ": volume attenuationDistance must be positive");
+        }
+    }
+    if (volume.contains("attenuationColor")) {
+        const nlohmann::json& colour = volume.at("attenuationColor");
+        if (!colour.is_array() || colour.size() != 3) {
+            context.fail(where + ": volume attenuationColor must be an array of three numbers");
+        }
+        for (std::size_t c = 0; c < 3; ++c) {
+            if (!colour[c].is_number()) {
+                context.fail(where + ": volume attenuationColor must be an array of three numbers");
+            }
+            material.attenuation_color[static_cast<glm::length_t>(c)] =
+                unit_factor(context, colour[c].get<double>(), where + " volume attenuationColor");
+        }
+    }
+    if (volume.contains("thicknessTexture")) {
+        context.warn(where + ": the volume's thicknessTexture is not read; its thicknessFactor " +
+                     std::to_string(material.thickness) + " holds everywhere");
+    }
+}
+
 bool is_png(const std::vector<unsigned char>& bytes) {
     static constexpr unsigned char kSignature[] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
     return bytes.size() >= sizeof(kSignature) &&
@@ -442,6 +483,7 @@ void import_materials(ImportContext& context) {
                 context.fail(where + ": ior " + std::to_string(material.ior) +
                              " must be 0 or at least 1");
             }
+            import_volume(context, extension("KHR_materials_volume"), where, material);
         }
         context.scene().materials.push_back(std::move(material));
     }

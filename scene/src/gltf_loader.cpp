@@ -61,9 +61,9 @@ namespace {
 using gltf_detail::ImportContext;
 
 /// The extensions luxel reads; a file may require only these.
-constexpr std::array<std::string_view, 4> kSupportedRequiredExtensions = {
+constexpr std::array<std::string_view, 5> kSupportedRequiredExtensions = {
     "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_transmission",
-    "KHR_materials_ior"};
+    "KHR_materials_ior", "KHR_materials_volume"};
 
 /// What tinygltf's file callbacks may touch: regular files inside the asset's directory, each
 /// and all together within the limits.

@@ -118,6 +118,23 @@ json vec_json(const float* values, int n) {
     return std::vector<float>(values, values + n);
 }
 
+/// KHR_materials_volume's object for `material`, empty when it has the defaults (a thin wall
+/// that absorbs nothing). An infinite attenuation distance is the extension's default and has
+/// no JSON number: it is left out.
+json volume_json(const Material& material) {
+    json volume = json::object();
+    if (material.thickness != 0.0f) {
+        volume["thicknessFactor"] = material.thickness;
+    }
+    if (std::isfinite(material.attenuation_distance)) {
+        volume["attenuationDistance"] = material.attenuation_distance;
+    }
+    if (material.attenuation_color != glm::vec3(1.0f)) {
+        volume["attenuationColor"] = vec_json(&material.attenuation_color.x, 3);
+    }
+    return volume;
+}
+
 /// Splits a colour that may exceed 1 into glTF's [0, 1] factor and a multiplier for the
 /// intensity that goes with it.
 float normalise_colour(glm::vec3& colour) {
@@ -236,6 +253,9 @@ class DocumentWriter {
             }
             if (material.ior != 1.5f) {
                 extensions["KHR_materials_ior"] = {{"ior", material.ior}};
+            }
+            if (json volume = volume_json(material); !volume.empty()) {
+                extensions["KHR_materials_volume"] = std::move(volume);
             }
             for (const auto& [name, value] : extensions.items()) {
                 use_extension(name);

@@ -187,6 +187,16 @@ void validate_materials(const Scene& scene) {
         if (!finite(material.ior) || (material.ior != 0.0f && material.ior < 1.0f)) {
             invalid(where + ": ior must be 0 or at least 1");
         }
+        // KHR_materials_volume: an infinite attenuation distance is its default (no absorption).
+        if (!finite(material.thickness) || material.thickness < 0.0f ||
+            !(material.attenuation_distance > 0.0f) ||
+            !in_unit_interval(material.attenuation_color.r) ||
+            !in_unit_interval(material.attenuation_color.g) ||
+            !in_unit_interval(material.attenuation_color.b)) {
+            invalid(where +
+                    ": volume thickness must be finite and not negative, attenuation distance "
+                    "positive, attenuation colour in [0, 1]");
+        }
         if (!optional_in_range(material.base_color_image, scene.images.size())) {
             invalid(where + ": base colour image " + std::to_string(material.base_color_image) +
                     " out of range");

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -293,6 +294,33 @@ TEST(GltfHostileValues, RadiometricProductsThatWouldOverflowAreRefused) {
     message = load_error(file.text());
     EXPECT_NE(message.find("lava"), std::string::npos) << message;
     EXPECT_NE(message.find("emissive strength exceeds 1e20"), std::string::npos) << message;
+}
+
+TEST(GltfHostileValues, VolumeValuesOutOfRangeNameTheMaterial) {
+    // KHR_materials_volume: each wrong value fails naming the material and the key.
+    const auto volume_error = [](const nlohmann::json& volume) {
+        GltfBuilder file = triangle();
+        file.document["extensionsUsed"] = {"KHR_materials_volume"};
+        file.document["materials"] = {
+            {{"name", "smoked glass"}, {"extensions", {{"KHR_materials_volume", volume}}}}};
+        file.document["meshes"][0]["primitives"][0]["material"] = 0;
+        return load_error(file.text());
+    };
+    const std::vector<std::pair<nlohmann::json, std::string>> cases = {
+        {{{"thicknessFactor", -0.1}}, "thicknessFactor must not be negative"},
+        {{{"thicknessFactor", "thick"}}, "thicknessFactor is not a number"},
+        {{{"attenuationDistance", 0.0}}, "attenuationDistance must be positive"},
+        {{{"attenuationDistance", -2.0}}, "attenuationDistance must be positive"},
+        {{{"attenuationColor", {1, 0.5}}}, "attenuationColor must be an array of three numbers"},
+        {{{"attenuationColor", {1, "red", 0}}},
+         "attenuationColor must be an array of three numbers"},
+        {nlohmann::json::array(), "KHR_materials_volume is not an object"},
+    };
+    for (const auto& [volume, expected] : cases) {
+        const std::string message = volume_error(volume);
+        EXPECT_NE(message.find("smoked glass"), std::string::npos) << message;
+        EXPECT_NE(message.find(expected), std::string::npos) << volume.dump() << ": " << message;
+    }
 }
 
 /// A triangle under a parent, with a camera on a third node.

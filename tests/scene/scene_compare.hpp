@@ -3,6 +3,8 @@
 // Field-by-field comparison of two scenes with a float tolerance (the writer normalises
 // quaternions and normals, which may move the last bit).
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "luxel/scene/scene.hpp"
@@ -85,6 +87,14 @@ inline void expect_same_scene(const scene::Scene& a, const scene::Scene& b) {
         expect_near(x.emitted_radiance(), y.emitted_radiance(), what + " emission");
         EXPECT_NEAR(x.transmission, y.transmission, kRoundTripTolerance) << what;
         EXPECT_NEAR(x.ior, y.ior, kRoundTripTolerance) << what;
+        EXPECT_NEAR(x.thickness, y.thickness, kRoundTripTolerance) << what;
+        // Infinite (no absorption) stays infinite; a finite distance within the tolerance.
+        EXPECT_EQ(std::isinf(x.attenuation_distance), std::isinf(y.attenuation_distance)) << what;
+        if (!std::isinf(x.attenuation_distance)) {
+            EXPECT_NEAR(x.attenuation_distance, y.attenuation_distance, kRoundTripTolerance)
+                << what;
+        }
+        expect_near(x.attenuation_color, y.attenuation_color, what + " attenuation colour");
         EXPECT_EQ(x.double_sided, y.double_sided) << what;
         EXPECT_EQ(x.is_specular(), y.is_specular()) << what;
         EXPECT_EQ(x.is_emissive(), y.is_emissive()) << what;

@@ -160,6 +160,9 @@ scene::Scene box_room() {
         m.roughness = 0.0f;
         m.metallic = 0.0f;
         m.base_color = {1.0f, 1.0f, 1.0f, 0.25f};
+        m.thickness = 0.05f;  // KHR_materials_volume
+        m.attenuation_distance = 0.4f;
+        m.attenuation_color = {0.6f, 0.8f, 0.95f};
     }
     {
         auto& m = material("mirror");

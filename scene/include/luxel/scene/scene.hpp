@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -58,6 +59,13 @@ struct Material {
     float emissive_strength = 1.0f;  ///< KHR_materials_emissive_strength
     float transmission = 0.0f;       ///< KHR_materials_transmission
     float ior = 1.5f;                ///< KHR_materials_ior
+    /// KHR_materials_volume. thickness (thicknessFactor, the mesh's own units) > 0 makes a
+    /// transmissive primitive the boundary of a solid whose inside keeps
+    /// attenuation_color^(distance / attenuation_distance) of the light crossing it
+    /// (Beer-Lambert, scene/volume.hpp); 0 is glTF's thin wall, which absorbs nothing.
+    float thickness = 0.0f;
+    float attenuation_distance = std::numeric_limits<float>::infinity();  ///< metres
+    glm::vec3 attenuation_color{1.0f};
     bool double_sided = false;
 
     /// Emitted radiance in W/(m^2 sr): emissive * emissive_strength (luxel reads glTF's
