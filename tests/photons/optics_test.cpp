@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 
 #include "luxel/lighting/core/halton.hpp"
 #include "luxel/lighting/core/optics.hpp"
+#include "luxel/lighting/core/photon_tracer.hpp"
 
 namespace {
 
@@ -80,6 +82,46 @@ TEST(Optics, ConductorFresnelRisesToOneAtGrazing) {
     EXPECT_NEAR(normal.b, 0.42f, 1e-6f);
     const glm::vec3 grazing = optics::fresnel_conductor(0.0f, brass);
     EXPECT_NEAR(grazing.b, 1.0f, 1e-6f);
+}
+
+/// A hit on a plane y = 0 whose front faces +y, `distance` from where the ray left.
+RayHit plane_hit(float distance) {
+    RayHit hit;
+    hit.distance = distance;
+    hit.geometric_normal = glm::vec3(0.0f, 1.0f, 0.0f);
+    hit.shading_normal = hit.geometric_normal;
+    return hit;
+}
+
+TEST(Optics, ADielectricsInsideAbsorbsOnTheWayOutOnly) {
+    TraceMaterial glass;
+    glass.scattering = Scattering::Dielectric;
+    glass.ior = 1.5f;
+    glass.tint = glm::vec3(0.9f, 0.8f, 1.0f);
+    glass.attenuation_color = glm::vec3(0.25f, 0.5f, 1.0f);
+    glass.attenuation_distance = 0.5f;
+    // xi = 0.99 refracts (the reflectance at normal incidence is 0.04).
+    const auto scatter = [&](const glm::vec3& direction, float distance) {
+        const RayHit hit = plane_hit(distance);
+        glm::vec3 origin(0.0f);
+        glm::vec3 d = direction;
+        glm::vec3 power(1.0f);
+        scatter_specular(glass, hit, facing_normals(hit, d), 0.99, origin, d, power);
+        return power;
+    };
+    // Entering (arriving on the front): the tint alone, however far the ray came through air.
+    const glm::vec3 entering = scatter(glm::vec3(0.0f, -1.0f, 0.0f), 3.0f);
+    EXPECT_NEAR(entering.r, 0.9f, 1e-6f);
+    EXPECT_NEAR(entering.g, 0.8f, 1e-6f);
+    EXPECT_NEAR(entering.b, 1.0f, 1e-6f);
+    // Leaving after 1 m inside (twice the attenuation distance): colour^2, then the tint.
+    const glm::vec3 leaving = scatter(glm::vec3(0.0f, 1.0f, 0.0f), 1.0f);
+    EXPECT_NEAR(leaving.r, 0.0625f * 0.9f, 1e-6f);
+    EXPECT_NEAR(leaving.g, 0.25f * 0.8f, 1e-6f);
+    EXPECT_NEAR(leaving.b, 1.0f, 1e-6f);
+    // Clear glass (the default) absorbs nothing on the way out.
+    glass.attenuation_distance = std::numeric_limits<float>::infinity();
+    EXPECT_NEAR(scatter(glm::vec3(0.0f, 1.0f, 0.0f), 1.0f).r, 0.9f, 1e-6f);
 }
 
 TEST(Halton, RadicalInverseDigitsAndStratification) {

@@ -6,6 +6,7 @@
 
 #include "luxel/runtime/log.hpp"
 #include "luxel/scene/image_decode.hpp"
+#include "luxel/scene/volume.hpp"
 #include "photon_world_support.hpp"
 
 namespace luxel::lighting {
@@ -21,6 +22,10 @@ TraceMaterial trace_material_of(const scene::Scene& scene, const scene::Material
     if (material.transmission > 0.0f) {
         traced.scattering = Scattering::Dielectric;
         traced.tint = glm::vec3(material.base_color);
+        if (scene::absorbs_inside(material)) {
+            traced.attenuation_color = material.attenuation_color;
+            traced.attenuation_distance = material.attenuation_distance;
+        }
     } else if (material.is_specular()) {
         traced.scattering = Scattering::Mirror;
         traced.tint = glm::vec3(material.base_color);

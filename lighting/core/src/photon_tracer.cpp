@@ -7,6 +7,7 @@
 
 #include "luxel/lighting/core/halton.hpp"
 #include "luxel/lighting/core/optics.hpp"
+#include "luxel/scene/volume.hpp"
 
 namespace luxel::lighting {
 namespace {
@@ -67,6 +68,10 @@ void scatter_specular(const TraceMaterial& material, const RayHit& hit,
         direction = optics::reflect(direction, normals.shading);
         origin = offset_ray_origin(hit.position, normals.geometric);
         return;
+    }
+    if (!normals.front && material.attenuation_distance < std::numeric_limits<float>::infinity()) {
+        power *= scene::beer_lambert(material.attenuation_color, material.attenuation_distance,
+                                     hit.distance);
     }
     // Arriving on the front face means going from air into the medium.
     const float eta_from = normals.front ? 1.0f : material.ior;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -24,6 +25,10 @@ struct TraceMaterial {
     glm::vec3 albedo{0.5f};  ///< diffuse reflectance
     glm::vec3 tint{1.0f};    ///< mirror F0 or dielectric transmittance colour
     float ior = 1.5f;
+    /// A dielectric solid's inside (KHR_materials_volume, scene::beer_lambert): a path of d
+    /// metres inside keeps attenuation_color ^ (d / attenuation_distance); infinity: clear.
+    glm::vec3 attenuation_color{1.0f};
+    float attenuation_distance = std::numeric_limits<float>::infinity();
 };
 
 /// The sample of dimension `dim` for photon `index` of a light with `seed`: the Halton radical
@@ -43,8 +48,10 @@ struct FacingNormals {
 /// One specular interaction, shared by global and caustic photons: a mirror reflects with
 /// Schlick's conductor Fresnel on `power`; a dielectric reflects when `xi` falls below the
 /// Fresnel reflectance (or on total internal reflection) and refracts otherwise, tinting the
-/// transmitted power, so the expected power splits R : 1 - R. Updates origin (offset off the
-/// surface on the right side), direction and power.
+/// transmitted power, so the expected power splits R : 1 - R. Arriving at a dielectric's back
+/// face, the segment just travelled lay inside it: its absorption is applied first (a closed
+/// solid's inside; a diffuse surface inside a medium, a pool's floor, is not). Updates origin
+/// (offset off the surface on the right side), direction and power.
 void scatter_specular(const TraceMaterial& material, const RayHit& hit,
                       const FacingNormals& normals, double xi, glm::vec3& origin,
                       glm::vec3& direction, glm::vec3& power);
