@@ -41,3 +41,31 @@ def plane(name, size, location, rotation, mat):
     bpy.ops.object.transform_apply(location=False, rotation=True, scale=True)
     obj.data.materials.append(mat)
     return obj
+
+
+def camera(location, rotation, lens, fit_horizontally=False):
+    # The level's camera, named "Camera", made the scene's camera; fit_horizontally fits the
+    # sensor's width to the image (the lens then sets the horizontal field of view).
+    bpy.ops.object.camera_add(location=location, rotation=rotation)
+    obj = bpy.context.active_object
+    obj.name = "Camera"
+    obj.data.lens = lens
+    if fit_horizontally:
+        obj.data.sensor_fit = "HORIZONTAL"
+    bpy.context.scene.camera = obj
+    return obj
+
+
+def export_level(out_path, lights, animations=True, extras=False):
+    # Blender's glTF exporter as every level script calls it: one .glb, transforms applied,
+    # cameras, glTF's Y up.
+    bpy.ops.export_scene.gltf(
+        filepath=out_path,
+        export_format="GLB",
+        export_apply=True,
+        export_animations=animations,
+        export_cameras=True,
+        export_lights=lights,
+        export_extras=extras,
+        export_yup=True,
+    )

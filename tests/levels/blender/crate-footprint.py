@@ -18,7 +18,7 @@ import bpy
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
                                 "support"))
-from blender_common import material, output_path, plane  # noqa: E402
+from blender_common import camera, export_level, material, output_path, plane  # noqa: E402
 
 out_path = output_path("crate-footprint.py")
 
@@ -60,18 +60,6 @@ lamp.data.energy = 60.0
 lamp.data.shadow_soft_size = 0.0
 
 # From the open side, looking at the floor where the crate stands.
-bpy.ops.object.camera_add(location=(0.0, -5.2, 2.1), rotation=(1.26, 0.0, 0.0))
-camera = bpy.context.active_object
-camera.name = "Camera"
-camera.data.lens = 24.0
-scene.camera = camera
+camera((0.0, -5.2, 2.1), (1.26, 0.0, 0.0), 24.0)
 
-bpy.ops.export_scene.gltf(
-    filepath=out_path,
-    export_format="GLB",
-    export_apply=True,
-    export_animations=True,
-    export_cameras=True,
-    export_lights=True,
-    export_yup=True,
-)
+export_level(out_path, lights=True)

@@ -30,7 +30,7 @@ import bpy
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
                                 "support"))
-from blender_common import material, output_path, plane  # noqa: E402
+from blender_common import camera, export_level, material, output_path, plane  # noqa: E402
 
 out_path = output_path("emissive-sign.py")
 
@@ -108,19 +108,6 @@ plane("Right wall", (2.6, 3.0), (2.0, 0.0, 1.3), (0.0, -half_pi, 0.0), grey)
 plane("Sign", (1.2, 0.6), (0.0, 1.48, 1.3), (half_pi, 0.0, 0.0), sign)
 
 # Near the front wall, 2.9 m from the sign, looking slightly down at it.
-bpy.ops.object.camera_add(location=(0.0, -1.4, 1.75), rotation=(half_pi - 0.155, 0.0, 0.0))
-camera = bpy.context.active_object
-camera.name = "Camera"
-camera.data.lens = 24.0
-camera.data.sensor_fit = "HORIZONTAL"
-scene.camera = camera
+camera((0.0, -1.4, 1.75), (half_pi - 0.155, 0.0, 0.0), 24.0, fit_horizontally=True)
 
-bpy.ops.export_scene.gltf(
-    filepath=out_path,
-    export_format="GLB",
-    export_apply=True,
-    export_animations=False,
-    export_cameras=True,
-    export_lights=False,
-    export_yup=True,
-)
+export_level(out_path, lights=False, animations=False)

@@ -20,7 +20,7 @@ import bpy
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
                                 "support"))
-from blender_common import material, output_path, plane  # noqa: E402
+from blender_common import camera, export_level, material, output_path, plane  # noqa: E402
 
 out_path = output_path("sky-window.py")
 
@@ -59,18 +59,6 @@ sun.data.energy = 3.0
 sun.data.angle = 0.0
 
 # Inside by the front wall, looking at the window a little upwards.
-bpy.ops.object.camera_add(location=(0.0, -1.8, 1.3), rotation=(1.65, 0.0, 0.0))
-camera = bpy.context.active_object
-camera.name = "Camera"
-camera.data.lens = 20.0
-scene.camera = camera
+camera((0.0, -1.8, 1.3), (1.65, 0.0, 0.0), 20.0)
 
-bpy.ops.export_scene.gltf(
-    filepath=out_path,
-    export_format="GLB",
-    export_apply=True,
-    export_cameras=True,
-    export_lights=True,
-    export_extras=True,
-    export_yup=True,
-)
+export_level(out_path, lights=True, extras=True)
