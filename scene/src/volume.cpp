@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
+#include <cstdint>
+#include <limits>
+#include <optional>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -40,31 +42,61 @@ glm::vec3 volume_transmittance(const Material& material, float distance) {
 
 namespace {
 
-/// The bits of a position: two vertices are welded when their positions are the same floats
-/// (an exporter's seam copies the position exactly; nearly equal positions are a crack).
-struct PositionKey {
-    std::uint32_t x, y, z;
-    bool operator==(const PositionKey&) const = default;
+/// A grid cell of the welding tolerance.
+struct Cell {
+    std::int64_t x, y, z;
+    bool operator==(const Cell&) const = default;
 };
 
-PositionKey key_of(const glm::vec3& p) {
-    // +0 and -0 are the same point.
-    const glm::vec3 q = p + glm::vec3(0.0f);
-    PositionKey key{};
-    std::memcpy(&key.x, &q.x, sizeof(float));
-    std::memcpy(&key.y, &q.y, sizeof(float));
-    std::memcpy(&key.z, &q.z, sizeof(float));
-    return key;
-}
-
-struct PositionHash {
-    std::size_t operator()(const PositionKey& k) const {
-        std::uint64_t h = k.x;
-        h = h * 0x9E3779B97F4A7C15ull ^ k.y;
-        h = h * 0x9E3779B97F4A7C15ull ^ k.z;
+struct CellHash {
+    std::size_t operator()(const Cell& c) const {
+        auto h = static_cast<std::uint64_t>(c.x);
+        h = h * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(c.y);
+        h = h * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(c.z);
         return static_cast<std::size_t>(h ^ (h >> 29));
     }
 };
+
+/// One id per position, positions within `tolerance` of each other (per axis) sharing one:
+/// an exporter's seam copies a position exactly, but a mesh made with trigonometry closes
+/// its seam with cos(2 pi) and sin(2 pi), a rounding away from where it started. Each position
+/// looks for an earlier one in its own grid cell and the 26 around it.
+std::vector<std::uint32_t> welded_ids(const std::vector<glm::vec3>& positions, float tolerance) {
+    std::unordered_multimap<Cell, std::uint32_t, CellHash> cells;
+    cells.reserve(positions.size());
+    std::vector<std::uint32_t> id(positions.size());
+    std::uint32_t next = 0;
+    const double size = static_cast<double>(tolerance);
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        const glm::vec3& p = positions[i];
+        const Cell cell{static_cast<std::int64_t>(std::floor(static_cast<double>(p.x) / size)),
+                        static_cast<std::int64_t>(std::floor(static_cast<double>(p.y) / size)),
+                        static_cast<std::int64_t>(std::floor(static_cast<double>(p.z) / size))};
+        std::optional<std::uint32_t> found;
+        for (std::int64_t dx = -1; dx <= 1 && !found; ++dx) {
+            for (std::int64_t dy = -1; dy <= 1 && !found; ++dy) {
+                for (std::int64_t dz = -1; dz <= 1 && !found; ++dz) {
+                    const auto [first, last] =
+                        cells.equal_range({cell.x + dx, cell.y + dy, cell.z + dz});
+                    for (auto it = first; it != last; ++it) {
+                        const glm::vec3 d = glm::abs(positions[it->second] - p);
+                        if (d.x <= tolerance && d.y <= tolerance && d.z <= tolerance) {
+                            found = id[it->second];
+                            break;
+                        }
+                    }
+                }
+            }
+        }
+        if (found) {
+            id[i] = *found;
+        } else {
+            id[i] = next++;
+            cells.emplace(cell, static_cast<std::uint32_t>(i));
+        }
+    }
+    return id;
+}
 
 }  // namespace
 
@@ -72,15 +104,22 @@ bool is_closed_surface(const Primitive& primitive) {
     if (primitive.indices.size() < 12 || primitive.indices.size() % 3 != 0) {
         return false;  // fewer than four triangles close nothing
     }
-    std::unordered_map<PositionKey, std::uint32_t, PositionHash> welded;
-    welded.reserve(primitive.positions.size());
-    std::vector<std::uint32_t> id(primitive.positions.size());
-    for (std::size_t i = 0; i < primitive.positions.size(); ++i) {
-        id[i] =
-            welded
-                .emplace(key_of(primitive.positions[i]), static_cast<std::uint32_t>(welded.size()))
-                .first->second;
+    glm::vec3 lo(std::numeric_limits<float>::max());
+    glm::vec3 hi(std::numeric_limits<float>::lowest());
+    for (const glm::vec3& p : primitive.positions) {
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+            return false;
+        }
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
     }
+    // A hundred-thousandth of the primitive's size: far above float rounding at any scale,
+    // far below any gap a modeller means (10 micrometres on a 1 m object).
+    const float extent = glm::length(hi - lo);
+    if (!(extent > 0.0f) || !std::isfinite(extent)) {
+        return false;
+    }
+    const std::vector<std::uint32_t> id = welded_ids(primitive.positions, 1e-5f * extent);
     // Each undirected edge as (low, high) welded ids, sorted: a closed surface lists every
     // edge exactly twice.
     std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;

@@ -93,6 +93,20 @@ TEST(Volume, ACubeWithSplitVerticesIsClosed) {
     EXPECT_TRUE(scene::is_closed_surface(with_sliver));
 }
 
+TEST(Volume, ASeamARoundingApartIsClosedAGapIsNot) {
+    // The +x face's corners moved as cos(2 pi) and sin(2 pi) move a generated sphere's seam.
+    scene::Primitive rounded = split_cube();
+    for (std::size_t i = 0; i < 4; ++i) {
+        rounded.positions[i] += glm::vec3(6e-8f, -1.7e-7f, 1e-7f);
+    }
+    EXPECT_TRUE(scene::is_closed_surface(rounded));
+    scene::Primitive gap = split_cube();
+    for (std::size_t i = 0; i < 4; ++i) {
+        gap.positions[i].x += 1e-3f;  // a millimetre off a 1 m cube: a crack
+    }
+    EXPECT_FALSE(scene::is_closed_surface(gap));
+}
+
 TEST(Volume, OpenSheetsAndBrokenIndicesAreNotClosed) {
     scene::Primitive open_box = split_cube();
     open_box.indices.resize(open_box.indices.size() - 6);  // one face missing

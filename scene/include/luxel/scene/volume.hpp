@@ -25,10 +25,12 @@ namespace luxel::scene {
 /// passes nothing over any positive distance, an infinite distance passes everything.
 [[nodiscard]] glm::vec3 volume_transmittance(const Material& material, float distance);
 
-/// Whether the primitive's triangles close up: every edge, with vertices that share a position
-/// welded (exporters split vertices along UV and normal seams), is shared by exactly two
-/// triangles. A ray that enters a closed primitive crosses its surface twice; one that passes
-/// an open sheet (a window pane modelled as a single quad), once.
+/// Whether the primitive's triangles close up: every edge is shared by exactly two triangles,
+/// with vertices welded that lie within 1e-5 of the primitive's size of each other (exporters
+/// split vertices along UV and normal seams; a mesh made with trigonometry closes its seam a
+/// rounding apart). Degenerate triangles are left out. A ray that enters a closed primitive crosses
+/// its surface twice; one that passes an open sheet (a window pane modelled as a single quad),
+/// once.
 [[nodiscard]] bool is_closed_surface(const Primitive& primitive);
 
 }  // namespace luxel::scene
