@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "luxel/scene/volume.hpp"
+
 namespace luxel::renderer {
 namespace {
 
@@ -79,6 +81,10 @@ GpuMesh upload(const std::shared_ptr<const scene::Scene>& source, const scene::M
         range.first_index = indices.size();
         range.index_count = static_cast<GLsizei>(primitive.indices.size());
         range.material = primitive.material;
+        const auto material = static_cast<std::size_t>(primitive.material);
+        range.closed = primitive.material >= 0 && material < source->materials.size() &&
+                       source->materials[material].transmission > 0.0f &&
+                       scene::is_closed_surface(primitive);
         range.base_color = texture_of(source, primitive, textures,
                                       [](const scene::Material& m) { return m.base_color_image; });
         range.emissive = texture_of(source, primitive, textures,

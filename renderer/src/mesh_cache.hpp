@@ -46,6 +46,9 @@ struct GpuPrimitive {
     /// over its triangles would cover that box seen face-on (a sheet 1, a closed box or room
     /// about 3, 5,000 coincident triangles 5,000). FillBudget estimates a draw's cost with it.
     float layers = 0.0f;
+    /// A transmissive primitive whose triangles close up (scene::is_closed_surface): a view
+    /// ray through it crosses two surfaces. Not looked for on other materials (false).
+    bool closed = false;
     /// The material's base-colour texture, shared with every primitive using the image; null
     /// when the material has none or the primitive has no TEXCOORD_0 (the factor alone).
     std::shared_ptr<const gl::Texture> base_color;

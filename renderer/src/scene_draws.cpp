@@ -1,10 +1,12 @@
 #include "scene_draws.hpp"
 
+#include <cmath>
 #include <map>
 #include <utility>
 
 #include "frame_lights.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
+#include "luxel/scene/volume.hpp"
 
 namespace luxel::renderer {
 namespace {
@@ -37,6 +39,22 @@ DrawMaterial material_of(const scene::Scene& source, int index, float emission_s
         out.albedo = base;
     }
     return out;
+}
+
+/// What a view ray through glass keeps besides Fresnel, as the photons and the reference
+/// count it: the base colour once per surface crossed (in and out of a closed solid, once
+/// through an open sheet) and, in a closed solid, the inside's absorption over the volume's
+/// thickness (an open sheet has no inside: the photons never meet its back face from within).
+/// The thickness is KHR_materials_volume's rasteriser model, the mesh's units times the
+/// object's scale: one length for every pixel (a sphere's rim as thick as its centre), where
+/// the photons and the reference measure each path.
+glm::vec4 glass_transmittance(const scene::Material& m, bool closed, const glm::mat4& model) {
+    const glm::vec3 tint = glm::clamp(glm::vec3(m.base_color), 0.0f, 1.0f);
+    if (!closed) {
+        return {tint, 1.0f};
+    }
+    const float scale = std::cbrt(std::abs(glm::determinant(glm::mat3(model))));
+    return {tint * tint * scene::volume_transmittance(m, m.thickness * scale), 2.0f};
 }
 
 }  // namespace
@@ -79,6 +97,11 @@ void build_draw_list(ecs::Registry& registry, const lighting::LightingSystem& li
             draw.range = &item.mesh->primitives[p];
             draw.material =
                 material_of(*instance.source, draw.range->material, emission_scale, specular_pass);
+            if (draw.material.specular.a > 0.0f) {
+                draw.material.transmittance = glass_transmittance(
+                    instance.source->materials.at(static_cast<std::size_t>(draw.range->material)),
+                    draw.range->closed, item.model);
+            }
             // Specular materials draw no diffuse albedo (it is zero), so they need no texture.
             draw.material.base_color_texture =
                 draw.range->base_color && draw.material.albedo != glm::vec3(0.0f)

@@ -24,7 +24,10 @@ struct DrawMaterial {
     /// Sampled with TEXCOORD_0 and multiplied into `emission` per pixel: the emissive texture
     /// or the white one, as base_color_texture.
     GLuint emissive_texture = 0;
-    glm::vec4 specular{0.0f};         ///< rgb: Fresnel F0 (0: not specular), a: transmission
+    glm::vec4 specular{0.0f};  ///< rgb: Fresnel F0 (0: not specular), a: transmission
+    /// Glass: rgb what a view ray through it keeps besides Fresnel (the tint per surface
+    /// crossed, the inside's absorption), a: the surfaces it crosses (1 or 2). Zero otherwise.
+    glm::vec4 transmittance{0.0f};
     glm::vec2 lightmap{-1.0f, 0.0f};  ///< IIM page layer (-1: none), 1 = holds irradiance
     float ior = 1.5f;
     bool double_sided = false;

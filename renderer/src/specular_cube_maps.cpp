@@ -144,6 +144,7 @@ void SpecularCubeMaps::draw_term(const DrawList& draws, const FrameTargets& targ
             }
             program.set("u_specular", primitive.material.specular);
             program.set("u_ior", primitive.material.ior);
+            program.set("u_transmittance", primitive.material.transmittance);
             draw_primitive(*primitive.range);
         }
     }

@@ -2,9 +2,13 @@
 // The specular term of mirror and glass surfaces from their probe's cube map, drawn over the
 // object's own pixels (depth test EQUAL-or-less against the G-buffer depth):
 //   mirror: L = F(theta) * L_probe(reflect)                    F: Schlick with F0 = base colour
-//   glass:  L = F * L_probe(reflect) + (1 - F) * t * L_probe(refract)
-// The refracted ray is bent once at the entry surface and looks the probe up from the centre:
-// a thin-object approximation, not a trace through the glass.
+//   glass:  L = F * L_probe(reflect) + (1 - F)^k * t * T * L_probe(refract)
+// t the transmission factor, k the surfaces a view ray crosses (2 through a closed solid, 1
+// through a sheet) and T the rest of what it keeps: the base colour per surface crossed and
+// the inside's absorption (renderer/src/scene_draws.cpp). The exit's Fresnel equals the
+// entry's (a slab's and a sphere's exit angle is the entry's refracted one). The refracted ray
+// is bent once at the entry surface and looks the probe up from the centre: a thin-object
+// approximation, not a trace through the glass.
 
 in vec3 v_position;
 in vec3 v_normal;
@@ -16,6 +20,7 @@ layout(binding = 0) uniform samplerCube u_probe;
 uniform vec3 u_camera;
 uniform vec4 u_specular;  // rgb F0, a transmission
 uniform float u_ior;
+uniform vec4 u_transmittance;  // rgb T, a k
 
 layout(location = 0) out vec4 out_radiance;
 
@@ -37,7 +42,8 @@ void main() {
     if (transmission > 0.0) {
         vec3 t = refract(v, n, 1.0 / max(u_ior, 1e-3));
         if (dot(t, t) > 0.0) {
-            l += (1.0 - fresnel) * transmission * texture(u_probe, t).rgb;
+            vec3 passed = pow(1.0 - fresnel, vec3(u_transmittance.a));
+            l += passed * transmission * u_transmittance.rgb * texture(u_probe, t).rgb;
         }
     }
     out_radiance = vec4(max(l, vec3(0.0)), 1.0);

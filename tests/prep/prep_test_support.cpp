@@ -111,7 +111,7 @@ std::vector<std::string> built_in_level_names() {
 }
 
 std::vector<std::string> blender_level_names() {
-    return {"crate-footprint", "sky-window"};
+    return {"crate-footprint", "sky-window", "tinted-glass"};
 }
 
 std::filesystem::path level_file(const std::string& name) {
