@@ -116,9 +116,14 @@ TEST(PrepCli, BadFlagsAreClearErrorsNamingTheFlag) {
     const std::string files =
         quoted(luxel::testing::level_file("cornell")) + " -o " + quoted(dir / "out.glb");
     const std::pair<const char*, const char*> cases[] = {
-        {"--texel-size 0", "--texel-size"},   {"--texel-size abc", "--texel-size"},
-        {"--crease-deg 181", "--crease-deg"}, {"--padding -2", "--padding"},
-        {"--page-size 1", "--page-size"},     {"--threads -1", "--threads"},
+        {"--texel-size 0", "--texel-size"},
+        {"--texel-size abc", "--texel-size"},
+        {"--crease-deg 181", "--crease-deg"},
+        {"--padding -2", "--padding"},
+        {"--page-size 1", "--page-size"},
+        {"--threads -1", "--threads"},
+        {"--min-texels-across -1", "--min-texels-across"},
+        {"--texel-budget -5", "--texel-budget"},
     };
     for (const auto& [flags, mention] : cases) {
         const CommandResult run = luxel_prep(files + " " + flags);

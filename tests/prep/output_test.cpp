@@ -41,13 +41,7 @@ scene::Scene mixed_scene() {
 
     scene::Primitive sphere = levels::make_sphere(0.3f, 24, 12);
     sphere.material = 1;
-    s.meshes.push_back({"glass sphere", {sphere}});
-    scene::Node sphere_node;
-    sphere_node.name = "glass sphere";
-    sphere_node.mesh = 1;
-    sphere_node.translation = {0.0f, 1.0f, 0.0f};
-    s.nodes.push_back(sphere_node);
-    s.roots.push_back(2);
+    luxel::testing::add_mesh_node(s, "glass sphere", std::move(sphere), {0.0f, 1.0f, 0.0f});
 
     scene::Primitive panel = levels::make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 2, 2);
     panel.material = 0;

@@ -153,6 +153,19 @@ scene::Scene single_mesh_scene(scene::Primitive primitive, const std::string& na
     return s;
 }
 
+int add_mesh_node(scene::Scene& scene, const std::string& name, scene::Primitive primitive,
+                  const glm::vec3& translation) {
+    scene.meshes.push_back({name, {std::move(primitive)}});
+    scene::Node node;
+    node.name = name;
+    node.mesh = static_cast<int>(scene.meshes.size() - 1);
+    node.translation = translation;
+    scene.nodes.push_back(node);
+    const int index = static_cast<int>(scene.nodes.size() - 1);
+    scene.roots.push_back(index);
+    return index;
+}
+
 prep::PrepResult run_prep(const scene::Scene& scene, const prep::PrepOptions& options,
                           int threads) {
     JobSystem jobs(threads);

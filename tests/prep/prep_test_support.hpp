@@ -29,6 +29,11 @@ namespace luxel::testing {
 [[nodiscard]] scene::Scene single_mesh_scene(scene::Primitive primitive,
                                              const std::string& name = "mesh");
 
+/// Appends a mesh of one primitive (its material kept) and a root node drawing it at
+/// `translation`; returns the node's index.
+int add_mesh_node(scene::Scene& scene, const std::string& name, scene::Primitive primitive,
+                  const glm::vec3& translation);
+
 /// prepare() on a fresh job system of `threads` threads.
 [[nodiscard]] prep::PrepResult run_prep(const scene::Scene& scene,
                                         const prep::PrepOptions& options = {}, int threads = 2);

@@ -73,7 +73,8 @@ std::filesystem::path image_stem(const std::filesystem::path& output,
 int run(int argc, char** argv) {
     CLI::App app{
         "luxel-prep: splits meshes into surfaces (crease angle and material), gives them a "
-        "light-map parameterization at a uniform texel size, packs the charts into light-map "
+        "light-map parameterization at a texel size that fits each object, packs the charts into "
+        "light-map "
         "pages and writes the scene back with TEXCOORD_1 and a surface table."};
     luxel::prep::PrepOptions options;
     std::filesystem::path input;
@@ -82,6 +83,16 @@ int run(int argc, char** argv) {
     app.add_option("input", input, "the scene to prepare (.gltf or .glb)")->required();
     app.add_option("-o,--output", output, "the prepared scene (.glb or .gltf)")->required();
     app.add_option("--texel-size", options.texel_size, "metres per light-map texel")
+        ->capture_default_str();
+    app.add_option("--min-texels-across", options.min_texels_across,
+                   "texels a prop's width keeps at least (its texels made finer, down to an "
+                   "eighth of --texel-size; 0: off)")
+        ->capture_default_str();
+    app.add_option("--texel-budget", options.texel_budget,
+                   "texels the whole level may have; above it every object's texels grow by one "
+                   "factor (0: no budget)")
+        // CLI11 reads "-5" into an unsigned number by wrapping it: the range refuses that.
+        ->check(CLI::Range(std::uint64_t{0}, luxel::prep::kMaxTexelBudget))
         ->capture_default_str();
     app.add_option("--crease-deg", options.crease_degrees,
                    "faces whose normals differ by less than this share a surface")

@@ -12,6 +12,14 @@ void validate(const PrepOptions& options) {
         throw Error("--texel-size must be a positive number of metres (1e-6 to 1e6), got " +
                     std::to_string(options.texel_size));
     }
+    if (options.min_texels_across < 0 || options.min_texels_across > 1024) {
+        throw Error("--min-texels-across must be within 0..1024 texels (0: off), got " +
+                    std::to_string(options.min_texels_across));
+    }
+    if (options.texel_budget > kMaxTexelBudget) {
+        throw Error("--texel-budget must be within 0..2^40 texels (0: no budget), got " +
+                    std::to_string(options.texel_budget));
+    }
     if (!(options.crease_degrees >= 0.0 && options.crease_degrees <= 180.0)) {
         throw Error("--crease-deg must be within 0..180 degrees, got " +
                     std::to_string(options.crease_degrees));

@@ -139,8 +139,7 @@ PlacedChart place_chart(const Chart& chart, const ChartPlacement& placement, int
 }
 
 scene::Scene build_output_scene(const scene::Scene& input, const std::vector<PreparedNode>& nodes,
-                                double texel_size, int page_size,
-                                std::vector<std::string>& warnings) {
+                                int page_size, std::vector<std::string>& warnings) {
     scene::Scene output = input;
     // Stale light-map UVs on meshes that get no light map would be mistaken for one.
     for (auto& mesh : output.meshes) {
@@ -158,7 +157,7 @@ scene::Scene build_output_scene(const scene::Scene& input, const std::vector<Pre
         scene::Mesh mesh;
         mesh.name = source.name;
         scene::LightmapLayout layout;
-        layout.texel_size = static_cast<float>(texel_size);
+        layout.texel_size = static_cast<float>(prepared.texel_size);
         layout.page_size = page_size;
         for (const PreparedSurface& surface : prepared.surfaces) {
             scene::LightmapSurface entry;

@@ -9,6 +9,7 @@
 #include "luxel/prep/output.hpp"
 #include "luxel/prep/packing.hpp"
 #include "luxel/prep/surfaces.hpp"
+#include "luxel/prep/texel_density.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/scene/portal.hpp"
@@ -19,6 +20,7 @@ namespace {
 /// The per-node state while the stages run.
 struct NodeWork {
     int node = -1;
+    double texel_size = 0.0;  ///< this node's (texel_density.hpp)
     NodeGeometry geometry;
     std::vector<CreaseSurface> crease_surfaces;
     std::vector<std::vector<Chart>> charts_per_crease;  ///< per crease surface
@@ -124,8 +126,7 @@ void build_all_geometry(const scene::Scene& input, const PrepOptions& options,
     });
 }
 
-/// Stage 2: crease surfaces; then the texel limit, checked before any charting so that a typo
-/// like --texel-size 0.00005 ends in a message, not in hours of work.
+/// Stage 2: crease surfaces.
 void find_all_crease_surfaces(const PrepOptions& options, std::vector<NodeWork>& work,
                               JobSystem& jobs, Progress* progress) {
     StageProgress step(progress, "surfaces", work.size());
@@ -135,21 +136,56 @@ void find_all_crease_surfaces(const PrepOptions& options, std::vector<NodeWork>&
         work[i].counts_per_crease.resize(work[i].crease_surfaces.size());
         step.step();
     });
-    double area = 0.0;
+}
+
+/// Stage 2b: each node's texel size; then the texel limit, checked before any charting so
+/// that a typo like --texel-size 0.00005 ends in a message, not in hours of work.
+void choose_texel_sizes(const scene::Scene& input, const PrepOptions& options,
+                        std::vector<NodeWork>& work) {
+    std::vector<NodeExtent> extents;
+    extents.reserve(work.size());
     for (const NodeWork& w : work) {
+        NodeExtent& extent = extents.emplace_back();
         for (const CreaseSurface& surface : w.crease_surfaces) {
-            area += surface.area;
+            extent.area += surface.area;
         }
+        glm::dvec3 lo(std::numeric_limits<double>::max());
+        glm::dvec3 hi(std::numeric_limits<double>::lowest());
+        for (const Face& face : w.geometry.faces) {
+            for (const int v : face.vertices) {
+                lo = glm::min(lo, w.geometry.position(v));
+                hi = glm::max(hi, w.geometry.position(v));
+            }
+        }
+        extent.size = w.geometry.faces.empty() ? glm::dvec3(0.0) : hi - lo;
+        extent.texel_scale = texel_scale_of(input.nodes[static_cast<std::size_t>(w.node)],
+                                            node_label(input, w.node));
     }
-    const double texels = area / (options.texel_size * options.texel_size);
+    const std::vector<double> sizes = node_texel_sizes(extents, options);
+    double texels = 0.0;
+    double area = 0.0;
+    for (std::size_t i = 0; i < work.size(); ++i) {
+        work[i].texel_size = sizes[i];
+        texels += extents[i].area / (sizes[i] * sizes[i]);
+        area += extents[i].area;
+    }
     if (texels > static_cast<double>(options.max_total_texels)) {
         too_many_texels("the scene's " + std::to_string(area) + " m^2", texels, options);
     }
 }
 
+/// The chart limits of one node: the level's, at the node's texel size.
+ChartLimits node_limits(const ChartLimits& level, const PrepOptions& options, double texel_size) {
+    ChartLimits limits = level;
+    limits.texel_size = texel_size;
+    limits.area_budget = options.surface_texel_budget * texel_size * texel_size;
+    return limits;
+}
+
 /// Stage 3: charts, one task per crease surface (so one big mesh is still many tasks).
-void build_all_charts(const scene::Scene& input, const ChartLimits& limits,
-                      std::vector<NodeWork>& work, JobSystem& jobs, Progress* progress) {
+void build_all_charts(const scene::Scene& input, const PrepOptions& options,
+                      const ChartLimits& limits, std::vector<NodeWork>& work, JobSystem& jobs,
+                      Progress* progress) {
     std::vector<std::pair<std::size_t, std::size_t>> tasks;
     for (std::size_t i = 0; i < work.size(); ++i) {
         for (std::size_t s = 0; s < work[i].crease_surfaces.size(); ++s) {
@@ -162,7 +198,8 @@ void build_all_charts(const scene::Scene& input, const ChartLimits& limits,
         NodeWork& w = work[i];
         try {
             w.charts_per_crease[s] =
-                build_charts(w.geometry, w.crease_surfaces[s], limits, &w.counts_per_crease[s]);
+                build_charts(w.geometry, w.crease_surfaces[s],
+                             node_limits(limits, options, w.texel_size), &w.counts_per_crease[s]);
         } catch (const Error& e) {
             throw Error(node_label(input, w.node) + ": " + e.what());
         }
@@ -190,6 +227,8 @@ PackInput assemble_surfaces(const PrepOptions& options, const ChartLimits& limit
         }
         PreparedNode prepared;
         prepared.node = w.node;
+        prepared.texel_size = w.texel_size;
+        const double area_budget = node_limits(limits, options, w.texel_size).area_budget;
         for (std::size_t s = 0; s < w.crease_surfaces.size(); ++s) {
             std::vector<Chart>& charts = w.charts_per_crease[s];
             report.planar_charts += w.counts_per_crease[s].planar;
@@ -204,7 +243,7 @@ PackInput assemble_surfaces(const PrepOptions& options, const ChartLimits& limit
             }
             const auto first_chart = static_cast<int>(prepared.charts.size());
             for (const auto& group :
-                 group_charts(w.geometry, chart_faces, chart_area, limits.area_budget)) {
+                 group_charts(w.geometry, chart_faces, chart_area, area_budget)) {
                 for (const auto& run :
                      split_to_fit(chart_sizes, group, options.padding, limits.max_extent)) {
                     PreparedSurface surface;
@@ -294,6 +333,7 @@ void summarize(const scene::Scene& input, const PackLayout& layout, PrepResult& 
         NodeSummary summary;
         summary.node = node.node;
         summary.name = input.nodes[static_cast<std::size_t>(node.node)].name;
+        summary.texel_size = node.texel_size;
         summary.triangles = node.geometry.faces.size();
         summary.surfaces = node.surfaces.size();
         summary.charts = node.charts.size();
@@ -362,6 +402,7 @@ PrepResult prepare(const scene::Scene& input, const PrepOptions& options, JobSys
 
     stage.restart();
     find_all_crease_surfaces(options, work, jobs, progress);
+    choose_texel_sizes(input, options, work);
     result.report.add_stage("surfaces", stage.elapsed_ms());
 
     stage.restart();
@@ -371,7 +412,7 @@ PrepResult prepare(const scene::Scene& input, const PrepOptions& options, JobSys
     limits.area_budget = options.surface_texel_budget * options.texel_size * options.texel_size;
     limits.max_extent = options.page_size > 0 ? options.page_size : options.auto_page_limit;
     limits.padding = options.padding;
-    build_all_charts(input, limits, work, jobs, progress);
+    build_all_charts(input, options, limits, work, jobs, progress);
     result.report.add_stage("charts", stage.elapsed_ms());
 
     stage.restart();
@@ -399,8 +440,8 @@ PrepResult prepare(const scene::Scene& input, const PrepOptions& options, JobSys
     stage.restart();
     place_all_charts(pack, layout, result, jobs, progress);
     summarize(input, layout, result);
-    result.scene = build_output_scene(input, result.nodes, options.texel_size, result.page_size,
-                                      result.report.warnings);
+    result.scene =
+        build_output_scene(input, result.nodes, result.page_size, result.report.warnings);
     result.report.add_stage("output", stage.elapsed_ms());
     if (progress != nullptr) {
         progress->finish();

@@ -24,7 +24,8 @@ nlohmann::json to_json(const PrepReport& report) {
                          {"surfaces", node.surfaces},
                          {"charts", node.charts},
                          {"texels", node.texels},
-                         {"area", node.area}});
+                         {"area", node.area},
+                         {"texel_size", node.texel_size}});
     }
     const PrepOptions& o = report.options;
     return {
@@ -32,6 +33,8 @@ nlohmann::json to_json(const PrepReport& report) {
         {"output", report.output},
         {"options",
          {{"texel_size", o.texel_size},
+          {"min_texels_across", o.min_texels_across},
+          {"texel_budget", o.texel_budget},
           {"crease_deg", o.crease_degrees},
           {"padding", o.padding},
           {"page_size", o.page_size == 0 ? nlohmann::json("auto") : nlohmann::json(o.page_size)},

@@ -13,9 +13,18 @@ namespace luxel::prep {
 /// its indices (TEXCOORD_0 where the source has one), each in a bufferView of its own.
 inline constexpr std::uint64_t kAccessorsPerSurface = 4;
 
+/// The largest --texel-budget: far above what any loader allows (2^40 texels).
+inline constexpr std::uint64_t kMaxTexelBudget = std::uint64_t{1} << 40;
+
 struct PrepOptions {
     /// World size of one texel edge, in metres.
     double texel_size = 0.05;
+    /// A node whose width (the middle extent of its world box) holds fewer texels than this
+    /// gets finer texels, down to an eighth of texel_size (prep/texel_density.hpp); 0: off.
+    int min_texels_across = 4;
+    /// Texels the whole level may have (area over texel size squared, before padding): above
+    /// it every node's texels grow by one factor. 0: no budget.
+    std::uint64_t texel_budget = 0;
     /// Faces of one material whose normals differ by less than this share a surface
     /// (docs/METHOD.md §3.1: the shared edge is "connected").
     double crease_degrees = 45.0;

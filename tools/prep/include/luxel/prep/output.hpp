@@ -18,10 +18,9 @@ namespace luxel::prep {
 /// per instance) holding one primitive per surface, in surface order, with vertices split
 /// where charts meet and TEXCOORD_1 written, followed by the primitives that get no light map;
 /// its extras.luxel.lightmap holds the surface table. Meshes used only by nodes without light
-/// maps lose any stale TEXCOORD_1.
+/// maps lose any stale TEXCOORD_1. Each layout records its node's own texel size.
 [[nodiscard]] scene::Scene build_output_scene(const scene::Scene& input,
-                                              const std::vector<PreparedNode>& nodes,
-                                              double texel_size, int page_size,
+                                              const std::vector<PreparedNode>& nodes, int page_size,
                                               std::vector<std::string>& warnings);
 
 }  // namespace luxel::prep

@@ -41,6 +41,7 @@ struct PreparedSurface {
 /// Everything luxel-prep worked out for one mesh node.
 struct PreparedNode {
     int node = -1;
+    double texel_size = 0.0;  ///< metres per texel edge for this node (texel_density.hpp)
     NodeGeometry geometry;
     std::vector<Chart> charts;
     std::vector<PlacedChart> placed;  ///< per chart

@@ -23,6 +23,7 @@ struct NodeSummary {
     std::size_t charts = 0;
     std::int64_t texels = 0;
     double area = 0.0;
+    double texel_size = 0.0;  ///< metres, chosen per node (texel_density.hpp)
 };
 
 /// What luxel-prep did and how well: written as JSON (--report) and as a human summary.
