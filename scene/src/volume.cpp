@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <optional>
-#include <unordered_map>
 #include <utility>
 #include <vector>
+
+#include "luxel/scene/welding.hpp"
 
 namespace luxel::scene {
 
@@ -39,66 +39,6 @@ glm::vec3 volume_transmittance(const Material& material, float distance) {
     }
     return beer_lambert(material.attenuation_color, material.attenuation_distance, distance);
 }
-
-namespace {
-
-/// A grid cell of the welding tolerance.
-struct Cell {
-    std::int64_t x, y, z;
-    bool operator==(const Cell&) const = default;
-};
-
-struct CellHash {
-    std::size_t operator()(const Cell& c) const {
-        auto h = static_cast<std::uint64_t>(c.x);
-        h = h * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(c.y);
-        h = h * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(c.z);
-        return static_cast<std::size_t>(h ^ (h >> 29));
-    }
-};
-
-/// One id per position, positions within `tolerance` of each other (per axis) sharing one:
-/// an exporter's seam copies a position exactly, but a mesh made with trigonometry closes
-/// its seam with cos(2 pi) and sin(2 pi), a rounding away from where it started. Each position
-/// looks for an earlier one in its own grid cell and the 26 around it.
-std::vector<std::uint32_t> welded_ids(const std::vector<glm::vec3>& positions, float tolerance) {
-    std::unordered_multimap<Cell, std::uint32_t, CellHash> cells;
-    cells.reserve(positions.size());
-    std::vector<std::uint32_t> id(positions.size());
-    std::uint32_t next = 0;
-    const double size = static_cast<double>(tolerance);
-    for (std::size_t i = 0; i < positions.size(); ++i) {
-        const glm::vec3& p = positions[i];
-        const Cell cell{static_cast<std::int64_t>(std::floor(static_cast<double>(p.x) / size)),
-                        static_cast<std::int64_t>(std::floor(static_cast<double>(p.y) / size)),
-                        static_cast<std::int64_t>(std::floor(static_cast<double>(p.z) / size))};
-        std::optional<std::uint32_t> found;
-        for (std::int64_t dx = -1; dx <= 1 && !found; ++dx) {
-            for (std::int64_t dy = -1; dy <= 1 && !found; ++dy) {
-                for (std::int64_t dz = -1; dz <= 1 && !found; ++dz) {
-                    const auto [first, last] =
-                        cells.equal_range({cell.x + dx, cell.y + dy, cell.z + dz});
-                    for (auto it = first; it != last; ++it) {
-                        const glm::vec3 d = glm::abs(positions[it->second] - p);
-                        if (d.x <= tolerance && d.y <= tolerance && d.z <= tolerance) {
-                            found = id[it->second];
-                            break;
-                        }
-                    }
-                }
-            }
-        }
-        if (found) {
-            id[i] = *found;
-        } else {
-            id[i] = next++;
-            cells.emplace(cell, static_cast<std::uint32_t>(i));
-        }
-    }
-    return id;
-}
-
-}  // namespace
 
 bool is_closed_surface(const Primitive& primitive) {
     if (primitive.indices.size() < 12 || primitive.indices.size() % 3 != 0) {

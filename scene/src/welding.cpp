@@ -1,0 +1,77 @@
+#include "luxel/scene/welding.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+namespace luxel::scene {
+
+namespace {
+
+/// A grid cell of the welding tolerance.
+struct Cell {
+    std::int64_t x, y, z;
+    bool operator==(const Cell&) const = default;
+};
+
+struct CellHash {
+    std::size_t operator()(const Cell& c) const {
+        auto h = static_cast<std::uint64_t>(c.x);
+        h = h * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(c.y);
+        h = h * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(c.z);
+        return static_cast<std::size_t>(h ^ (h >> 29));
+    }
+};
+
+}  // namespace
+
+std::vector<std::uint32_t> welded_ids(const std::vector<glm::vec3>& positions, float tolerance) {
+    std::unordered_multimap<Cell, std::uint32_t, CellHash> cells;
+    cells.reserve(positions.size());
+    std::vector<std::uint32_t> id(positions.size());
+    std::uint32_t next = 0;
+    const double size = static_cast<double>(tolerance);
+    // Cells must fit an int64 with room for the neighbours' +-1; a position too far out for
+    // its tolerance (or not finite, or a tolerance that is not positive) welds to nothing.
+    constexpr double kCellLimit = 1e15;
+    const bool welds = size > 0.0 && std::isfinite(size);
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        const glm::vec3& p = positions[i];
+        const glm::dvec3 scaled = welds ? glm::dvec3(p) / size : glm::dvec3(kCellLimit * 2.0);
+        if (!(std::abs(scaled.x) < kCellLimit && std::abs(scaled.y) < kCellLimit &&
+              std::abs(scaled.z) < kCellLimit)) {
+            id[i] = next++;
+            continue;
+        }
+        const Cell cell{static_cast<std::int64_t>(std::floor(scaled.x)),
+                        static_cast<std::int64_t>(std::floor(scaled.y)),
+                        static_cast<std::int64_t>(std::floor(scaled.z))};
+        std::optional<std::uint32_t> found;
+        for (std::int64_t dx = -1; dx <= 1 && !found; ++dx) {
+            for (std::int64_t dy = -1; dy <= 1 && !found; ++dy) {
+                for (std::int64_t dz = -1; dz <= 1 && !found; ++dz) {
+                    const auto [first, last] =
+                        cells.equal_range({cell.x + dx, cell.y + dy, cell.z + dz});
+                    for (auto it = first; it != last; ++it) {
+                        const glm::vec3 d = glm::abs(positions[it->second] - p);
+                        if (d.x <= tolerance && d.y <= tolerance && d.z <= tolerance) {
+                            found = id[it->second];
+                            break;
+                        }
+                    }
+                }
+            }
+        }
+        if (found) {
+            id[i] = *found;
+        } else {
+            id[i] = next++;
+            cells.emplace(cell, static_cast<std::uint32_t>(i));
+        }
+    }
+    return id;
+}
+
+}  // namespace luxel::scene
