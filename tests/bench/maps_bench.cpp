@@ -53,6 +53,7 @@
 #include "luxel/lighting/core/light_source.hpp"
 #include "luxel/lighting/core/photon_density.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
+#include "luxel/lighting/core/seam_stitcher.hpp"
 #include "luxel/runtime/jobs.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/scene_instance.hpp"
@@ -621,6 +622,60 @@ void GatherUnit(benchmark::State& state) {
         static_cast<double>(maps.surfaces()[largest].texels.texels.size());
 }
 BENCHMARK(GatherUnit)->UseManualTime()->Unit(benchmark::kMillisecond);
+
+// --- a seam stitch against a gather unit
+// ----------------------------------------------------------------------------------
+
+/// What stitching costs each pass that commits a surface on a seam: the sandbox's objects
+/// (floors and ceilings of eight surfaces, walls of five to eight), each object's system solved
+/// once per iteration, against the scheduler's gather unit (20 texels at 64 rays) timed in the
+/// same run.
+void SeamStitch(benchmark::State& state) {
+    static const std::unique_ptr<Level> level = std::make_unique<Level>("sandbox");
+    IlluminationMaps& maps = *level->maps;
+    // One stitcher per object, as the gather passes hold them (samples grouped by entity).
+    std::map<ecs::Entity, std::vector<SeamSample>> objects;
+    for (const SeamSample& sample : maps.seam_samples()) {
+        objects[maps.surfaces()[sample.surface_a].entity].push_back(sample);
+    }
+    SeamStitcher stitcher;
+    std::vector<std::uint32_t> first_surfaces;
+    for (auto& [entity, samples] : objects) {
+        first_surfaces.push_back(samples.front().surface_a);
+        stitcher.add_object(std::move(samples), maps.iim_pages());
+    }
+    // Every surface committed once, so each stitch solves.
+    for (const SeamSample& sample : maps.seam_samples()) {
+        stitcher.stitch(sample.surface_a, maps.iim_pages(), 0.0, 0.0);
+        stitcher.stitch(sample.surface_b, maps.iim_pages(), 0.0, 0.0);
+    }
+    CpuGatherer gatherer(level->photons->ray_scene(), maps.aim(), {64, 1e6f});
+    const std::vector<GatherTexel> texels = level->floor_texels(20);
+    std::vector<glm::vec3> out(texels.size());
+    double stitch_seconds = 0.0;
+    double gather_seconds = 0.0;
+    for (auto _ : state) {
+        const Clock::time_point start = Clock::now();
+        for (const std::uint32_t surface : first_surfaces) {
+            stitcher.stitch(surface, maps.iim_pages(), 0.0, 0.0);
+        }
+        const double stitched = seconds_since(start);
+        stitch_seconds += stitched;
+        state.SetIterationTime(stitched);
+        const Clock::time_point gather_start = Clock::now();
+        gatherer.gather(texels, out);
+        benchmark::DoNotOptimize(out.data());
+        gather_seconds += seconds_since(gather_start);
+    }
+    const double iterations = static_cast<double>(state.iterations());
+    const double per_object = stitch_seconds / (iterations * static_cast<double>(objects.size()));
+    state.counters["objects"] = static_cast<double>(objects.size());
+    state.counters["seam_texels"] = static_cast<double>(stitcher.texels());
+    state.counters["stitch_ms"] = 1e3 * per_object;
+    state.counters["gather_unit_ms"] = 1e3 * gather_seconds / iterations;
+    state.counters["ratio"] = per_object / std::max(gather_seconds / iterations, 1e-12);
+}
+BENCHMARK(SeamStitch)->UseManualTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

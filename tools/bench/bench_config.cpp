@@ -34,6 +34,7 @@ lighting::LightingConfig BenchConfig::lighting() const {
     config.maps.change_test_sigmas = keep;
     config.photons.selective.exact_invalidation = exact != 0;
     config.maps.contact_texels = contact != 0;
+    config.maps.stitch_seams = stitch != 0;
     return config;
 }
 
@@ -44,6 +45,9 @@ std::string BenchConfig::knobs() const {
         << " local=" << local << " change_blend=" << change_blend << " exact=" << exact
         << " contact=" << contact << " keep=" << keep << " caustics=" << caustic_photons << "x"
         << caustic_slices << " backend=" << backend << " kernel=" << kernel << " aa=" << aa;
+    if (stitch != 1) {
+        out << " stitch=" << stitch;  // appended only when off: earlier runs' keys stay valid
+    }
     return out.str();
 }
 
@@ -83,6 +87,8 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.exact = whole(value);
             } else if (sweep.knob == "contact") {
                 c.contact = whole(value);
+            } else if (sweep.knob == "stitch") {
+                c.stitch = whole(value);
             } else if (sweep.knob == "change_blend") {
                 c.change_blend = std::stod(value);
             } else if (sweep.knob == "keep") {

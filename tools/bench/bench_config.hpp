@@ -29,6 +29,9 @@ struct BenchConfig {
     /// Texels under an object's edge gathered beside it (IlluminationSettings::contact_texels;
     /// 1: on, default).
     std::uint32_t contact = 1;
+    /// The IIM's light-map seams stitched after each pass (IlluminationSettings::stitch_seams;
+    /// 1: on, default).
+    std::uint32_t stitch = 1;
     /// Seconds a local pass's texels fade in over (IlluminationSettings::change_blend_seconds).
     double change_blend = lighting::IlluminationSettings{}.change_blend_seconds;
     /// Standard deviations by which a full pass must show a texel's light changed before the

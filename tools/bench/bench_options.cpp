@@ -94,7 +94,8 @@ Sweep parse_sweep(const std::string& text) {
             if (v < 1.0 || v > 1024.0 || v != std::floor(v)) {
                 throw Error(what + ": '" + value + "' is not a whole number of passes in 1..1024");
             }
-        } else if (sweep.knob == "local" || sweep.knob == "exact" || sweep.knob == "contact") {
+        } else if (sweep.knob == "local" || sweep.knob == "exact" || sweep.knob == "contact" ||
+                   sweep.knob == "stitch") {
             if (value != "0" && value != "1") {
                 throw Error(what + ": '" + value + "' is not 0 (off) or 1 (on)");
             }
@@ -113,7 +114,8 @@ Sweep parse_sweep(const std::string& text) {
             throw Error(
                 "--sweep " + sweep.knob +
                 ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, filter, "
-                "refine, local, change_blend, exact, contact, keep, caustics, backend, kernel, "
+                "refine, local, change_blend, exact, contact, stitch, keep, caustics, backend, "
+                "kernel, "
                 "aa)");
         }
     }

@@ -35,6 +35,12 @@ void IimGatherPasses::sync() {
         }
         local_boxes_.push_back(box);
     }
+    const auto seams = registry_.seams();
+    if (settings_.stitch_seams) {
+        for (; seam_objects_ < seams.size(); ++seam_objects_) {
+            seams_.add_object(seams[seam_objects_], registry_.iim_pages());
+        }
+    }
     update_seen();
     if (settings_.local_passes) {
         // Texels next to a change are gathered again at once, reading the AIMs as they are;
@@ -603,6 +609,8 @@ void IimGatherPasses::finish_pass(std::uint32_t surface, double now_seconds) {
         page.current.mark_changed(
             {left, top, std::min(bounds.z + 2, size) - left, std::min(bounds.w + 2, size) - top});
     }
+    // The seams after the padding: the stitcher reads what the bilinear lookups read.
+    seams_.stitch(surface, registry_.iim_pages(), now_seconds, settings_.blend_seconds);
     // Done refining or not, the means stay (fold_pass says why).
     refinement.passes_averaged = state.passes_when_done;
     state.in_progress = false;

@@ -13,6 +13,7 @@
 #include "luxel/lighting/core/illumination_settings.hpp"
 #include "luxel/lighting/core/map_surface.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
+#include "luxel/lighting/core/seam_stitcher.hpp"
 #include "luxel/lighting/core/surface_deltas.hpp"
 #include "luxel/lighting/core/view_hint.hpp"
 #include "map_registry.hpp"
@@ -62,6 +63,7 @@ class IimGatherPasses {
     [[nodiscard]] double refined_share() const;
     [[nodiscard]] std::uint64_t texels_gathered() const { return texels_gathered_; }
     [[nodiscard]] std::uint64_t texels_kept() const { return texels_kept_; }
+    [[nodiscard]] const SeamStitcher& seams() const { return seams_; }
 
   private:
     /// Filtering a texel costs about a fortieth of gathering it with 64 rays: a gather call's
@@ -102,6 +104,9 @@ class IimGatherPasses {
     const PhotonWorld& world_;
     SurfaceDeltas& deltas_;
     const IlluminationSettings& settings_;
+    SeamStitcher seams_;
+    /// The registry's seam objects taken in so far.
+    std::size_t seam_objects_ = 0;
     std::vector<GatherPassState> states_;       ///< by surface
     std::vector<RefinementStats> refinements_;  ///< by surface
     /// Completed passes being filtered, by surface.

@@ -105,7 +105,17 @@ MapCounters IlluminationMaps::counters() const {
     counters.gather_passes = gathers_->passes();
     counters.texels_kept = gathers_->texels_kept();
     counters.texels_gathered = gathers_->texels_gathered();
+    counters.seam_stitches = gathers_->seams().stitches();
+    counters.seam_texels = gathers_->seams().texels();
     return counters;
+}
+
+std::vector<SeamSample> IlluminationMaps::seam_samples() const {
+    std::vector<SeamSample> all;
+    for (const std::vector<SeamSample>& object : registry_->seams()) {
+        all.insert(all.end(), object.begin(), object.end());
+    }
+    return all;
 }
 
 std::uint64_t IlluminationMaps::emission_version() const {

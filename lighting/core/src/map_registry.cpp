@@ -217,9 +217,39 @@ bool MapRegistry::refresh_skies() {
     return true;
 }
 
+void MapRegistry::find_object_seams(std::span<const std::uint32_t> added) {
+    std::map<ecs::Entity, std::vector<SeamSurface>> objects;
+    for (const std::uint32_t s : added) {
+        const SurfaceInfo& info = world_.surfaces()[s];
+        const MapSurface& mapped = surfaces_[s];
+        const auto* instance = registry_.try_get<scene::MeshInstance>(info.entity);
+        if (instance == nullptr || info.primitive < 0 || page_of(s) < 0) {
+            continue;
+        }
+        const auto& primitives = instance->geometry().primitives;
+        if (static_cast<std::size_t>(info.primitive) >= primitives.size()) {
+            continue;
+        }
+        objects[info.entity].push_back({s, &primitives[static_cast<std::size_t>(info.primitive)],
+                                        page_of(s), mapped.texels.page_size, mapped.content,
+                                        mapped.albedo});
+    }
+    for (const auto& [entity, object] : objects) {
+        std::vector<SeamSample> samples = find_seams(object);
+        if (!samples.empty()) {
+            seams_.push_back(std::move(samples));
+        }
+    }
+}
+
 void MapRegistry::sync() {
+    std::vector<std::uint32_t> added;
     for (auto s = static_cast<std::uint32_t>(surfaces_.size()); s < world_.surfaces().size(); ++s) {
         add_surface(s);
+        added.push_back(s);
+    }
+    if (!added.empty()) {
+        find_object_seams(added);
     }
     area_changes_.consume([&](ecs::Entity entity, ecs::ChangeKind) {
         const auto found = surfaces_of_.find(entity);

@@ -12,6 +12,7 @@
 #include "luxel/lighting/components.hpp"
 #include "luxel/lighting/core/gather.hpp"
 #include "luxel/lighting/core/iim_page.hpp"
+#include "luxel/lighting/core/light_map_seams.hpp"
 #include "luxel/lighting/core/map_surface.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
 #include "luxel/lighting/core/radiance_atlas.hpp"
@@ -72,6 +73,9 @@ class MapRegistry {
     [[nodiscard]] const std::vector<NearbyChange>& nearby_changes() const {
         return nearby_changes_;
     }
+    /// Per object with light-map seams (find_seams over its surfaces, found when they were
+    /// added), the samples along them; objects are appended, never changed.
+    [[nodiscard]] std::span<const std::vector<SeamSample>> seams() const { return seams_; }
     /// Whether the surface's own transform changed in the last sync() (it belongs to an object
     /// that moved).
     [[nodiscard]] bool moved_in_last_sync(std::uint32_t surface) const {
@@ -80,6 +84,8 @@ class MapRegistry {
 
   private:
     void add_surface(std::uint32_t surface);
+    /// Finds the seams among the surfaces of each entity in `added` (surface indices).
+    void find_object_seams(std::span<const std::uint32_t> added);
     void refresh_transform(std::uint32_t surface);
     /// Sets aim_.surface_emission[surface] from its material and its entity's AreaLight;
     /// returns whether it changed.
@@ -108,6 +114,7 @@ class MapRegistry {
     /// a level of many meshes without light maps costs find_nearby_changes nothing per pair.
     std::vector<std::uint32_t> mapped_surfaces_;
     std::vector<NearbyChange> nearby_changes_;
+    std::vector<std::vector<SeamSample>> seams_;
     std::vector<std::uint8_t> moved_;  ///< by surface, in the last sync()
     std::map<std::pair<const scene::Scene*, int>, std::int32_t> pages_;
     std::map<ecs::Entity, std::vector<std::uint32_t>> surfaces_of_;

@@ -12,6 +12,7 @@
 #include "luxel/lighting/core/gather.hpp"
 #include "luxel/lighting/core/iim_page.hpp"
 #include "luxel/lighting/core/illumination_settings.hpp"
+#include "luxel/lighting/core/light_map_seams.hpp"
 #include "luxel/lighting/core/map_surface.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
 #include "luxel/lighting/core/radiance_atlas.hpp"
@@ -113,6 +114,9 @@ class IlluminationMaps {
     /// the direct light of area lights reaches the IIM through the gather, so every surface
     /// gathers again (gather_requests) after a change.
     [[nodiscard]] std::uint64_t emission_version() const;
+    /// Every light-map seam's samples (light_map_seams.hpp), stitched or not: what
+    /// seam_mismatch measures.
+    [[nodiscard]] std::vector<SeamSample> seam_samples() const;
     /// The world-space texel centres of a surface (what its gathers start from).
     [[nodiscard]] std::vector<GatherTexel> world_texels(std::uint32_t surface) const;
 

@@ -71,6 +71,11 @@ struct IlluminationSettings {
     /// of the noise (texel_change_test.hpp, docs/METHOD.md §6.9). 0: every texel of the
     /// surface restarts (before issue 19).
     double change_test_sigmas = 3.0;
+    /// After each pass the IIM texels along light-map seams (two charts of one object meeting
+    /// where the surface runs on smoothly) are moved, by least squares, until both sides'
+    /// lookups agree (SeamStitcher, docs/METHOD.md §6.13). Off: each side shows its own pass,
+    /// a visible step of the two passes' noise, for measuring the difference.
+    bool stitch_seams = true;
     int change_test_radius = 4;
 };
 

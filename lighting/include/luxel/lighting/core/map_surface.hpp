@@ -117,6 +117,10 @@ struct MapCounters {
     /// Texels that a full pass found unchanged and folded into their mean (their refinement
     /// kept: IlluminationSettings::change_test_sigmas).
     std::uint64_t texels_kept = 0;
+    /// Seam stitches done (one per committed pass of a surface on a seam), and the IIM texels
+    /// the stitcher's systems hold.
+    std::uint64_t seam_stitches = 0;
+    std::uint64_t seam_texels = 0;
 };
 
 }  // namespace luxel::lighting
