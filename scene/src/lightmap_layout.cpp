@@ -115,6 +115,12 @@ std::optional<LightmapLayout> read_lightmap_layout(const nlohmann::json& luxel_e
         if (!(surface.area >= 0.0) || surface.texels < 0) {
             malformed(where, "area and texels must not be negative");
         }
+        if (entry.contains("texel_size")) {
+            surface.texel_size = number(entry, "texel_size", where);
+            if (!(surface.texel_size > 0.0) || surface.texel_size > 1e6) {
+                malformed(where + ".texel_size", "must be a positive number of metres");
+            }
+        }
         layout.surfaces.push_back(std::move(surface));
     }
     return layout;
@@ -130,13 +136,17 @@ nlohmann::json to_json(const LightmapLayout& layout) {
         for (const auto& chart : surface.charts) {
             charts.push_back(as_array(chart));
         }
-        surfaces.push_back({{"id", surface.id},
-                            {"primitive", surface.primitive},
-                            {"page", surface.page},
-                            {"rect", as_array(surface.rect)},
-                            {"charts", std::move(charts)},
-                            {"area", surface.area},
-                            {"texels", surface.texels}});
+        nlohmann::json entry = {{"id", surface.id},
+                                {"primitive", surface.primitive},
+                                {"page", surface.page},
+                                {"rect", as_array(surface.rect)},
+                                {"charts", std::move(charts)},
+                                {"area", surface.area},
+                                {"texels", surface.texels}};
+        if (surface.texel_size > 0.0) {
+            entry["texel_size"] = surface.texel_size;  // only where it is not the layout's
+        }
+        surfaces.push_back(std::move(entry));
     }
     return {{"texel_size", layout.texel_size},
             {"page_size", layout.page_size},

@@ -124,6 +124,8 @@ TEST(PrepCli, BadFlagsAreClearErrorsNamingTheFlag) {
         {"--threads -1", "--threads"},
         {"--min-texels-across -1", "--min-texels-across"},
         {"--texel-budget -5", "--texel-budget"},
+        {"--hidden-texel-scale 0.5", "--hidden-texel-scale"},
+        {"--hidden-texel-scale 65", "--hidden-texel-scale"},
     };
     for (const auto& [flags, mention] : cases) {
         const CommandResult run = luxel_prep(files + " " + flags);

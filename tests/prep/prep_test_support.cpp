@@ -192,8 +192,11 @@ PageCheck check_light_map_pages(const scene::Scene& prepared, int padding, doubl
         page_size = layout->page_size;
         const double size = page_size;
         const scene::Mesh& mesh = prepared.meshes.at(static_cast<std::size_t>(node.mesh));
-        const double texel_area = static_cast<double>(layout->texel_size) * layout->texel_size;
         for (const scene::LightmapSurface& surface : layout->surfaces) {
+            const double texel_size = surface.texel_size > 0.0
+                                          ? surface.texel_size
+                                          : static_cast<double>(layout->texel_size);
+            const double texel_area = texel_size * texel_size;
             ++check.surfaces;
             const std::string at = where + " surface " + std::to_string(surface.id);
             if (surface.primitive < 0 ||

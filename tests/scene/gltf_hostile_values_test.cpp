@@ -252,6 +252,13 @@ TEST(GltfHostileValues, LimitsOnHowThePartsCombine) {
     message = load_error(file.text());
     EXPECT_NE(message.find("floor"), std::string::npos) << message;
     EXPECT_NE(message.find("page_size: must be within 1..8192"), std::string::npos) << message;
+    // A surface's own texel size (luxel-prep's coarse texels for hidden surfaces) is checked too.
+    file.document["nodes"][0]["extras"]["luxel"]["lightmap"]["page_size"] = 4096;
+    file.document["nodes"][0]["extras"]["luxel"]["lightmap"]["surfaces"][0]["texel_size"] = -0.4;
+    message = load_error(file.text());
+    EXPECT_NE(message.find("surfaces[0].texel_size: must be a positive number of metres"),
+              std::string::npos)
+        << message;
 
     // Image pixels are summed from the headers, before anything is decoded.
     file = triangle();

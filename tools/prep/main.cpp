@@ -94,6 +94,10 @@ int run(int argc, char** argv) {
         // CLI11 reads "-5" into an unsigned number by wrapping it: the range refuses that.
         ->check(CLI::Range(std::uint64_t{0}, luxel::prep::kMaxTexelBudget))
         ->capture_default_str();
+    app.add_option("--hidden-texel-scale", options.hidden_texel_scale,
+                   "texels of surfaces no camera or light can see (the outside of a closed "
+                   "level, faces against other geometry) are this many times larger (1: off)")
+        ->capture_default_str();
     app.add_option("--crease-deg", options.crease_degrees,
                    "faces whose normals differ by less than this share a surface")
         ->capture_default_str();

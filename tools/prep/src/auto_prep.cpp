@@ -18,7 +18,7 @@ namespace {
 
 /// Names what the cached files were made by: a change to luxel-prep's output format or to its
 /// algorithms bumps it, and every level is prepared afresh.
-constexpr const char* kCacheVersion = "luxel-prep auto 2";
+constexpr const char* kCacheVersion = "luxel-prep auto 3";
 
 /// 64-bit FNV-1a, fed in pieces.
 class Fnv1a {
@@ -163,11 +163,12 @@ std::string content_key(const std::filesystem::path& file, const scene::Scene& l
     hash.add(kCacheVersion);
     char text[256];
     std::snprintf(text, sizeof(text),
-                  "%.17g %d %" PRIu64 " %.17g %d %d %d %.17g %.17g %d %zu %" PRIu64 " %" PRIu64,
+                  "%.17g %d %" PRIu64 " %.17g %.17g %d %d %d %.17g %.17g %d %zu %" PRIu64
+                  " %" PRIu64,
                   options.texel_size, options.min_texels_across, options.texel_budget,
-                  options.crease_degrees, options.padding, options.page_size,
-                  options.auto_page_limit, options.surface_texel_budget, options.max_stretch,
-                  options.lightmap_specular ? 1 : 0, options.max_total_texels,
+                  options.hidden_texel_scale, options.crease_degrees, options.padding,
+                  options.page_size, options.auto_page_limit, options.surface_texel_budget,
+                  options.max_stretch, options.lightmap_specular ? 1 : 0, options.max_total_texels,
                   options.max_triangles, options.max_accessors);
     hash.add(std::string(text));
     hash.add_file(file);

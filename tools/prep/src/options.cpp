@@ -20,6 +20,10 @@ void validate(const PrepOptions& options) {
         throw Error("--texel-budget must be within 0..2^40 texels (0: no budget), got " +
                     std::to_string(options.texel_budget));
     }
+    if (!(options.hidden_texel_scale >= 1.0 && options.hidden_texel_scale <= 64.0)) {
+        throw Error("--hidden-texel-scale must be within 1..64 (1: off), got " +
+                    std::to_string(options.hidden_texel_scale));
+    }
     if (!(options.crease_degrees >= 0.0 && options.crease_degrees <= 180.0)) {
         throw Error("--crease-deg must be within 0..180 degrees, got " +
                     std::to_string(options.crease_degrees));

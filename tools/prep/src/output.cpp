@@ -170,6 +170,7 @@ scene::Scene build_output_scene(const scene::Scene& input, const std::vector<Pre
             }
             entry.area = surface.area;
             entry.texels = surface.texels;
+            entry.texel_size = surface.texel_size;
             layout.surfaces.push_back(std::move(entry));
             mesh.primitives.push_back(surface_primitive(source, prepared, surface));
         }

@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "luxel/prep/hidden_faces.hpp"
 #include "luxel/prep/output.hpp"
 #include "luxel/prep/packing.hpp"
 #include "luxel/prep/surfaces.hpp"
@@ -21,6 +22,9 @@ namespace {
 struct NodeWork {
     int node = -1;
     double texel_size = 0.0;  ///< this node's (texel_density.hpp)
+    /// Per crease surface, its texel size over the node's: hidden_texel_scale where no
+    /// viewpoint sees it (hidden_faces.hpp), else 1.
+    std::vector<double> crease_scale;
     NodeGeometry geometry;
     std::vector<CreaseSurface> crease_surfaces;
     std::vector<std::vector<Chart>> charts_per_crease;  ///< per crease surface
@@ -174,6 +178,46 @@ void choose_texel_sizes(const scene::Scene& input, const PrepOptions& options,
     }
 }
 
+/// Stage 2c: which crease surfaces no viewpoint sees; they get hidden_texel_scale times the
+/// node's texel size.
+void coarsen_hidden_surfaces(const scene::Scene& input, const PrepOptions& options,
+                             std::vector<NodeWork>& work, PrepReport& report) {
+    for (NodeWork& w : work) {
+        w.crease_scale.assign(w.crease_surfaces.size(), 1.0);
+    }
+    if (options.hidden_texel_scale <= 1.0) {
+        return;
+    }
+    std::vector<VisibilityTriangle> triangles;
+    std::vector<std::pair<std::size_t, std::size_t>> surfaces;  // (work, crease surface)
+    for (std::size_t i = 0; i < work.size(); ++i) {
+        const NodeWork& w = work[i];
+        const bool dynamic = input.is_dynamic(w.node);
+        for (std::size_t s = 0; s < w.crease_surfaces.size(); ++s) {
+            const auto id = static_cast<std::uint32_t>(surfaces.size());
+            surfaces.emplace_back(i, s);
+            for (const int f : w.crease_surfaces[s].faces) {
+                const Face& face = w.geometry.faces[static_cast<std::size_t>(f)];
+                triangles.push_back({w.geometry.position(face.vertices[0]),
+                                     w.geometry.position(face.vertices[1]),
+                                     w.geometry.position(face.vertices[2]), id, dynamic});
+            }
+        }
+    }
+    // Cells up to four texels: a doorway or a corridor stays open at that size.
+    const Visibility visibility = find_seen_surfaces(triangles, surfaces.size(), viewpoints(input),
+                                                     options.texel_size, 4.0 * options.texel_size);
+    report.visibility_skipped = visibility.skipped;
+    for (std::size_t k = 0; k < surfaces.size(); ++k) {
+        if (!visibility.seen[k]) {
+            NodeWork& w = work[surfaces[k].first];
+            w.crease_scale[surfaces[k].second] = options.hidden_texel_scale;
+            ++report.hidden_surfaces;
+            report.hidden_area += w.crease_surfaces[surfaces[k].second].area;
+        }
+    }
+}
+
 /// The chart limits of one node: the level's, at the node's texel size.
 ChartLimits node_limits(const ChartLimits& level, const PrepOptions& options, double texel_size) {
     ChartLimits limits = level;
@@ -199,7 +243,8 @@ void build_all_charts(const scene::Scene& input, const PrepOptions& options,
         try {
             w.charts_per_crease[s] =
                 build_charts(w.geometry, w.crease_surfaces[s],
-                             node_limits(limits, options, w.texel_size), &w.counts_per_crease[s]);
+                             node_limits(limits, options, w.texel_size * w.crease_scale[s]),
+                             &w.counts_per_crease[s]);
         } catch (const Error& e) {
             throw Error(node_label(input, w.node) + ": " + e.what());
         }
@@ -228,8 +273,9 @@ PackInput assemble_surfaces(const PrepOptions& options, const ChartLimits& limit
         PreparedNode prepared;
         prepared.node = w.node;
         prepared.texel_size = w.texel_size;
-        const double area_budget = node_limits(limits, options, w.texel_size).area_budget;
         for (std::size_t s = 0; s < w.crease_surfaces.size(); ++s) {
+            const double area_budget =
+                node_limits(limits, options, w.texel_size * w.crease_scale[s]).area_budget;
             std::vector<Chart>& charts = w.charts_per_crease[s];
             report.planar_charts += w.counts_per_crease[s].planar;
             report.conformal_charts += w.counts_per_crease[s].conformal;
@@ -249,6 +295,9 @@ PackInput assemble_surfaces(const PrepOptions& options, const ChartLimits& limit
                     PreparedSurface surface;
                     surface.id = next_id++;
                     surface.material = w.crease_surfaces[s].material;
+                    if (w.crease_scale[s] != 1.0) {
+                        surface.texel_size = w.texel_size * w.crease_scale[s];
+                    }
                     for (const int c : run) {
                         surface.charts.push_back(first_chart + c);
                         surface.area += charts[static_cast<std::size_t>(c)].area;
@@ -403,6 +452,7 @@ PrepResult prepare(const scene::Scene& input, const PrepOptions& options, JobSys
     stage.restart();
     find_all_crease_surfaces(options, work, jobs, progress);
     choose_texel_sizes(input, options, work);
+    coarsen_hidden_surfaces(input, options, work, result.report);
     result.report.add_stage("surfaces", stage.elapsed_ms());
 
     stage.restart();

@@ -35,6 +35,7 @@ nlohmann::json to_json(const PrepReport& report) {
          {{"texel_size", o.texel_size},
           {"min_texels_across", o.min_texels_across},
           {"texel_budget", o.texel_budget},
+          {"hidden_texel_scale", o.hidden_texel_scale},
           {"crease_deg", o.crease_degrees},
           {"padding", o.padding},
           {"page_size", o.page_size == 0 ? nlohmann::json("auto") : nlohmann::json(o.page_size)},
@@ -45,6 +46,10 @@ nlohmann::json to_json(const PrepReport& report) {
         {"prepared_nodes", report.prepared_nodes},
         {"triangles", report.triangles},
         {"crease_surfaces", report.crease_surfaces},
+        {"hidden_surfaces",
+         {{"count", report.hidden_surfaces},
+          {"area", report.hidden_area},
+          {"not_judged", report.visibility_skipped}}},
         {"surfaces", report.surfaces},
         {"charts",
          {{"total", report.charts},
@@ -81,6 +86,13 @@ std::string summary(const PrepReport& report) {
         << report.options.texel_size << " m on " << report.pages << " page"
         << (report.pages == 1 ? "" : "s") << " of " << report.page_size << "^2, packing efficiency "
         << std::setprecision(1) << 100.0 * report.efficiency << "%\n";
+    if (!report.visibility_skipped.empty()) {
+        out << "  hidden surfaces not judged: " << report.visibility_skipped << "\n";
+    } else if (report.hidden_surfaces > 0) {
+        out << "  " << report.hidden_surfaces << " surfaces no camera or light sees ("
+            << std::setprecision(2) << report.hidden_area << " m^2) got texels "
+            << std::setprecision(0) << report.options.hidden_texel_scale << "x larger\n";
+    }
     out << "  stretch min " << std::setprecision(3) << report.stretch_min << ", mean "
         << report.stretch_mean << ", max " << report.stretch_max << " (bound "
         << report.options.max_stretch << ")\n";

@@ -21,7 +21,9 @@
 ///         "charts": [[x, y, w, h], ...],  charts (with their padding) never overlap: texel
 ///                                       ownership comes from the charts, not the rect
 ///         "area": 1.25,                 world area in m^2
-///         "texels": 512                 texels covered by its charts
+///         "texels": 512,                texels covered by its charts
+///         "texel_size": 0.4             optional: its own metres per texel edge, where not
+///                                       the layout's (a surface no viewpoint sees)
 ///       }, ... ] }
 ///
 /// A surface is the unit that owns a photon map, an AIM and an IIM: faces of one material
@@ -46,6 +48,9 @@ struct LightmapSurface {
     std::vector<TexelRect> charts;
     double area = 0.0;
     std::int64_t texels = 0;
+    /// Metres per texel edge of this surface where it differs from the layout's (a surface no
+    /// viewpoint sees, given coarser texels by luxel-prep); 0: the layout's texel_size.
+    double texel_size = 0.0;
 
     friend bool operator==(const LightmapSurface&, const LightmapSurface&) = default;
 };

@@ -25,6 +25,9 @@ struct PrepOptions {
     /// Texels the whole level may have (area over texel size squared, before padding): above
     /// it every node's texels grow by one factor. 0: no budget.
     std::uint64_t texel_budget = 0;
+    /// Surfaces no viewpoint can see (the outside of a closed level, faces pressed against
+    /// other geometry: prep/hidden_faces.hpp) get texels this many times larger; 1: off.
+    double hidden_texel_scale = 8.0;
     /// Faces of one material whose normals differ by less than this share a surface
     /// (docs/METHOD.md §3.1: the shared edge is "connected").
     double crease_degrees = 45.0;

@@ -36,6 +36,8 @@ struct PreparedSurface {
     int page = 0;
     scene::TexelRect rect;  ///< bounds of its charts
     std::int64_t texels = 0;
+    /// Metres per texel edge where not the node's (a surface no viewpoint sees); 0: the node's.
+    double texel_size = 0.0;
 };
 
 /// Everything luxel-prep worked out for one mesh node.

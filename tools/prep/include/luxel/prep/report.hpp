@@ -35,6 +35,11 @@ struct PrepReport {
     std::size_t prepared_nodes = 0;  ///< of those, nodes that got a light map
     std::size_t triangles = 0;       ///< light-mapped triangles kept
     std::size_t crease_surfaces = 0;
+    /// Crease surfaces no viewpoint sees (hidden_faces.hpp), given coarser texels, and their
+    /// area; why the test did not run, if it did not.
+    std::size_t hidden_surfaces = 0;
+    double hidden_area = 0.0;
+    std::string visibility_skipped;
     std::size_t surfaces = 0;
     std::size_t charts = 0;
     std::size_t planar_charts = 0;
