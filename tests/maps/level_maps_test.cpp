@@ -25,19 +25,10 @@ bool valid(const glm::vec3& v) {
 }
 
 TEST_P(LevelMaps, TexelsMatchTheLayoutAndEveryValueIsFinite) {
-    const std::filesystem::path file = std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" /
-                                       "levels" / "prepared" / (std::string(GetParam()) + ".glb");
-    ecs::Registry registry;
-    world::InstantiateOptions options;
-    options.play_animations = false;
-    world::instantiate(registry, std::make_shared<scene::Scene>(scene::load_gltf(file)), options);
-    ecs::TransformSystem transforms(registry);
-    transforms.update();
-    JobSystem jobs(2);
-    lighting::PhotonWorld photons(registry);
-    photons.sync();
-    photons.probe(0, jobs);
-    photons.retrace_pending(jobs);
+    luxel::testing::TracedLevel level(GetParam());
+    ecs::Registry& registry = level.registry;
+    JobSystem& jobs = level.jobs;
+    lighting::PhotonWorld& photons = *level.photons;
     lighting::IlluminationMaps maps(registry, photons);
     maps.sync();
 

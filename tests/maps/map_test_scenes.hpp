@@ -4,9 +4,11 @@
 // known irradiance field, and levels loaded through the ECS.
 
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <random>
+#include <string>
 
 #include <glm/glm.hpp>
 
@@ -17,6 +19,9 @@
 #include "luxel/lighting/core/illumination_maps.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
+#include "luxel/runtime/jobs.hpp"
+#include "luxel/scene/gltf.hpp"
+#include "luxel/world/scene_instance.hpp"
 
 namespace luxel::testing {
 
@@ -139,6 +144,29 @@ struct PlaneWorld {
             traced.starts.push_back(static_cast<std::uint32_t>(traced.hops.size()));
         }
         map.replace_group(group, traced);
+    }
+};
+
+/// A prepared level (assets/levels/prepared/<name>.glb) instantiated at rest, its photons
+/// traced once: what the level-wide map tests build their maps on.
+struct TracedLevel {
+    ecs::Registry registry;
+    ecs::TransformSystem transforms{registry};
+    JobSystem jobs{2};
+    std::unique_ptr<lighting::PhotonWorld> photons;
+
+    explicit TracedLevel(const std::string& name) {
+        const std::filesystem::path file = std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" /
+                                           "levels" / "prepared" / (name + ".glb");
+        world::InstantiateOptions options;
+        options.play_animations = false;
+        world::instantiate(registry, std::make_shared<scene::Scene>(scene::load_gltf(file)),
+                           options);
+        transforms.update();
+        photons = std::make_unique<lighting::PhotonWorld>(registry);
+        photons->sync();
+        photons->probe(0, jobs);
+        photons->retrace_pending(jobs);
     }
 };
 

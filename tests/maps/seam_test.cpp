@@ -202,27 +202,16 @@ TEST(SeamStitcher, NonFiniteTexelsNeverSpread) {
 /// cornell as luxel-prep prepared it (its walls and floor cut in two surfaces each), photons,
 /// AIM and one CPU gather over every surface; the seams' mismatch afterwards.
 double cornell_seam_mismatch(bool stitch, std::size_t* sample_count) {
-    const std::filesystem::path file = std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" /
-                                       "levels" / "prepared" / "cornell.glb";
-    ecs::Registry registry;
-    world::InstantiateOptions options;
-    options.play_animations = false;
-    world::instantiate(registry, std::make_shared<scene::Scene>(scene::load_gltf(file)), options);
-    ecs::TransformSystem transforms(registry);
-    transforms.update();
-    JobSystem jobs(2);
-    lighting::PhotonWorld photons(registry);
-    photons.sync();
-    photons.probe(0, jobs);
-    photons.retrace_pending(jobs);
+    luxel::testing::TracedLevel level("cornell");
+    lighting::PhotonWorld& photons = *level.photons;
     lighting::IlluminationSettings settings;
     settings.stitch_seams = stitch;
-    lighting::IlluminationMaps maps(registry, photons, settings);
+    lighting::IlluminationMaps maps(level.registry, photons, settings);
     maps.sync();
     for (const auto& request : maps.aim_requests()) {
         maps.rebuild_aim(request.surface);
     }
-    lighting::CpuGatherer gatherer(photons.ray_scene(), maps.aim(), {64, 1e6f}, &jobs);
+    lighting::CpuGatherer gatherer(photons.ray_scene(), maps.aim(), {64, 1e6f}, &level.jobs);
     for (const auto& request : maps.gather_requests()) {
         maps.gather(request.surface, 1u << 20, gatherer, 0.0);
     }
