@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 #include <tuple>
-#include <unordered_map>
 
 #include "luxel/scene/welding.hpp"
 
@@ -20,9 +19,12 @@ constexpr float kSmoothCos = 0.99f;
 /// UVs closer than this (texels) are the same corner of one chart.
 constexpr float kSameCorner = 1e-3f;
 
-/// One triangle's use of an edge, its corners ordered by welded id (low first).
+/// One triangle's use of an edge, its corners ordered by welded id (low first). Kept in one flat
+/// list sorted by edge (32 bytes a use, three a triangle), not a hash map of lists: a level of
+/// millions of triangles finds its seams in a few hundred bytes a triangle at most.
 struct EdgeUse {
-    std::size_t side = 0;  ///< index into the surfaces
+    std::uint64_t edge = 0;  ///< the two welded ids, low in the high bits
+    std::uint32_t side = 0;  ///< index into the surfaces
     std::uint32_t low = 0;
     std::uint32_t high = 0;
     glm::vec3 face_normal{0.0f};
@@ -87,7 +89,12 @@ std::vector<SeamSample> find_seams(std::span<const SeamSurface> surfaces) {
     const std::vector<std::uint32_t> id =
         scene::welded_ids(positions, std::isfinite(extent) ? 1e-5f * extent : 0.0f);
 
-    std::unordered_map<std::uint64_t, std::vector<EdgeUse>> edges;
+    std::vector<EdgeUse> edges;
+    std::size_t corners = 0;
+    for (const SeamSurface& surface : surfaces) {
+        corners += usable(surface) ? surface.primitive->indices.size() : 0;
+    }
+    edges.reserve(corners);  // three uses a triangle, one per corner
     for (std::size_t s = 0; s < surfaces.size(); ++s) {
         if (!usable(surfaces[s])) {
             continue;
@@ -123,16 +130,25 @@ std::vector<SeamSample> find_seams(std::span<const SeamSurface> surfaces) {
                 }
                 const std::uint64_t key = (static_cast<std::uint64_t>(welded[a]) << 32) |
                                           static_cast<std::uint64_t>(welded[b]);
-                edges[key].push_back({s, vertex[a], vertex[b], cross / length});
+                edges.push_back(
+                    {key, static_cast<std::uint32_t>(s), vertex[a], vertex[b], cross / length});
             }
         }
     }
 
+    std::sort(edges.begin(), edges.end(), [](const EdgeUse& x, const EdgeUse& y) {
+        return std::tie(x.edge, x.side, x.low, x.high) < std::tie(y.edge, y.side, y.low, y.high);
+    });
     std::vector<SeamSample> samples;
-    for (const auto& [key, uses] : edges) {
-        if (uses.size() != 2) {
+    for (std::size_t i = 0, next = 0; i < edges.size(); i = next) {
+        next = i + 1;
+        while (next < edges.size() && edges[next].edge == edges[i].edge) {
+            ++next;
+        }
+        if (next - i != 2) {
             continue;  // a border, or a non-manifold edge: nothing on the other side to agree with
         }
+        const std::array<EdgeUse, 2> uses{edges[i], edges[i + 1]};
         const SeamSurface& sa = surfaces[uses[0].side];
         const SeamSurface& sb = surfaces[uses[1].side];
         const float size_a = static_cast<float>(sa.page_size);
