@@ -32,7 +32,10 @@ std::vector<std::uint32_t> welded_ids(const std::vector<glm::vec3>& positions, f
     cells.reserve(positions.size());
     std::vector<std::uint32_t> id(positions.size());
     std::uint32_t next = 0;
-    const double size = static_cast<double>(tolerance);
+    // Cells twice the tolerance: a position lies within the tolerance of at most one face of
+    // its cell per axis, so 8 cells can hold its matches, not the 27 that cells of the
+    // tolerance's size need (3.4 times fewer lookups; cornell-133k's seams, FindSeams).
+    const double size = 2.0 * static_cast<double>(tolerance);
     // Cells must fit an int64 with room for the neighbours' +-1; a position too far out for
     // its tolerance (or not finite, or a tolerance that is not positive) welds to nothing.
     constexpr double kCellLimit = 1e15;
@@ -48,19 +51,21 @@ std::vector<std::uint32_t> welded_ids(const std::vector<glm::vec3>& positions, f
         const Cell cell{static_cast<std::int64_t>(std::floor(scaled.x)),
                         static_cast<std::int64_t>(std::floor(scaled.y)),
                         static_cast<std::int64_t>(std::floor(scaled.z))};
+        // Per axis the neighbour on the side the position is nearer to.
+        const glm::dvec3 fraction = scaled - glm::floor(scaled);
+        const std::int64_t sx = fraction.x < 0.5 ? -1 : 1;
+        const std::int64_t sy = fraction.y < 0.5 ? -1 : 1;
+        const std::int64_t sz = fraction.z < 0.5 ? -1 : 1;
         std::optional<std::uint32_t> found;
-        for (std::int64_t dx = -1; dx <= 1 && !found; ++dx) {
-            for (std::int64_t dy = -1; dy <= 1 && !found; ++dy) {
-                for (std::int64_t dz = -1; dz <= 1 && !found; ++dz) {
-                    const auto [first, last] =
-                        cells.equal_range({cell.x + dx, cell.y + dy, cell.z + dz});
-                    for (auto it = first; it != last; ++it) {
-                        const glm::vec3 d = glm::abs(positions[it->second] - p);
-                        if (d.x <= tolerance && d.y <= tolerance && d.z <= tolerance) {
-                            found = id[it->second];
-                            break;
-                        }
-                    }
+        for (int k = 0; k < 8 && !found; ++k) {
+            const Cell near{cell.x + ((k & 1) != 0 ? sx : 0), cell.y + ((k & 2) != 0 ? sy : 0),
+                            cell.z + ((k & 4) != 0 ? sz : 0)};
+            const auto [first, last] = cells.equal_range(near);
+            for (auto it = first; it != last; ++it) {
+                const glm::vec3 d = glm::abs(positions[it->second] - p);
+                if (d.x <= tolerance && d.y <= tolerance && d.z <= tolerance) {
+                    found = id[it->second];
+                    break;
                 }
             }
         }

@@ -677,6 +677,56 @@ void SeamStitch(benchmark::State& state) {
 }
 BENCHMARK(SeamStitch)->UseManualTime()->Unit(benchmark::kMillisecond);
 
+// --- finding the seams at load, against loading the level
+// ----------------------------------------------------------------------------------
+
+/// What MapRegistry adds to a level's load by finding its light-map seams (find_seams per
+/// object), against scene::load_gltf of the same file timed in the same run: cornell-133k, whose
+/// floor is 130,000 triangles.
+void FindSeams(benchmark::State& state) {
+    static const std::unique_ptr<Level> level = std::make_unique<Level>("cornell-133k");
+    const IlluminationMaps& maps = *level->maps;
+    std::map<ecs::Entity, std::vector<SeamSurface>> objects;
+    std::size_t triangles = 0;
+    for (std::uint32_t s = 0; s < maps.surfaces().size(); ++s) {
+        const SurfaceInfo& info = level->photons->surfaces()[s];
+        const auto* instance = level->registry.try_get<scene::MeshInstance>(info.entity);
+        const std::int32_t page = maps.aim().surface_page.at(s);
+        if (instance == nullptr || info.primitive < 0 || page < 0) {
+            continue;
+        }
+        const scene::Primitive& primitive =
+            instance->geometry().primitives.at(static_cast<std::size_t>(info.primitive));
+        triangles += primitive.triangle_count();
+        const MapSurface& mapped = maps.surfaces()[s];
+        objects[info.entity].push_back(
+            {s, &primitive, page, mapped.texels.page_size, mapped.content, mapped.albedo});
+    }
+    double find_seconds = 0.0;
+    double load_seconds = 0.0;
+    std::size_t samples = 0;
+    for (auto _ : state) {
+        const Clock::time_point start = Clock::now();
+        samples = 0;
+        for (const auto& [entity, surfaces] : objects) {
+            samples += find_seams(surfaces).size();
+        }
+        const double found = seconds_since(start);
+        find_seconds += found;
+        state.SetIterationTime(found);
+        const Clock::time_point load_start = Clock::now();
+        benchmark::DoNotOptimize(scene::load_gltf(prepared("cornell-133k")).meshes.size());
+        load_seconds += seconds_since(load_start);
+    }
+    const double iterations = static_cast<double>(state.iterations());
+    state.counters["triangles"] = static_cast<double>(triangles);
+    state.counters["samples"] = static_cast<double>(samples);
+    state.counters["find_ms"] = 1e3 * find_seconds / iterations;
+    state.counters["load_ms"] = 1e3 * load_seconds / iterations;
+    state.counters["ratio"] = find_seconds / std::max(load_seconds, 1e-12);
+}
+BENCHMARK(FindSeams)->UseManualTime()->Unit(benchmark::kMillisecond);
+
 }  // namespace
 
 BENCHMARK_MAIN();
