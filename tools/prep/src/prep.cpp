@@ -208,6 +208,7 @@ void coarsen_hidden_surfaces(const scene::Scene& input, const PrepOptions& optio
     const Visibility visibility = find_seen_surfaces(triangles, surfaces.size(), viewpoints(input),
                                                      options.texel_size, 4.0 * options.texel_size);
     report.visibility_skipped = visibility.skipped;
+    report.visibility_cell = visibility.cell_size;
     for (std::size_t k = 0; k < surfaces.size(); ++k) {
         if (!visibility.seen[k]) {
             NodeWork& w = work[surfaces[k].first];

@@ -49,6 +49,7 @@ nlohmann::json to_json(const PrepReport& report) {
         {"hidden_surfaces",
          {{"count", report.hidden_surfaces},
           {"area", report.hidden_area},
+          {"cell", report.visibility_cell},
           {"not_judged", report.visibility_skipped}}},
         {"surfaces", report.surfaces},
         {"charts",

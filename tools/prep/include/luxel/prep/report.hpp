@@ -40,6 +40,7 @@ struct PrepReport {
     std::size_t hidden_surfaces = 0;
     double hidden_area = 0.0;
     std::string visibility_skipped;
+    double visibility_cell = 0.0;  ///< metres: the cells the test judged with (0: not judged)
     std::size_t surfaces = 0;
     std::size_t charts = 0;
     std::size_t planar_charts = 0;
