@@ -49,6 +49,8 @@ int type_for_components(int components) {
             return TINYGLTF_TYPE_VEC2;
         case 3:
             return TINYGLTF_TYPE_VEC3;
+        case 16:
+            return TINYGLTF_TYPE_MAT4;
         default:
             return TINYGLTF_TYPE_VEC4;
     }
@@ -236,6 +238,11 @@ bool index_type(int component_type, bool normalized) {
                            component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
 }
 
+bool joint_type(int component_type, bool normalized) {
+    return !normalized && (component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                           component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+}
+
 }  // namespace
 
 std::uint64_t accessor_count(const ImportContext& context, int index, const std::string& usage) {
@@ -294,6 +301,21 @@ std::vector<std::uint32_t> read_indices(const ImportContext& context, int index,
             default:
                 values[e] = load<std::uint32_t>(p);
                 break;
+        }
+    }
+    return values;
+}
+
+std::vector<glm::u16vec4> read_joints(const ImportContext& context, int index,
+                                      const std::string& usage) {
+    const Layout layout = locate(context, index, TINYGLTF_TYPE_VEC4, joint_type, usage);
+    const std::size_t size = component_size(layout.component_type);
+    std::vector<glm::u16vec4> values(layout.count);
+    for (std::size_t e = 0; e < layout.count; ++e) {
+        const std::uint8_t* element = layout.first + e * layout.stride;
+        for (std::size_t c = 0; c < 4; ++c) {
+            values[e][static_cast<glm::length_t>(c)] =
+                size == 1 ? load<std::uint8_t>(element + c) : load<std::uint16_t>(element + 2 * c);
         }
     }
     return values;

@@ -130,6 +130,7 @@ class PrimitiveImporter {
         primitive.texcoords0 = read_optional<glm::vec2>(source, "TEXCOORD_0", true, vertex_count);
         primitive.texcoords1 = read_optional<glm::vec2>(source, "TEXCOORD_1", true, vertex_count);
         normalise_normals(primitive);
+        read_skinning(source, vertex_count, primitive);
 
         std::vector<std::uint32_t> indices;
         if (source.indices >= 0) {
@@ -176,6 +177,46 @@ class PrimitiveImporter {
         }
         return as_vectors<Vec>(
             read_floats(context_, *accessor, Vec::length(), allow_normalized, usage));
+    }
+
+    /// JOINTS_0 and WEIGHTS_0, both or neither, the weights normalised to sum to 1. A second
+    /// set (more than four joints per vertex) is refused rather than dropped: without it the
+    /// mesh would deform visibly wrong, and every exporter can limit influences to four.
+    void read_skinning(const tinygltf::Primitive& source, std::uint64_t vertex_count,
+                       Primitive& primitive) {
+        if (attribute(source, "JOINTS_1") || attribute(source, "WEIGHTS_1")) {
+            context_.fail(where_ +
+                          ": has JOINTS_1/WEIGHTS_1, more than four joints per vertex; luxel "
+                          "reads four (export with at most four bone influences per vertex)");
+        }
+        const std::optional<int> joints = attribute(source, "JOINTS_0");
+        const std::optional<int> weights = attribute(source, "WEIGHTS_0");
+        if (!joints && !weights) {
+            return;
+        }
+        if (!joints || !weights) {
+            context_.fail(where_ + ": has " +
+                          (joints ? "JOINTS_0 without WEIGHTS_0" : "WEIGHTS_0 without JOINTS_0"));
+        }
+        const std::string joints_usage = "JOINTS_0 of " + where_;
+        if (accessor_count(context_, *joints, joints_usage) != vertex_count) {
+            context_.fail(where_ + ": JOINTS_0 and POSITION have different counts");
+        }
+        primitive.weights = read_optional<glm::vec4>(source, "WEIGHTS_0", true, vertex_count);
+        primitive.joints = read_joints(context_, *joints, joints_usage);
+        for (std::size_t v = 0; v < primitive.weights.size(); ++v) {
+            glm::vec4& w = primitive.weights[v];
+            const float sum = w.x + w.y + w.z + w.w;
+            if (!(w.x >= 0.0f && w.y >= 0.0f && w.z >= 0.0f && w.w >= 0.0f) || !(sum > 0.0f) ||
+                !std::isfinite(sum)) {
+                context_.fail(where_ + ": WEIGHTS_0 of vertex " + std::to_string(v) +
+                              " are negative or do not have a finite sum above 0");
+            }
+            // glTF asks for weights that sum to 1, but quantised ones (8 or 16 bits) miss it by
+            // up to a few units in the last place and hand-made files by more; a sum other than
+            // 1 would pull the vertex towards the joints' origin or push it away.
+            w /= sum;
+        }
     }
 
     void normalise_normals(Primitive& primitive) {

@@ -535,7 +535,6 @@ void import_nodes(ImportContext& context) {
                      std::to_string(context.options().max_nodes));
     }
     scene.nodes.resize(model.nodes.size());
-    bool warned_skin = false;
     for (std::size_t i = 0; i < model.nodes.size(); ++i) {
         const tinygltf::Node& source = model.nodes[i];
         Node& node = scene.nodes[i];
@@ -547,10 +546,13 @@ void import_nodes(ImportContext& context) {
         if (source.camera < -1 || source.camera >= static_cast<int>(scene.cameras.size())) {
             context.fail(where + ": camera " + std::to_string(source.camera) + " out of range");
         }
-        if (source.skin >= 0 && !warned_skin) {
-            context.warn(where + ": skins are not supported; meshes keep their bind pose");
-            warned_skin = true;
+        if (source.skin < -1 || source.skin >= static_cast<int>(model.skins.size())) {
+            context.fail(where + ": skin " + std::to_string(source.skin) + " out of range");
         }
+        if (source.skin >= 0 && source.mesh < 0) {
+            context.fail(where + ": has a skin but no mesh");
+        }
+        node.skin = source.skin;
         node.mesh = source.mesh;
         node.camera = source.camera;
         node.light = node_light(context, source, where);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/ext/vector_uint4_sized.hpp>
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
@@ -68,6 +69,9 @@ class ImportContext {
 /// Reads a SCALAR unsigned byte/short/int accessor (primitive indices).
 [[nodiscard]] std::vector<std::uint32_t> read_indices(const ImportContext& context, int index,
                                                       const std::string& usage);
+/// Reads a VEC4 unsigned byte/short accessor (JOINTS_0), with the same checks.
+[[nodiscard]] std::vector<glm::u16vec4> read_joints(const ImportContext& context, int index,
+                                                    const std::string& usage);
 /// The element count of accessor `index` after checking it exists and respects the limit.
 [[nodiscard]] std::uint64_t accessor_count(const ImportContext& context, int index,
                                            const std::string& usage);
@@ -83,6 +87,8 @@ void import_lights(ImportContext& context);
 void import_cameras(ImportContext& context);
 void import_nodes(ImportContext& context);
 void import_animations(ImportContext& context);
+/// Skins (gltf_import_skins.cpp): joints and inverse bind matrices. Run after import_nodes.
+void import_skins(ImportContext& context);
 
 // --- containers (gltf_container.cpp) ---------------------------------------------------------
 

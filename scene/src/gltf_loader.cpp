@@ -391,6 +391,7 @@ Scene load(std::span<const std::uint8_t> bytes, const std::string& display_name,
         gltf_detail::check_combined_limits(context);
         collect_roots(context);
         gltf_detail::import_animations(context);
+        gltf_detail::import_skins(context);
     } catch (const std::bad_alloc&) {
         fail("out of memory while reading the scene");
     }

@@ -85,6 +85,18 @@ class BufferBuilder {
         return static_cast<int>(accessors_.size() - 1);
     }
 
+    /// JOINTS_0 as UNSIGNED_SHORT VEC4 (what every joint index luxel keeps fits).
+    int add_joints(const std::vector<glm::u16vec4>& joints) {
+        static_assert(sizeof(glm::u16vec4) == 4 * sizeof(std::uint16_t));
+        const int view =
+            add_view(joints.data(), joints.size() * sizeof(glm::u16vec4), kArrayBuffer);
+        accessors_.push_back({{"bufferView", view},
+                              {"componentType", kUnsignedShort},
+                              {"count", joints.size()},
+                              {"type", "VEC4"}});
+        return static_cast<int>(accessors_.size() - 1);
+    }
+
     [[nodiscard]] json& views() { return views_; }
     [[nodiscard]] json& accessors() { return accessors_; }
     [[nodiscard]] std::vector<std::uint8_t>& bin() { return bin_; }
@@ -98,6 +110,8 @@ class BufferBuilder {
                 return "VEC2";
             case 3:
                 return "VEC3";
+            case 16:
+                return "MAT4";
             default:
                 return "VEC4";
         }
@@ -158,6 +172,7 @@ class DocumentWriter {
         write_lights();
         write_cameras();
         write_nodes();
+        write_skins();
         write_animations();
         json scene = json::object();
         if (!scene_.name.empty()) {
@@ -308,6 +323,11 @@ class DocumentWriter {
                 attributes["TEXCOORD_0"] = attributes["TEXCOORD_1"];
             }
         }
+        if (!primitive.joints.empty()) {
+            attributes["JOINTS_0"] = buffer_.add_joints(primitive.joints);
+            attributes["WEIGHTS_0"] = buffer_.add_floats(
+                flat(primitive.weights), primitive.weights.size(), 4, false, kArrayBuffer);
+        }
         json entry = {
             {"attributes", std::move(attributes)},
             {"indices", buffer_.add_indices(primitive.indices, primitive.positions.size())}};
@@ -440,6 +460,9 @@ class DocumentWriter {
             if (node.camera >= 0) {
                 entry["camera"] = node.camera;
             }
+            if (node.skin >= 0 && entry.contains("mesh")) {
+                entry["skin"] = node.skin;  // a node that lost its (empty) mesh loses its skin
+            }
             if (node.translation != glm::vec3(0.0f)) {
                 entry["translation"] = vec_json(&node.translation.x, 3);
             }
@@ -460,6 +483,31 @@ class DocumentWriter {
         }
         if (!nodes.empty()) {
             document_["nodes"] = std::move(nodes);
+        }
+    }
+
+    void write_skins() {
+        json skins = json::array();
+        for (const Skin& skin : scene_.skins) {
+            std::vector<float> matrices;
+            matrices.reserve(skin.inverse_bind_matrices.size() * 16);
+            for (const glm::mat4& matrix : skin.inverse_bind_matrices) {
+                matrices.insert(matrices.end(), &matrix[0][0], &matrix[0][0] + 16);
+            }
+            json entry = {{"joints", skin.joints},
+                          {"inverseBindMatrices",
+                           buffer_.add_floats(matrices.data(), skin.inverse_bind_matrices.size(),
+                                              16, false, std::nullopt)}};
+            if (skin.skeleton >= 0) {
+                entry["skeleton"] = skin.skeleton;
+            }
+            if (!skin.name.empty()) {
+                entry["name"] = skin.name;
+            }
+            skins.push_back(std::move(entry));
+        }
+        if (!skins.empty()) {
+            document_["skins"] = std::move(skins);
         }
     }
 

@@ -415,6 +415,9 @@ bool Scene::is_dynamic(int node) const {
     if (!in_range(node, nodes.size())) {
         return false;
     }
+    if (nodes[static_cast<std::size_t>(node)].skin >= 0) {
+        return true;
+    }
     if (nodes[static_cast<std::size_t>(node)].flags.dynamic) {
         return *nodes[static_cast<std::size_t>(node)].flags.dynamic;
     }
@@ -456,6 +459,7 @@ void Scene::validate() const {
     validate_materials(*this);
     validate_lights_and_cameras(*this);
     validate_animations(*this);
+    detail::validate_skins(*this);
 }
 
 }  // namespace luxel::scene

@@ -27,6 +27,15 @@ inline bool in_range(int index, std::size_t size) {
 /// world transform invertible.
 void validate_transform_bounds(const Scene& scene);
 
+/// Skins (joints distinct and in range, one finite inverse bind matrix per joint), every
+/// primitive's joints and weights (one per vertex, weights at least 0 summing to 1), and every
+/// skinned node's mesh (joints and weights present, each joint index within its skin).
+void validate_skins(const Scene& scene);
+
+/// Whether an inverse bind matrix is finite and within the bounds a node's transform has: its
+/// axes at most 1e6 long and its translation at most 1e6 m (so no skinned vertex overflows).
+[[nodiscard]] bool inverse_bind_within_bounds(const glm::mat4& matrix);
+
 /// Every moving mesh's world scale, over every pose, at least 1e-9.
 void validate_instance_scales(const Scene& scene);
 

@@ -13,6 +13,7 @@
 
 #include "luxel/scene/animation.hpp"
 #include "luxel/scene/light.hpp"
+#include "luxel/scene/skin.hpp"
 #include "luxel/scene/sky.hpp"
 
 /// The engine-side scene: what a glTF 2.0 file holds, in luxel's units and conventions, with
@@ -28,6 +29,11 @@ struct Primitive {
     std::vector<glm::vec2> texcoords0;   ///< material textures
     std::vector<glm::vec2> texcoords1;   ///< light-map UVs (written by luxel-prep)
     std::vector<std::uint32_t> indices;  ///< three per triangle, each < positions.size()
+    /// Skinning (JOINTS_0, WEIGHTS_0): up to four joints per vertex, as indices into the skin
+    /// of the node that draws the mesh, and their weights, which the loader normalises to sum
+    /// to 1. Both empty for a mesh no skin deforms.
+    std::vector<glm::u16vec4> joints;
+    std::vector<glm::vec4> weights;
     int material = -1;
 
     [[nodiscard]] std::size_t triangle_count() const { return indices.size() / 3; }
@@ -110,6 +116,10 @@ struct Node {
     int mesh = -1;
     int light = -1;
     int camera = -1;
+    /// Index into Scene::skins: the node's mesh is deformed by that skin's joints, and, as the
+    /// glTF specification says, placed by them alone (this node's own transform is ignored
+    /// for the mesh; its children still use it).
+    int skin = -1;
     NodeFlags flags;
 
     [[nodiscard]] glm::mat4 local_matrix() const;
@@ -135,6 +145,7 @@ struct Scene {
     std::vector<Light> lights;
     std::vector<Camera> cameras;
     std::vector<Animation> animations;
+    std::vector<Skin> skins;
     /// The level's sky, from the glTF scene's extras.luxel.sky (None without one).
     SkySpec sky;
     LoadReport report;
@@ -154,7 +165,8 @@ struct Scene {
     [[nodiscard]] std::vector<glm::mat4> world_matrices() const;
     /// True when the node has an explicit dynamic flag set, or (without one) when an animation
     /// targets it or one of its ancestors, or an ancestor is flagged dynamic (whatever moves
-    /// an ancestor moves the node).
+    /// an ancestor moves the node). A node with a skin is always dynamic: its mesh deforms
+    /// with its joints, so it gets no light map whatever its flag says.
     [[nodiscard]] bool is_dynamic(int node) const;
     [[nodiscard]] std::size_t triangle_count() const;
     /// Checks every index and size invariant stated in this header; throws luxel::Error
