@@ -162,10 +162,12 @@ bool Bounds::touches_sphere(const glm::vec3& centre, float radius) const {
 }
 
 const GpuMesh& MeshCache::get(const scene::MeshInstance& instance, std::uint64_t frame) {
-    const auto key = std::make_pair(instance.source.get(), instance.mesh);
+    const scene::Mesh* key = &instance.geometry();
     auto found = meshes_.find(key);
     if (found == meshes_.end()) {
-        found = meshes_.emplace(key, upload(instance.source, instance.geometry(), textures_)).first;
+        GpuMesh gpu = upload(instance.source, instance.geometry(), textures_);
+        gpu.posed = instance.posed;
+        found = meshes_.emplace(key, std::move(gpu)).first;
         ++uploads_;
     }
     found->second.last_used = frame;
@@ -174,7 +176,10 @@ const GpuMesh& MeshCache::get(const scene::MeshInstance& instance, std::uint64_t
 
 void MeshCache::evict(std::uint64_t frame) {
     std::erase_if(meshes_, [&](const auto& entry) {
-        return entry.second.last_used + kEvictAfterFrames < frame;
+        // A pose the frame did not draw has been replaced by a newer one: its buffers would
+        // otherwise pile up, one set per frame the figure moved.
+        const std::uint64_t keep = entry.second.posed ? 0 : kEvictAfterFrames;
+        return entry.second.last_used + keep < frame;
     });
     textures_.evict();
 }

@@ -63,7 +63,9 @@ void draw_primitive(const GpuPrimitive& range);
 /// primitives. Vertex layout: location 0 position, 1 normal, 2 texcoord0, 3 light-map UV
 /// (texcoord1); absent attributes are zero.
 struct GpuMesh {
-    std::shared_ptr<const scene::Scene> source;  ///< kept alive so the key's address stays unique
+    /// The scene and, for a posed mesh, the pose: kept alive so the key's address stays unique.
+    std::shared_ptr<const scene::Scene> source;
+    std::shared_ptr<const scene::Mesh> posed;
     gl::Buffer vertices;
     gl::Buffer indices;
     gl::VertexArray vertex_array;
@@ -72,10 +74,12 @@ struct GpuMesh {
     std::uint64_t last_used = 0;
 };
 
-/// GPU buffers per (scene, mesh): many entities instancing one mesh share one upload. Meshes
-/// are immutable (MeshInstance shares a const Scene), so an entry never needs re-uploading;
-/// entries unused for `kEvictAfterFrames` frames are freed, and with them the base-colour
-/// textures (MaterialTextures, one per (scene, image)) that no remaining mesh uses.
+/// GPU buffers per mesh (MeshInstance::geometry(), by address): many entities instancing one
+/// mesh share one upload. Meshes are immutable (a const Scene's, or a skinned mesh's pose,
+/// which a new pose replaces rather than edits), so an entry never needs re-uploading; entries
+/// unused for `kEvictAfterFrames` frames are freed (a pose as soon as a frame draws without
+/// it), and with them the base-colour textures (MaterialTextures, one per (scene, image)) that
+/// no remaining mesh uses.
 class MeshCache {
   public:
     /// The mesh of `instance`, uploaded on first use, marked used in `frame`.
@@ -90,7 +94,7 @@ class MeshCache {
 
   private:
     static constexpr std::uint64_t kEvictAfterFrames = 120;
-    std::map<std::pair<const scene::Scene*, int>, GpuMesh> meshes_;
+    std::map<const scene::Mesh*, GpuMesh> meshes_;
     MaterialTextures textures_;
     std::uint64_t uploads_ = 0;
 };

@@ -7,6 +7,7 @@
 #include "luxel/runtime/log.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/animation_system.hpp"
+#include "luxel/world/skinning.hpp"
 #include "luxel/world/sky.hpp"
 
 namespace luxel::sandbox {
@@ -71,6 +72,7 @@ SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const Shade
     world::update_sky(registry_);
     update_bounces(registry_, 0.0);
     transforms_.update();
+    world::update_skins(registry_);  // skinned meshes follow their joints
     path_ = camera_path_for(level_name_, *scene_);
     lighting_ = std::make_unique<lighting::LightingSystem>(registry_, jobs);
     renderer::FrameSettings frame;
@@ -110,6 +112,7 @@ SandboxApp::FrameResult SandboxApp::frame(double time, double dt,
         world::update_sky(registry_);  // a daylight sky turns with its sun
     }
     transforms_.update();
+    world::update_skins(registry_);  // skinned meshes follow their joints
 
     // 2-4. Lighting: sync through the ECS change lists, scheduled work within the budget; what
     // the camera sees gathers first.

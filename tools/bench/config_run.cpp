@@ -15,6 +15,7 @@
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/world/animation_system.hpp"
+#include "luxel/world/skinning.hpp"
 #include "luxel/world/sky.hpp"
 
 namespace luxel::bench {
@@ -116,6 +117,7 @@ ConfigRun::ConfigRun(const LevelRunContext& context, const BenchConfig& config)
     result_.config = config;
     transforms_ = std::make_unique<ecs::TransformSystem>(registry_);
     transforms_->update();
+    world::update_skins(registry_);  // skinned meshes follow their joints
     lighting_ =
         std::make_unique<lighting::LightingSystem>(registry_, *context.jobs, config.lighting());
     if (config.backend == "gpu") {
@@ -163,6 +165,7 @@ RunResult ConfigRun::run() {
 bool ConfigRun::frame(double budget) {
     now_ += options_.dt;
     transforms_->update();
+    world::update_skins(registry_);  // skinned meshes follow their joints
     Stopwatch clock;
     const lighting::LightingStats& stats = lighting_->update(budget, now_);
     const double ms = clock.elapsed_ms();
@@ -284,6 +287,7 @@ void ConfigRun::change_phase() {
     apply(change, registry_, instance_.find(change.node), context_.file.string());
     world::update_sky(registry_);  // a turned sun turns its daylight sky (time of day)
     transforms_->update();
+    world::update_skins(registry_);  // skinned meshes follow their joints
     // A zero budget syncs the move into the photon world and the maps without doing any
     // lighting work: the reference of the new pose needs the moved geometry.
     lighting_->update(0.0, now_);

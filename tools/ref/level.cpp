@@ -14,6 +14,7 @@
 #include "luxel/scene/gltf.hpp"
 #include "luxel/scene/level_check.hpp"
 #include "luxel/world/animation_system.hpp"
+#include "luxel/world/skinning.hpp"
 #include "luxel/world/sky.hpp"
 
 namespace luxel::ref {
@@ -79,6 +80,7 @@ std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file, doubl
     world::update_sky(level->registry);
     ecs::TransformSystem transforms(level->registry);
     transforms.update();
+    world::update_skins(level->registry);  // skinned meshes follow their joints
     lighting::PhotonWorldSettings settings;
     settings.caustics.photons_per_pair = 0;  // the reference traces its own caustics
     level->world = std::make_unique<lighting::PhotonWorld>(level->registry, settings);

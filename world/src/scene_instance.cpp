@@ -10,7 +10,9 @@
 #include "luxel/runtime/error.hpp"
 #include "luxel/scene/lightmap_layout.hpp"
 #include "luxel/scene/portal.hpp"
+#include "luxel/scene/skin.hpp"
 #include "luxel/world/animation_system.hpp"
+#include "luxel/world/skinning.hpp"
 #include "luxel/world/sky.hpp"
 
 namespace luxel::world {
@@ -68,24 +70,33 @@ void add_portal(ecs::Registry& registry, ecs::Entity entity, const scene::Scene&
     registry.emplace<lighting::SkyPortal>(entity, std::move(portal));
 }
 
+/// Whether any primitive of `mesh` has an emissive material.
+bool is_emissive(const scene::Scene& source, const scene::Mesh& mesh) {
+    for (const auto& primitive : mesh.primitives) {
+        if (primitive.material >= 0 &&
+            source.materials.at(static_cast<std::size_t>(primitive.material)).is_emissive()) {
+            return true;
+        }
+    }
+    return false;
+}
+
 void add_mesh(ecs::Registry& registry, ecs::Entity entity,
               const std::shared_ptr<const scene::Scene>& source, const scene::Node& node) {
     registry.emplace<scene::MeshInstance>(entity, source, node.mesh);
     const scene::Mesh& mesh = source->meshes.at(static_cast<std::size_t>(node.mesh));
     const scene::Material* specular = nullptr;
-    bool emissive = false;
     for (const auto& primitive : mesh.primitives) {
         if (primitive.material < 0) {
             continue;
         }
         const scene::Material& material =
             source->materials.at(static_cast<std::size_t>(primitive.material));
-        emissive = emissive || material.is_emissive();
         if (specular == nullptr && material.is_specular()) {
             specular = &material;
         }
     }
-    if (emissive) {
+    if (is_emissive(*source, mesh)) {
         registry.emplace<lighting::AreaLight>(entity);
     }
     if (specular != nullptr) {
@@ -115,6 +126,37 @@ void add_mesh(ecs::Registry& registry, ecs::Entity entity,
     registry.emplace<lighting::LightmappedSurface>(entity, std::move(*layout));
 }
 
+/// The entity that draws node `index`'s skinned mesh, posed as the scene's nodes stand.
+ecs::Entity add_skinned_mesh(ecs::Registry& registry,
+                             const std::shared_ptr<const scene::Scene>& source, std::size_t index,
+                             const std::vector<ecs::Entity>& nodes,
+                             const std::vector<glm::mat4>& rest_world) {
+    const scene::Node& node = source->nodes[index];
+    const scene::Skin& skin = source->skins.at(static_cast<std::size_t>(node.skin));
+    const ecs::Entity entity = registry.create();
+    registry.emplace<ecs::Transform>(entity);
+    registry.emplace<scene::Name>(entity, node.name);
+    registry.emplace<scene::SceneNode>(entity, static_cast<int>(index));
+    registry.emplace<scene::Dynamic>(entity);
+    SkinnedMesh skinned;
+    skinned.source = source;
+    skinned.skin = node.skin;
+    skinned.mesh = node.mesh;
+    for (const int joint : skin.joints) {
+        skinned.joints.push_back(nodes.at(static_cast<std::size_t>(joint)));
+    }
+    skinned.posed_with = scene::joint_matrices(skin, rest_world);
+    const scene::Mesh& bind = source->meshes.at(static_cast<std::size_t>(node.mesh));
+    registry.emplace<scene::MeshInstance>(
+        entity, source, node.mesh,
+        std::make_shared<const scene::Mesh>(scene::posed_mesh(bind, skinned.posed_with)));
+    registry.emplace<SkinnedMesh>(entity, std::move(skinned));
+    if (is_emissive(*source, bind)) {
+        registry.emplace<lighting::AreaLight>(entity);
+    }
+    return entity;
+}
+
 }  // namespace
 
 ecs::Entity SceneInstance::find(const std::string& node_name) const {
@@ -142,7 +184,7 @@ SceneInstance instantiate(ecs::Registry& registry, std::shared_ptr<const scene::
         registry.emplace<scene::SceneNode>(entity, static_cast<int>(i));
         if (node.mesh >= 0 && scene::is_portal(node)) {
             add_portal(registry, entity, *scene, node);
-        } else if (node.mesh >= 0) {
+        } else if (node.mesh >= 0 && node.skin < 0) {
             add_mesh(registry, entity, scene, node);
         }
         if (node.light >= 0) {
@@ -164,6 +206,14 @@ SceneInstance instantiate(ecs::Registry& registry, std::shared_ptr<const scene::
         if (parent >= 0) {
             ecs::set_parent(registry, instance.nodes[i],
                             instance.nodes.at(static_cast<std::size_t>(parent)));
+        }
+    }
+    // Skinned meshes after every node's entity exists: their joints may be any nodes.
+    const std::vector<glm::mat4> rest_world = scene->world_matrices();
+    for (std::size_t i = 0; i < scene->nodes.size(); ++i) {
+        if (scene->nodes[i].mesh >= 0 && scene->nodes[i].skin >= 0) {
+            instance.skinned.push_back(
+                add_skinned_mesh(registry, scene, i, instance.nodes, rest_world));
         }
     }
     for (std::size_t a = 0; a < scene->animations.size(); ++a) {

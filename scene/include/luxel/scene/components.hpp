@@ -2,6 +2,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "luxel/scene/scene.hpp"
 
@@ -13,11 +14,20 @@ namespace luxel::scene {
 /// The geometry an entity draws and traces: one mesh of a loaded scene, which also supplies the
 /// materials. Shared, immutable: many entities may instance the same mesh.
 struct MeshInstance {
+    MeshInstance() = default;
+    MeshInstance(std::shared_ptr<const Scene> scene, int index,
+                 std::shared_ptr<const Mesh> pose = nullptr)
+        : source(std::move(scene)), mesh(index), posed(std::move(pose)) {}
+
     std::shared_ptr<const Scene> source;
     int mesh = -1;
+    /// The mesh as it stands now, when it is not the scene's own: a skinned mesh in its current
+    /// pose (world::update_skins replaces the component with each new pose, so observers see
+    /// a changed mesh). Null: the scene's mesh as loaded.
+    std::shared_ptr<const Mesh> posed;
 
     [[nodiscard]] const Mesh& geometry() const {
-        return source->meshes.at(static_cast<std::size_t>(mesh));
+        return posed ? *posed : source->meshes.at(static_cast<std::size_t>(mesh));
     }
 };
 

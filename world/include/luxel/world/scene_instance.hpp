@@ -15,6 +15,9 @@ struct SceneInstance {
     std::shared_ptr<const scene::Scene> source;
     std::vector<ecs::Entity> nodes;
     std::vector<ecs::Entity> animations;
+    /// One per node with a skin: the entity that holds its mesh in the current pose
+    /// (world/skinning.hpp), in the order of the nodes.
+    std::vector<ecs::Entity> skinned;
     ecs::Entity sky = ecs::null_entity;  ///< the level's sky (world/sky.hpp), if it has one
 
     /// The entity of the first node with this name, or null_entity.
@@ -36,6 +39,10 @@ struct InstantiateOptions {
 ///   enabled unless extras.luxel.enabled is false; a `switch` object adds a LightSwitch;
 /// - a camera: CameraComponent;
 /// - Dynamic when scene.is_dynamic(node);
+/// - a mesh with a skin: not on the node's entity but on an entity of its own, with an identity
+///   Transform and no parent (glTF places a skinned mesh by its joints alone): SkinnedMesh,
+///   MeshInstance in the rest pose, Dynamic, Name and SceneNode as the node's; AreaLight when
+///   emissive; no CausticGenerator and no light map (it deforms);
 /// - each animation: an entity with an AnimationPlayer whose channels target the node entities;
 /// - the level's sky (or options.sky): an entity with a SkyLight (world/sky.hpp).
 /// The scene is shared, not copied: MeshInstance and AnimationPlayer keep it alive. Throws
