@@ -11,6 +11,7 @@
 
 #include "luxel/ecs/registry.hpp"
 #include "luxel/lighting/components.hpp"
+#include "luxel/prep/report.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/scene_instance.hpp"
 #include "prep_test_support.hpp"
@@ -105,6 +106,38 @@ INSTANTIATE_TEST_SUITE_P(BuiltIn, PreparedLevel,
 
 INSTANTIATE_TEST_SUITE_P(Blender, PreparedLevel,
                          ::testing::ValuesIn(luxel::testing::blender_level_names()), test_name);
+
+TEST(PreparedLevels, ASkinnedFigureKeepsItsSkinAndGetsNoLightMap) {
+    const scene::Scene level = scene::load_gltf(luxel::testing::level_file("skinned-figure"));
+    const prep::PrepResult result = luxel::testing::run_prep(level, prep::PrepOptions{});
+    EXPECT_EQ(result.report.skinned_nodes, 1u);
+    EXPECT_NE(prep::summary(result.report).find("1 skinned mesh node kept without a light map"),
+              std::string::npos)
+        << prep::summary(result.report);
+    std::size_t skinned = 0;
+    for (std::size_t n = 0; n < level.nodes.size(); ++n) {
+        const scene::Node& node = result.scene.nodes[n];
+        if (node.skin < 0) {
+            continue;
+        }
+        ++skinned;
+        EXPECT_FALSE(node.flags.raw.contains("lightmap")) << node.name;
+        // The mesh as it came: joints and weights kept, no light-map UVs.
+        const auto& before = level.meshes.at(static_cast<std::size_t>(level.nodes[n].mesh));
+        const auto& after = result.scene.meshes.at(static_cast<std::size_t>(node.mesh));
+        ASSERT_EQ(after.primitives.size(), before.primitives.size());
+        for (std::size_t p = 0; p < before.primitives.size(); ++p) {
+            EXPECT_FALSE(after.primitives[p].joints.empty());
+            EXPECT_EQ(after.primitives[p].joints, before.primitives[p].joints);
+            EXPECT_EQ(after.primitives[p].weights, before.primitives[p].weights);
+            EXPECT_EQ(after.primitives[p].positions, before.primitives[p].positions);
+            EXPECT_TRUE(after.primitives[p].texcoords1.empty());
+        }
+    }
+    EXPECT_EQ(skinned, 1u);
+    ASSERT_EQ(result.scene.skins.size(), 1u);
+    EXPECT_EQ(result.scene.skins[0].joints, level.skins[0].joints);
+}
 
 TEST(PreparedLevels, PassTheKhronosValidator) {
     std::vector<std::filesystem::path> files;

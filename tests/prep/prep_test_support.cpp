@@ -111,7 +111,7 @@ std::vector<std::string> built_in_level_names() {
 }
 
 std::vector<std::string> blender_level_names() {
-    return {"crate-footprint", "sky-window", "tinted-glass"};
+    return {"crate-footprint", "sky-window", "tinted-glass", "skinned-figure"};
 }
 
 std::filesystem::path level_file(const std::string& name) {

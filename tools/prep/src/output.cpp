@@ -151,6 +151,13 @@ scene::Scene build_output_scene(const scene::Scene& input, const std::vector<Pre
         node.flags.raw.erase("lightmap");
     }
     std::vector<bool> mesh_taken(input.meshes.size(), false);
+    // A skinned node keeps its mesh as it came (joints and weights): a light-mapped node
+    // sharing that mesh gets a copy instead of rewriting it.
+    for (const scene::Node& node : input.nodes) {
+        if (node.skin >= 0 && node.mesh >= 0) {
+            mesh_taken[static_cast<std::size_t>(node.mesh)] = true;
+        }
+    }
     for (const PreparedNode& prepared : nodes) {
         scene::Node& node = output.nodes[static_cast<std::size_t>(prepared.node)];
         const scene::Mesh& source = input.meshes[static_cast<std::size_t>(node.mesh)];

@@ -438,12 +438,19 @@ PrepResult prepare(const scene::Scene& input, const PrepOptions& options, JobSys
     result.padding = options.padding;
     std::vector<NodeWork> work;
     for (std::size_t n = 0; n < input.nodes.size(); ++n) {
-        // A portal is an opening, not a surface: it gets no light map.
-        if (input.nodes[n].mesh >= 0 && !scene::is_portal(input.nodes[n])) {
+        const scene::Node& node = input.nodes[n];
+        // A portal is an opening, not a surface: it gets no light map. Nor does a skinned
+        // mesh: its surface moves over itself as it deforms, so no texel stays on one spot.
+        if (node.mesh < 0 || scene::is_portal(node)) {
+            continue;
+        }
+        if (node.skin >= 0) {
+            ++result.report.skinned_nodes;
+        } else {
             work.emplace_back().node = static_cast<int>(n);
         }
     }
-    result.report.mesh_nodes = work.size();
+    result.report.mesh_nodes = work.size() + result.report.skinned_nodes;
 
     check_triangles(input, work, options);
     Stopwatch stage;

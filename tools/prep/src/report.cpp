@@ -44,6 +44,7 @@ nlohmann::json to_json(const PrepReport& report) {
           {"threads", o.threads}}},
         {"mesh_nodes", report.mesh_nodes},
         {"prepared_nodes", report.prepared_nodes},
+        {"skinned_nodes", report.skinned_nodes},
         {"triangles", report.triangles},
         {"crease_surfaces", report.crease_surfaces},
         {"hidden_surfaces",
@@ -80,6 +81,11 @@ std::string summary(const PrepReport& report) {
     out << report.input << " -> " << report.output << "\n";
     out << "  " << report.prepared_nodes << " of " << report.mesh_nodes
         << " mesh nodes light-mapped, " << report.triangles << " triangles\n";
+    if (report.skinned_nodes > 0) {
+        out << "  " << report.skinned_nodes << " skinned mesh node"
+            << (report.skinned_nodes == 1 ? "" : "s")
+            << " kept without a light map (a skin deforms them)\n";
+    }
     out << "  " << report.surfaces << " surfaces (" << report.crease_surfaces
         << " before the texel budget), " << report.charts << " charts (" << report.planar_charts
         << " planar, " << report.conformal_charts << " conformal)\n";

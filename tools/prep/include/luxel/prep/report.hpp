@@ -33,6 +33,9 @@ struct PrepReport {
     PrepOptions options;
     std::size_t mesh_nodes = 0;      ///< nodes with a mesh
     std::size_t prepared_nodes = 0;  ///< of those, nodes that got a light map
+    /// Of mesh_nodes, nodes whose mesh a skin deforms: they get no light map (a texel would not
+    /// stay on one spot of the level) and are kept as they came, joints and weights included.
+    std::size_t skinned_nodes = 0;
     std::size_t triangles = 0;       ///< light-mapped triangles kept
     std::size_t crease_surfaces = 0;
     /// Crease surfaces no viewpoint sees (hidden_faces.hpp), given coarser texels, and their
