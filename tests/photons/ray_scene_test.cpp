@@ -107,6 +107,40 @@ TEST(RayScene, DynamicObjectsMoveWithoutRebuildingStaticGeometry) {
     EXPECT_EQ(hit->surface, 0);
 }
 
+TEST(RayScene, ADynamicObjectDeformsInPlaceWithItsBvhRefitted) {
+    RayScene scene;
+    scene.add_object(square(10.0f, 0, 0), glm::mat4(1.0f), false);
+    const ObjectId sheet = scene.add_object(square(0.5f, 1, 1), glm::mat4(1.0f), true);
+    std::vector<glm::vec3> positions = scene.mesh(sheet).positions;
+    for (glm::vec3& p : positions) {
+        p.y += 1.0f;  // lifted
+    }
+    positions[2] = {4.0f, 3.0f, -0.5f};  // and one corner pulled far out
+    std::vector<glm::vec3> normals = scene.mesh(sheet).normals;
+    scene.commit();
+    scene.deform(sheet, positions, normals);
+    scene.commit();
+    EXPECT_EQ(scene.static_rebuilds(), 1u) << "the static BVH is left alone";
+    // The sheet is hit at its new height, and on the part the pulled corner stretched out.
+    auto hit = scene.intersect({-0.4f, 5.0f, 0.4f}, {0.0f, -1.0f, 0.0f});
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->object, sheet);
+    EXPECT_GE(hit->position.y, 1.0f - 1e-5f);  // lifted, and tilted up towards the far corner
+    EXPECT_LE(hit->position.y, 3.0f);
+    hit = scene.intersect({3.0f, 5.0f, -0.4f}, {0.0f, -1.0f, 0.0f});
+    ASSERT_TRUE(hit);
+    EXPECT_EQ(hit->object, sheet) << "the refitted BVH holds the pulled corner";
+    EXPECT_NEAR(scene.bounds_max().x, 10.0f, 1e-5f);
+    EXPECT_NEAR(scene.bounds_max().y, 3.0f, 1e-5f);
+    EXPECT_EQ(scene.mesh(sheet).positions[2], glm::vec3(4.0f, 3.0f, -0.5f));
+
+    positions.pop_back();
+    EXPECT_THROW(scene.deform(sheet, positions, normals), luxel::Error);
+    positions.push_back({0.0f, NAN, 0.0f});
+    EXPECT_THROW(scene.deform(sheet, positions, normals), luxel::Error);
+    EXPECT_THROW(scene.deform(0, scene.mesh(0).positions, scene.mesh(0).normals), luxel::Error);
+}
+
 TEST(RayScene, MalformedMeshesAreRejected) {
     RayScene scene;
     TriangleMesh mesh = square(1.0f, 0, 0);

@@ -158,6 +158,9 @@ void PhotonGeometry::add_mesh(ecs::Entity entity) {
     const ObjectId object =
         scene_.add_object(std::move(triangles), world_matrix(registry_, entity), dynamic);
     objects_[entity] = object;
+    if (instance.posed) {
+        posed_from_[entity] = {instance.source.get(), instance.mesh};
+    }
     ObjectBoxes& boxes = object_boxes_[object];
     boxes.local = box_around(scene_.mesh(object).positions);
     boxes.world = transformed(boxes.local, scene_.transform(object));
@@ -177,6 +180,45 @@ void PhotonGeometry::remove_mesh(ecs::Entity entity) {
     }
     scene_.remove_object(found->second);
     objects_.erase(found);
+    posed_from_.erase(entity);
+}
+
+bool PhotonGeometry::deform(ecs::Entity entity) {
+    const auto found = objects_.find(entity);
+    const auto made = posed_from_.find(entity);
+    if (found == objects_.end() || made == posed_from_.end() || !scene_.is_dynamic(found->second)) {
+        return false;
+    }
+    const auto& instance = registry_.get<scene::MeshInstance>(entity);
+    if (!instance.posed || made->second != std::make_pair(instance.source.get(), instance.mesh)) {
+        return false;
+    }
+    // The vertices as add_mesh lays them out: every primitive's in order, a zero normal where
+    // a primitive has none.
+    const ObjectId object = found->second;
+    const std::size_t count = scene_.mesh(object).positions.size();
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    positions.reserve(count);
+    normals.reserve(count);
+    for (const scene::Primitive& primitive : instance.geometry().primitives) {
+        positions.insert(positions.end(), primitive.positions.begin(), primitive.positions.end());
+        if (primitive.normals.size() == primitive.positions.size()) {
+            normals.insert(normals.end(), primitive.normals.begin(), primitive.normals.end());
+        } else {
+            normals.resize(positions.size(), glm::vec3(0.0f));
+        }
+    }
+    if (positions.size() != count) {
+        return false;
+    }
+    scene_.deform(object, positions, normals);
+    ObjectBoxes& boxes = object_boxes_[object];
+    changes_.push_back(boxes.world);  // where it was
+    boxes.local = box_around(positions);
+    boxes.world = transformed(boxes.local, scene_.transform(object));
+    changes_.push_back(boxes.world);  // where it is
+    return true;
 }
 
 bool PhotonGeometry::move(ecs::Entity entity) {

@@ -30,6 +30,11 @@ class PhotonGeometry {
     /// A moved entity: a dynamic object's instance transform, a static one rebuilt in place.
     /// Returns whether the entity is an object of the ray scene.
     bool move(ecs::Entity entity);
+    /// A mesh entity whose MeshInstance is a new pose of the mesh its object was made from (a
+    /// skinned mesh, world::update_skins): the object's vertices moved in place and its BVH
+    /// refitted, the change recorded as a move is. False (nothing done) for anything else: the
+    /// caller removes and re-adds the mesh then.
+    bool deform(ecs::Entity entity);
     /// A generator's edited component: its own materials rewritten in place.
     void set_generator_optics(ecs::Entity entity, const CausticGenerator& optics);
     /// A generator went away: its own materials are no longer used when its mesh is re-added.
@@ -75,6 +80,9 @@ class PhotonGeometry {
     };
 
     std::map<ecs::Entity, ObjectId> objects_;
+    /// Objects made from a posed mesh (MeshInstance::posed): the scene and mesh it poses, which
+    /// a later pose must share to be deformed in place.
+    std::map<ecs::Entity, std::pair<const scene::Scene*, int>> posed_from_;
     std::map<ObjectId, ObjectBoxes> object_boxes_;
     std::vector<GeometryChange> changes_;
 };

@@ -81,9 +81,13 @@ void PhotonWorld::sync_meshes(std::vector<ecs::Entity>& light_touched,
                 meshes_added.push_back(entity);
                 break;
             case ecs::ChangeKind::Updated:
-                geometry_->remove_mesh(entity);
-                geometry_->add_mesh(entity);
-                meshes_added.push_back(entity);
+                // A skinned mesh's new pose moves its vertices in place; any other new mesh
+                // replaces the object.
+                if (!geometry_->deform(entity)) {
+                    geometry_->remove_mesh(entity);
+                    geometry_->add_mesh(entity);
+                    meshes_added.push_back(entity);
+                }
                 break;
         }
         light_touched.push_back(entity);  // an area light's geometry may have changed

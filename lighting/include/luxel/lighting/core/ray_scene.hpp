@@ -73,6 +73,11 @@ class RayScene {
     ObjectId add_object(TriangleMesh mesh, const glm::mat4& transform, bool dynamic);
     /// Moves a dynamic object (throws for a static one: static means it does not move).
     void set_transform(ObjectId object, const glm::mat4& transform);
+    /// New vertex positions and normals (object space, as many as it has) for a dynamic
+    /// object whose triangles stay the same (a skinned mesh's new pose): its BVH is refitted,
+    /// not rebuilt. Throws for a static object, another vertex count, or a non-finite vertex.
+    void deform(ObjectId object, std::span<const glm::vec3> positions,
+                std::span<const glm::vec3> normals);
     void remove_object(ObjectId object);
     [[nodiscard]] bool contains(ObjectId object) const;
     [[nodiscard]] bool is_dynamic(ObjectId object) const;
