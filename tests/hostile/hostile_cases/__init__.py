@@ -101,6 +101,7 @@ def case(name, cls, description, tools=TOOLS, expect="any", forbidden=(), args=N
 def load_all():
     # Imported for their registrations; the order fixes the manifest's order.
     from . import cases_escape, cases_numeric, cases_alloc, cases_types, cases_regression  # noqa
+    from . import cases_skins  # noqa
 
 
 def write_outside(root):
