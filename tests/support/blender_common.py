@@ -43,6 +43,19 @@ def plane(name, size, location, rotation, mat):
     return obj
 
 
+def open_room(floor_and_ceiling, left, right):
+    # The 4 x 4 m room, 2.6 m high, open on the camera's side (Blender's -y), that
+    # crate-footprint.py and skinned-figure.py share: floor, ceiling and back wall in the first
+    # material, the left and right walls in theirs. Normals face into the room (the renderer
+    # draws single-sided faces from the front only).
+    half_pi = 1.5707963267948966
+    plane("Floor", (4.0, 4.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), floor_and_ceiling)
+    plane("Ceiling", (4.0, 4.0), (0.0, 0.0, 2.6), (2 * half_pi, 0.0, 0.0), floor_and_ceiling)
+    plane("Back wall", (4.0, 2.6), (0.0, 2.0, 1.3), (half_pi, 0.0, 0.0), floor_and_ceiling)
+    plane("Left wall", (2.6, 4.0), (-2.0, 0.0, 1.3), (0.0, half_pi, 0.0), left)
+    plane("Right wall", (2.6, 4.0), (2.0, 0.0, 1.3), (0.0, -half_pi, 0.0), right)
+
+
 def camera(location, rotation, lens, fit_horizontally=False):
     # The level's camera, named "Camera", made the scene's camera; fit_horizontally fits the
     # sensor's width to the image (the lens then sets the horizontal field of view).

@@ -18,7 +18,7 @@ import bpy
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
                                 "support"))
-from blender_common import camera, export_level, material, output_path, plane  # noqa: E402
+from blender_common import camera, export_level, material, open_room, output_path  # noqa: E402
 
 out_path = output_path("crate-footprint.py")
 
@@ -33,13 +33,7 @@ red = material("red paint", (0.7, 0.12, 0.1))
 green = material("green paint", (0.12, 0.6, 0.15))
 wood = material("crate wood", (0.55, 0.4, 0.22))
 
-half_pi = 1.5707963267948966
-# Normals face into the room (the renderer draws single-sided faces from the front only).
-plane("Floor", (4.0, 4.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0), grey)
-plane("Ceiling", (4.0, 4.0), (0.0, 0.0, 2.6), (2 * half_pi, 0.0, 0.0), grey)
-plane("Back wall", (4.0, 2.6), (0.0, 2.0, 1.3), (half_pi, 0.0, 0.0), grey)
-plane("Left wall", (2.6, 4.0), (-2.0, 0.0, 1.3), (0.0, half_pi, 0.0), red)
-plane("Right wall", (2.6, 4.0), (2.0, 0.0, 1.3), (0.0, -half_pi, 0.0), green)
+open_room(grey, red, green)
 
 bpy.ops.mesh.primitive_cube_add(size=0.5, location=(-0.6, 0.4, 0.25))
 crate = bpy.context.active_object
