@@ -243,6 +243,18 @@ TEST_F(HemiPlaneBox, MovedMirroredAndAddedObjectsAreSeenByTheNextGather) {
     gpu.refresh_geometry();
     EXPECT_NEAR(gather(gpu, texel)[0].g, doubled.g, 1e-4f * doubled.g);
     EXPECT_EQ(gpu.stats().object_uploads, objects + 2);
+
+    // A deformed object (a skinned mesh's pose) is uploaded again: its vertices pushed 1 m
+    // further, the quad gathers as it did 2 m ahead.
+    std::vector<glm::vec3> pushed = scene.mesh(quad).positions;
+    for (glm::vec3& p : pushed) {
+        p.z += 1.0f;
+    }
+    const std::vector<glm::vec3> normals = scene.mesh(quad).normals;
+    scene.deform(quad, pushed, normals);
+    scene.commit();
+    EXPECT_NEAR(gather(gpu, texel)[0].g, 2.0f * far_quad.g, 1e-3f * far_quad.g);
+    EXPECT_EQ(gpu.stats().object_uploads, objects + 3);
 }
 
 TEST_F(HemiPlaneBox, NeverNanOrNegativeAndAnEmptySpanIsFine) {

@@ -111,6 +111,7 @@ struct RayScene::Impl {
         bool dynamic = false;
         SceneHandle own_scene;   // dynamic objects only
         bool deforming = false;  // deformed once: its own scene is two-level, refitted
+        std::uint64_t deformations = 0;
         unsigned instance_id = RTC_INVALID_GEOMETRY_ID;
     };
 
@@ -339,8 +340,15 @@ void RayScene::deform(ObjectId id, std::span<const glm::vec3> positions,
             throw Error("RayScene: a deformed vertex is not finite");
         }
     }
-    std::copy(positions.begin(), positions.end(), object.mesh.positions.begin());
-    std::copy(normals.begin(), normals.end(), object.mesh.normals.begin());
+    ++object.deformations;
+    // A caller may pass the object's own arrays back (mesh()): copying a range onto itself is
+    // not allowed, and not needed.
+    if (positions.data() != object.mesh.positions.data()) {
+        std::copy(positions.begin(), positions.end(), object.mesh.positions.begin());
+    }
+    if (normals.data() != object.mesh.normals.data()) {
+        std::copy(normals.begin(), normals.end(), object.mesh.normals.begin());
+    }
     RTCGeometry geometry = rtcGetGeometry(object.own_scene.get(), 0);
     auto* vertices =
         static_cast<float*>(rtcGetGeometryBufferData(geometry, RTC_BUFFER_TYPE_VERTEX, 0));
@@ -379,6 +387,10 @@ void RayScene::remove_object(ObjectId id) {
         impl_->static_dirty = true;
     }
     impl_->objects.erase(id);
+}
+
+std::uint64_t RayScene::deformations(ObjectId id) const {
+    return impl_->get(id).deformations;
 }
 
 bool RayScene::contains(ObjectId id) const {

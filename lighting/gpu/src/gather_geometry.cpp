@@ -80,8 +80,11 @@ void GatherGeometry::sync(const RayScene& scene) {
         return !std::binary_search(ids.begin(), ids.end(), entry.first);
     });
     for (ObjectId id : ids) {
-        if (!objects_.contains(id)) {
-            objects_.emplace(id, upload(scene.mesh(id)));
+        const auto found = objects_.find(id);
+        if (found == objects_.end() || found->second.deformations != scene.deformations(id)) {
+            Object object = upload(scene.mesh(id));
+            object.deformations = scene.deformations(id);
+            objects_.insert_or_assign(id, std::move(object));
             ++uploads_;
         }
     }

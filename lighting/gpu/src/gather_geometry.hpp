@@ -21,11 +21,12 @@ class GatherGeometry {
         gl::Buffer indices;
         gl::VertexArray vertex_array;
         GLsizei index_count = 0;
+        std::uint64_t deformations = 0;  ///< RayScene::deformations when uploaded
     };
 
-    /// Uploads objects the scene has and this does not, and frees those the scene no longer
-    /// has. RayScene never reuses an object id and never changes an object's mesh, so the id
-    /// set is all that needs comparing.
+    /// Uploads objects the scene has and this does not, uploads again those deformed since
+    /// (a skinned mesh's pose), and frees those the scene no longer has. RayScene never reuses
+    /// an object id and changes an object's mesh only through deform, which it counts.
     void sync(const RayScene& scene);
     /// Drops everything; the next sync uploads every object again.
     void clear() { objects_.clear(); }

@@ -79,6 +79,9 @@ class RayScene {
     void deform(ObjectId object, std::span<const glm::vec3> positions,
                 std::span<const glm::vec3> normals);
     void remove_object(ObjectId object);
+    /// How many times deform() has changed the object's vertices: what a mirror of the scene
+    /// (the GPU gather's geometry) compares to know its copy is stale.
+    [[nodiscard]] std::uint64_t deformations(ObjectId object) const;
     [[nodiscard]] bool contains(ObjectId object) const;
     [[nodiscard]] bool is_dynamic(ObjectId object) const;
 
