@@ -184,7 +184,7 @@ SceneInstance instantiate(ecs::Registry& registry, std::shared_ptr<const scene::
         registry.emplace<scene::SceneNode>(entity, static_cast<int>(i));
         if (node.mesh >= 0 && scene::is_portal(node)) {
             add_portal(registry, entity, *scene, node);
-        } else if (node.mesh >= 0 && node.skin < 0) {
+        } else if (node.mesh >= 0 && node.skin < 0) {  // skinned meshes: below
             add_mesh(registry, entity, scene, node);
         }
         if (node.light >= 0) {
@@ -208,10 +208,13 @@ SceneInstance instantiate(ecs::Registry& registry, std::shared_ptr<const scene::
                             instance.nodes.at(static_cast<std::size_t>(parent)));
         }
     }
-    // Skinned meshes after every node's entity exists: their joints may be any nodes.
-    const std::vector<glm::mat4> rest_world = scene->world_matrices();
+    // Skinned meshes after every node's entity exists: their joints may be any nodes. (A
+    // portal with a skin stays a portal: its opening does not deform.)
+    const std::vector<glm::mat4> rest_world =
+        scene->skins.empty() ? std::vector<glm::mat4>{} : scene->world_matrices();
     for (std::size_t i = 0; i < scene->nodes.size(); ++i) {
-        if (scene->nodes[i].mesh >= 0 && scene->nodes[i].skin >= 0) {
+        const scene::Node& node = scene->nodes[i];
+        if (node.mesh >= 0 && node.skin >= 0 && !scene::is_portal(node)) {
             instance.skinned.push_back(
                 add_skinned_mesh(registry, scene, i, instance.nodes, rest_world));
         }
