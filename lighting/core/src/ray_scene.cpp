@@ -356,8 +356,9 @@ void RayScene::deform(ObjectId id, std::span<const glm::vec3> positions,
     rtcUpdateGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0);
     if (!object.deforming) {
         // Embree honours a geometry's REFIT quality only in a two-level dynamic scene (a low
-        // quality alone still rebuilt: 2.0 ms against 2.1 for 19.6k triangles, and 0.25 ms with
-        // the flag, luxel_skinning_bench); objects that never deform keep the single level.
+        // quality alone still rebuilt: 2.0 ms against 2.1 for 19.6k triangles, measured before the
+        // flag was added, and 0.24 ms with it, luxel_skinning_bench); objects that never deform
+        // keep the single level.
         rtcSetSceneFlags(object.own_scene.get(),
                          RTC_SCENE_FLAG_DYNAMIC | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
         rtcSetSceneBuildQuality(object.own_scene.get(), RTC_BUILD_QUALITY_LOW);
