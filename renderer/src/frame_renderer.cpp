@@ -17,6 +17,7 @@
 #include "luxel/ecs/observer.hpp"
 #include "luxel/ecs/transform.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
+#include "luxel/lighting/gpu/irradiance_probe_textures.hpp"
 #include "luxel/lighting/gpu/lightmap_textures.hpp"
 #include "luxel/lighting/gpu/sky_texture.hpp"
 #include "luxel/runtime/error.hpp"
@@ -91,6 +92,8 @@ struct FrameRenderer::Impl {
     ShadowMaps shadows;
     std::uint64_t gbuffer_skipped = 0;  ///< draws the G-buffer's FillBudget left out, in all
     lighting::LightmapTextures lightmaps;
+    /// The irradiance probes, while the lighting system has them (receivers without a light map).
+    lighting::IrradianceProbeTextures probes;
     lighting::SkyTexture sky;  ///< the lighting system's skies, behind everything drawn
     SpecularCubeMaps cube_maps;
     std::optional<EdgeAntiAliasing> anti_aliasing;  ///< FrameSettings::anti_aliasing
@@ -269,16 +272,20 @@ struct FrameRenderer::Impl {
         glDisable(GL_BLEND);
     }
 
-    void indirect_pass(double now_seconds) {
+    void indirect_pass(const FrameCamera& camera, double now_seconds) {
         const GLuint fbo = targets.indirect_target.id();
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
         glViewport(0, 0, targets.width, targets.height);
         clear_colour(fbo);
         indirect_program.use();
         indirect_program.set("u_now", static_cast<float>(now_seconds));
+        indirect_program.set("u_camera", camera.position);
         glBindTextureUnit(0, targets.albedo.id());
+        glBindTextureUnit(1, targets.normal.id());
+        glBindTextureUnit(2, targets.position.id());
         glBindTextureUnit(3, targets.lightmap.id());
         lightmaps.bind();
+        probes.bind(indirect_program);
         draw_fullscreen();
     }
 
@@ -390,10 +397,12 @@ struct FrameRenderer::Impl {
         lightmaps.sync(lighting.maps().iim_pages());
         counters.page_uploads = lightmaps.uploads();
         counters.texels_uploaded = lightmaps.texels_uploaded();
-        const bool indirect = !lightmaps.empty() && terms.indirect;
+        probes.sync(lighting.irradiance_probes());
+        counters.probe_uploads = probes.uploads();
+        const bool indirect = (!lightmaps.empty() || !probes.empty()) && terms.indirect;
         if (indirect) {
             timer.begin(RenderPass::Indirect);
-            indirect_pass(now_seconds);
+            indirect_pass(camera, now_seconds);
             timer.end(RenderPass::Indirect);
         } else {
             clear_colour(targets.indirect_target.id());

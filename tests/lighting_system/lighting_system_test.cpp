@@ -2,6 +2,7 @@
 // frame, a scene without caustic generators holds no caustic data until one is added, motion
 // brings work back, and a budget of zero pauses everything.
 
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 
@@ -188,3 +189,58 @@ TEST(LightingSystem, ABudgetOfZeroPausesAndResumingFinishesTheBacklog) {
 }
 
 }  // namespace
+
+TEST(LightingSystem, AReceiverWithoutALightMapIsLitByProbesThatExistOnlyForIt) {
+    Game game("two-rooms", false);
+    ASSERT_LE(game.converge(300), 300);
+    // Every mesh of the level has a light map: no probes, none allocated.
+    EXPECT_FALSE(game.lighting->plan().irradiance_probes());
+    EXPECT_EQ(game.lighting->irradiance_probes(), nullptr);
+    EXPECT_NE(game.lighting->plan().reason(Pass::IrradianceProbes).find("every mesh"),
+              std::string::npos);
+
+    // A grey crate without a light map on the west room's floor, at run time.
+    const auto crate = luxel::testing::cube_scene(0.2f, luxel::testing::diffuse_material(0.5f));
+    const ecs::Entity entity = game.registry.create();
+    game.registry.emplace<scene::MeshInstance>(entity, crate, 0);
+    game.registry.emplace<ecs::Transform>(entity, glm::vec3(-2.0f, 0.2f, 0.0f));
+    game.frame(kUnlimited);
+    EXPECT_TRUE(game.lighting->plan().irradiance_probes());
+    EXPECT_EQ(game.lighting->plan().census().unmapped_receivers, 1u);
+    ASSERT_LE(game.converge(400), 400);
+    const IrradianceProbes* probes = game.lighting->irradiance_probes();
+    ASSERT_NE(probes, nullptr);
+    EXPECT_EQ(probes->pending(), 0u);
+    EXPECT_EQ(game.frame(kUnlimited).probes_gathered, 0u);  // converged: no probe work
+
+    // Against a direct gather at the same points (4096 rays; it sees the crate as the dark
+    // occluder it is, which the probes do not).
+    CpuGatherer direct(game.lighting->photons().ray_scene(), game.lighting->maps().aim(),
+                       {4096, 1e6f});
+    direct.set_materials(&game.lighting->photons().materials());
+    const struct {
+        glm::vec3 point;
+        glm::vec3 normal;
+    } receivers[] = {{{-2.0f, 0.4f, 0.0f}, {0, 1, 0}},
+                     {{-2.2f, 0.2f, 0.0f}, {-1, 0, 0}},
+                     {{-1.8f, 0.2f, 0.0f}, {1, 0, 0}},
+                     {{-2.0f, 0.2f, 0.2f}, {0, 0, 1}}};
+    for (const auto& r : receivers) {
+        const glm::vec3 expected = direct.gather_one({r.point, r.normal});
+        const glm::vec3 got = probes->irradiance(r.point, r.normal);
+        const float relative = glm::length(got - expected) / std::max(glm::length(expected), 1e-6f);
+        std::printf(
+            "probe vs gather at (%.1f %.1f %.1f) n (%.0f %.0f %.0f): %.4g vs %.4g, %.1f%%\n",
+            r.point.x, r.point.y, r.point.z, r.normal.x, r.normal.y, r.normal.z,
+            static_cast<double>(got.y), static_cast<double>(expected.y),
+            100.0 * static_cast<double>(relative));
+        EXPECT_GT(glm::length(expected), 0.0f);
+        EXPECT_LT(relative, 0.10f);  // measured 0.7-3.5%
+    }
+
+    // The crate goes: so do the probes.
+    game.registry.destroy(entity);
+    game.frame(kUnlimited);
+    EXPECT_FALSE(game.lighting->plan().irradiance_probes());
+    EXPECT_EQ(game.lighting->irradiance_probes(), nullptr);
+}

@@ -18,7 +18,8 @@ TEST(CostModel, NamesAreStableAndDistinct) {
     EXPECT_EQ(name(WorkKind::CausticSlice), "caustic_slice");
     EXPECT_EQ(name(WorkKind::AimRebuild), "aim_rebuild");
     EXPECT_EQ(name(WorkKind::IimGather), "iim_gather");
-    EXPECT_EQ(index(WorkKind::IimGather), kWorkKindCount - 1);
+    EXPECT_EQ(name(WorkKind::ProbeGather), "probe_gather");
+    EXPECT_EQ(index(WorkKind::ProbeGather), kWorkKindCount - 1);
 }
 
 TEST(CostModel, PredictsThePriorTimesSizeBeforeAnyMeasurement) {

@@ -28,6 +28,32 @@ bool contains(const std::string& text, const std::string& word) {
     return text.find(word) != std::string::npos;
 }
 
+TEST(FeaturePlan, IrradianceProbesOnlyForReceiversWithoutALightMapInALitMappedScene) {
+    SceneCensus c = busy_scene();
+    // Every mesh light-mapped: no probes.
+    EXPECT_FALSE(FeaturePlan::from(c).irradiance_probes());
+    EXPECT_TRUE(contains(FeaturePlan::from(c).reason(Pass::IrradianceProbes), "every mesh"));
+    c.unmapped_receivers = 2;
+    c.probes_pending = true;
+    const FeaturePlan on = FeaturePlan::from(c);
+    EXPECT_TRUE(on.irradiance_probes());
+    EXPECT_TRUE(contains(on.reason(Pass::IrradianceProbes), "2 receivers without a light map"))
+        << on.reason(Pass::IrradianceProbes);
+    // Converged and at rest, the probes stay for the frame (nothing is gathered: no units).
+    c.moving_objects = 0;
+    c.converged = true;
+    c.probes_pending = false;
+    EXPECT_TRUE(FeaturePlan::from(c).irradiance_probes());
+    EXPECT_FALSE(FeaturePlan::from(c).any_tracing());
+    // Nothing to gather from, or no light: none.
+    SceneCensus unmapped = c;
+    unmapped.lightmapped_surfaces = 0;
+    EXPECT_FALSE(FeaturePlan::from(unmapped).irradiance_probes());
+    SceneCensus dark = c;
+    dark.lights_enabled = 0;
+    EXPECT_FALSE(FeaturePlan::from(dark).irradiance_probes());
+}
+
 TEST(FeaturePlan, NoGeneratorMeansNoCausticPhotonsBuffersOrFilter) {
     const FeaturePlan plan = FeaturePlan::from(busy_scene());
     EXPECT_FALSE(plan.caustics());

@@ -35,6 +35,7 @@ constexpr double kClockSlackMs = 1e-5;
 /// - AIM rebuilds: one random surface of 40 every 10 frames, size (area) 0.3..3, 2.5 ms per
 ///   unit of size, so up to 7.5 ms: the big ones never fit a 4 ms budget and need forcing;
 /// - IIM gathers: 2 batches a frame of 16..64 texels among 500 batches (0.004 ms per texel);
+/// - irradiance probe passes: a unit of 4 probes every third frame among 64 (0.02 ms a probe);
 /// - every 500 frames a light is switched: all 300 groups invalidated at once (60 ms of work).
 /// Each unit's actual cost is its mean times U(0.7, 1.3). The mean load is about 2.4 ms a
 /// frame, 60 % of the 4 ms budget, plus the bursts.
@@ -73,7 +74,7 @@ class ScriptedScene {
     std::size_t outstanding() const { return enqueued_at_.size(); }
 
   private:
-    static constexpr PerKind<double> kMeanMs = {0.03, 0.2, 0.6, 2.5, 0.004};
+    static constexpr PerKind<double> kMeanMs = {0.03, 0.2, 0.6, 2.5, 0.004, 0.02};
 
     void script() {
         std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -99,6 +100,9 @@ class ScriptedScene {
             const std::uint64_t key = batch(script_rng_);
             const double priority = unit(script_rng_);
             enqueue(WorkKind::IimGather, key, priority, 16.0 + 48.0 * unit(script_rng_));
+        }
+        if (f % 3 == 0) {
+            enqueue(WorkKind::ProbeGather, (f / 3) % 64, unit(script_rng_), 4.0);
         }
         if (f % 500 == 250) {
             for (std::uint64_t g = 0; g < 300; ++g) {

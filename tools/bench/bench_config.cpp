@@ -35,6 +35,9 @@ lighting::LightingConfig BenchConfig::lighting() const {
     config.photons.selective.exact_invalidation = exact != 0;
     config.maps.contact_texels = contact != 0;
     config.maps.stitch_seams = stitch != 0;
+    if (probes == 0) {
+        config.probes.max_probes = 0;
+    }
     return config;
 }
 
@@ -47,6 +50,9 @@ std::string BenchConfig::knobs() const {
         << caustic_slices << " backend=" << backend << " kernel=" << kernel << " aa=" << aa;
     if (stitch != 1) {
         out << " stitch=" << stitch;  // appended only when off: earlier runs' keys stay valid
+    }
+    if (probes != 1) {
+        out << " probes=" << probes;
     }
     return out.str();
 }
@@ -89,6 +95,8 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.contact = whole(value);
             } else if (sweep.knob == "stitch") {
                 c.stitch = whole(value);
+            } else if (sweep.knob == "probes") {
+                c.probes = whole(value);
             } else if (sweep.knob == "change_blend") {
                 c.change_blend = std::stod(value);
             } else if (sweep.knob == "keep") {

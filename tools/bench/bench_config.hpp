@@ -32,6 +32,9 @@ struct BenchConfig {
     /// The IIM's light-map seams stitched after each pass (IlluminationSettings::stitch_seams;
     /// 1: on, default).
     std::uint32_t stitch = 1;
+    /// Irradiance probes for receivers without a light map (1: on, default; 0: none placed,
+    /// IrradianceProbeSettings::max_probes = 0).
+    std::uint32_t probes = 1;
     /// Seconds a local pass's texels fade in over (IlluminationSettings::change_blend_seconds).
     double change_blend = lighting::IlluminationSettings{}.change_blend_seconds;
     /// Standard deviations by which a full pass must show a texel's light changed before the

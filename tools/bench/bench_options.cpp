@@ -95,7 +95,7 @@ Sweep parse_sweep(const std::string& text) {
                 throw Error(what + ": '" + value + "' is not a whole number of passes in 1..1024");
             }
         } else if (sweep.knob == "local" || sweep.knob == "exact" || sweep.knob == "contact" ||
-                   sweep.knob == "stitch") {
+                   sweep.knob == "stitch" || sweep.knob == "probes") {
             if (value != "0" && value != "1") {
                 throw Error(what + ": '" + value + "' is not 0 (off) or 1 (on)");
             }
@@ -111,12 +111,12 @@ Sweep parse_sweep(const std::string& text) {
                             "' is not a number of standard deviations in 0..100");
             }
         } else {
-            throw Error(
-                "--sweep " + sweep.knob +
-                ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, filter, "
-                "refine, local, change_blend, exact, contact, stitch, keep, caustics, backend, "
-                "kernel, "
-                "aa)");
+            throw Error("--sweep " + sweep.knob +
+                        ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, filter, "
+                        "refine, local, change_blend, exact, contact, stitch, probes, keep, "
+                        "caustics, backend, "
+                        "kernel, "
+                        "aa)");
         }
     }
     return sweep;

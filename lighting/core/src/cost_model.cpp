@@ -17,6 +17,8 @@ std::string_view name(WorkKind kind) {
             return "aim_rebuild";
         case WorkKind::IimGather:
             return "iim_gather";
+        case WorkKind::ProbeGather:
+            return "probe_gather";
     }
     return "unknown";
 }

@@ -172,6 +172,63 @@ glm::vec3 CpuGatherer::trace(glm::vec3 origin, glm::vec3 direction, std::optiona
     return glm::vec3(0.0f);  // trapped between specular surfaces
 }
 
+bool CpuGatherer::see_through(const RayHit& hit) const {
+    const bool mapped = hit.surface >= 0 &&
+                        static_cast<std::size_t>(hit.surface) < atlas_->surface_page.size() &&
+                        atlas_->surface_page[static_cast<std::size_t>(hit.surface)] >= 0;
+    const bool emits =
+        hit.surface >= 0 &&
+        static_cast<std::size_t>(hit.surface) < atlas_->surface_emission.size() &&
+        glm::any(glm::greaterThan(atlas_->surface_emission[static_cast<std::size_t>(hit.surface)],
+                                  glm::vec3(0.0f)));
+    const TraceMaterial* material = materials_ != nullptr && hit.material < materials_->size()
+                                        ? &(*materials_)[hit.material]
+                                        : nullptr;
+    const bool diffuse = material == nullptr || material->scattering == Scattering::Diffuse;
+    return diffuse && !mapped && !emits;
+}
+
+void CpuGatherer::trace_probe_rays(const glm::vec3& origin, std::span<const glm::vec3> directions,
+                                   std::span<ProbeRay> rays, std::uint32_t seed) const {
+    const std::size_t count = std::min(directions.size(), rays.size());
+    // Geometry a ray may pass through before it gives up (a crowd of props in a row).
+    constexpr int kMaxSeeThrough = 8;
+    constexpr std::size_t kBundle = 64;
+    std::array<std::optional<RayHit>, kBundle> hits;
+    for (std::size_t first = 0; first < count; first += kBundle) {
+        const std::size_t bundle = std::min(kBundle, count - first);
+        scene_->intersect_from(origin, directions.subspan(first, bundle), settings_.max_distance,
+                               std::span(hits.data(), bundle));
+        for (std::size_t k = 0; k < bundle; ++k) {
+            const glm::vec3 direction = directions[first + k];
+            std::optional<RayHit> hit = hits[k];
+            glm::vec3 from = origin;
+            float travelled = 0.0f;
+            for (int pass = 0; pass < kMaxSeeThrough && hit && see_through(*hit); ++pass) {
+                travelled += hit->distance;
+                const float side = glm::dot(hit->geometric_normal, direction) > 0.0f ? 1.0f : -1.0f;
+                from = offset_ray_origin(hit->position, hit->geometric_normal, side);
+                hit = scene_->intersect(from, direction,
+                                        std::max(settings_.max_distance - travelled, 0.0f));
+            }
+            ProbeRay& out = rays[first + k];
+            out.distance = hit ? travelled + hit->distance : settings_.max_distance;
+            out.hit = hit.has_value();
+            const TraceMaterial* material =
+                hit && materials_ != nullptr && hit->material < materials_->size()
+                    ? &(*materials_)[hit->material]
+                    : nullptr;
+            const bool diffuse = material == nullptr || material->scattering == Scattering::Diffuse;
+            out.back_face =
+                hit.has_value() && diffuse && glm::dot(hit->geometric_normal, direction) >= 0.0f;
+            const glm::vec3 radiance =
+                trace(from, direction, hit, static_cast<std::uint32_t>(first + k), seed);
+            out.radiance =
+                finite_vector(radiance) ? glm::max(radiance, glm::vec3(0.0f)) : glm::vec3(0.0f);
+        }
+    }
+}
+
 void CpuGatherer::gather(std::span<const GatherTexel> texels, std::span<glm::vec3> irradiance) {
     const std::size_t count = std::min(texels.size(), irradiance.size());
     if (jobs_ != nullptr && count > 1) {

@@ -26,6 +26,8 @@ std::string_view name(Pass pass) {
             return "specular";
         case Pass::CausticFilter:
             return "caustic_filter";
+        case Pass::IrradianceProbes:
+            return "irradiance_probes";
     }
     return "unknown";
 }
@@ -120,6 +122,24 @@ FeaturePlan::FeaturePlan(const SceneCensus& census) : census_(census) {
         }
         // The caustics already traced are still drawn every frame.
         set(Pass::CausticFilter, true, generator_count + ": caustic buffers and filter");
+    }
+
+    // Irradiance probes light what has no light map from the AIM-lit scene. They stay while
+    // the scene is idle (the renderer interpolates them every frame); their passes run only
+    // while some probe wants one.
+    const std::string receivers = count(c.unmapped_receivers, "receiver without a light map",
+                                        "receivers without a light map");
+    if (!lit) {
+        set(Pass::IrradianceProbes, false, no_light);
+    } else if (!surfaces) {
+        set(Pass::IrradianceProbes, false,
+            "no light-mapped surface: no lit scene for irradiance probes to gather");
+    } else if (c.unmapped_receivers == 0) {
+        set(Pass::IrradianceProbes, false,
+            "every mesh has a light map: no receiver needs irradiance probes");
+    } else {
+        set(Pass::IrradianceProbes, true,
+            receivers + (c.probes_pending ? "; probes gathering" : "; probes converged"));
     }
 
     if (!lit) {

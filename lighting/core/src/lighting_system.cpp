@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "luxel/scene/components.hpp"
+
 namespace luxel::lighting {
 namespace {
 
@@ -130,7 +132,8 @@ WarmUpResult LightingSystem::warm_up(double now_seconds, double max_ms,
             return finish(WarmUpEnd::Converged, {});
         }
         const bool worked = stats_.photons_traced + stats_.caustic_photons_traced +
-                                stats_.aim_texels + stats_.texels_gathered >
+                                stats_.aim_texels + stats_.texels_gathered +
+                                stats_.probes_gathered >
                             0;
         idle = worked ? 0 : idle + 1;
         // With an unlimited budget every queued unit ran: an update that ran none leaves the
@@ -161,6 +164,40 @@ SceneCensus LightingSystem::take_census() const {
         mapped += surface.texels.texels.empty() ? 0u : 1u;
     }
     census.lightmapped_surfaces = mapped;
+    // Receivers without a light map: mesh objects none of whose surfaces is mapped, and that
+    // have a diffuse primitive (glass and mirrors show what they reflect and refract, not
+    // indirect light of their own).
+    std::vector<ecs::Entity> mapped_entities;
+    mapped_entities.reserve(maps_->surfaces().size());
+    for (const MapSurface& surface : maps_->surfaces()) {
+        if (!surface.texels.texels.empty()) {
+            mapped_entities.push_back(surface.entity);
+        }
+    }
+    std::sort(mapped_entities.begin(), mapped_entities.end());
+    std::uint32_t unmapped = 0;
+    for (const auto& [entity, object] : photons_->mesh_objects()) {
+        if (std::binary_search(mapped_entities.begin(), mapped_entities.end(), entity)) {
+            continue;
+        }
+        const auto* instance = registry_.try_get<scene::MeshInstance>(entity);
+        if (instance == nullptr || instance->source == nullptr) {
+            continue;
+        }
+        const auto& materials = instance->source->materials;
+        const auto& primitives = instance->geometry().primitives;
+        const bool diffuse =
+            std::any_of(primitives.begin(), primitives.end(), [&](const scene::Primitive& p) {
+                if (p.material < 0 || static_cast<std::size_t>(p.material) >= materials.size()) {
+                    return true;  // the default material is diffuse
+                }
+                const scene::Material& m = materials[static_cast<std::size_t>(p.material)];
+                return !(m.transmission > 0.0f) && !m.is_specular();
+            });
+        unmapped += diffuse ? 1u : 0u;
+    }
+    census.unmapped_receivers = unmapped;
+    census.probes_pending = probes_ != nullptr && probes_->pending() > 0;
     census.dynamic_objects = static_cast<std::uint32_t>(photons_->dynamic_object_count());
     const PhotonSyncStats& sync = photons_->last_sync();
     census.moving_objects = sync.objects_moved;
@@ -173,8 +210,8 @@ SceneCensus LightingSystem::take_census() const {
     const std::uint64_t probe_cycle = config_.photons.selective.per_group;
     census.maps_pending = !maps_->aim_requests().empty() || !maps_->gather_requests().empty();
     census.converged = photons_->pending_groups().empty() && !photons_->caustics_pending() &&
-                       !census.maps_pending && scheduler_.pending_total() == 0 &&
-                       frames_since_change_ >= probe_cycle;
+                       !census.maps_pending && !census.probes_pending &&
+                       scheduler_.pending_total() == 0 && frames_since_change_ >= probe_cycle;
     return census;
 }
 
@@ -195,6 +232,7 @@ const LightingStats& LightingSystem::update(double budget_ms, double now_seconds
     stats_.frame = frame_;
     stats_.census = take_census();
     plan_ = FeaturePlan::from(stats_.census);
+    sync_probes();
     queue_work();
     const std::uint64_t aim_before = maps_->counters().aim_texels;
     const std::uint64_t gathered_before = maps_->counters().texels_gathered;
@@ -208,6 +246,12 @@ const LightingStats& LightingSystem::update(double budget_ms, double now_seconds
     stats_.schedule = scheduler_.run(scheduler_budget);
     stats_.aim_texels = maps_->counters().aim_texels - aim_before;
     stats_.texels_gathered = maps_->counters().texels_gathered - gathered_before;
+    // What the probes see changed: an AIM rebuilt (photons landed differently, a light
+    // switched or moved) or an emitter's switch. Each probe gathers a fresh pass from the next
+    // update on, showing its old light until then.
+    if (probes_ != nullptr && (stats_.aim_texels > 0 || sync.lights_refreshed > 0)) {
+        probes_->lighting_changed();
+    }
     stats_.stored_hits = photons_->photon_map().stored_hit_count();
     const CausticTotals caustics = photons_->caustic_totals();
     stats_.caustic_photons_stored = caustics.stored;
@@ -219,6 +263,62 @@ const LightingStats& LightingSystem::update(double budget_ms, double now_seconds
 void LightingSystem::queue_work() {
     queue_photon_units();
     queue_map_units();
+    queue_probe_units();
+}
+
+void LightingSystem::sync_probes() {
+    if (!plan_.irradiance_probes()) {
+        probes_.reset();  // a pass the scene does not use holds nothing
+        probe_grid_surfaces_ = 0;
+        return;
+    }
+    if (probes_ != nullptr && probe_grid_surfaces_ == stats_.census.lightmapped_surfaces) {
+        return;
+    }
+    // The grid covers the light-mapped level (its static geometry): moving objects may leave
+    // it, and a grid that followed them would start over each time.
+    AxisBox level;
+    for (const MapSurface& surface : maps_->surfaces()) {
+        for (const SurfaceTexel& texel : surface.texels.texels) {
+            level.add(glm::vec3(surface.to_world * glm::vec4(texel.position, 1.0f)));
+        }
+    }
+    const ProbeGrid grid = fit_probe_grid(level, config_.probes.spacing, config_.probes.max_probes);
+    if (probes_ == nullptr || !(probes_->grid() == grid)) {
+        probes_ = std::make_unique<IrradianceProbes>(grid, config_.probes);
+    }
+    probe_grid_surfaces_ = stats_.census.lightmapped_surfaces;
+}
+
+void LightingSystem::queue_probe_units() {
+    const std::size_t per_unit =
+        static_cast<std::size_t>(std::max<std::uint32_t>(config_.probes_per_unit, 1)) * unit_scale_;
+    const std::size_t pending = probes_ != nullptr ? probes_->pending() : 0;
+    // While AIM rebuilds are waiting, what a probe gathers now is stale by the next rebuild:
+    // one unit a frame keeps the probes following the light without gathering every probe
+    // once per rebuild (a warm-up's AIMs converge over tens of updates).
+    const std::size_t max_units = maps_->aims_current() ? 64 : 1;
+    const std::size_t units = std::min((pending + per_unit - 1) / per_unit, max_units);
+    for (std::size_t unit = 0; unit < units; ++unit) {
+        scheduler_.enqueue({WorkKind::ProbeGather, unit, rank_priority(unit, units),
+                            [this, per_unit] {
+                                if (probes_ == nullptr) {
+                                    return;
+                                }
+                                const auto tracer = [this](const glm::vec3& origin,
+                                                           std::span<const glm::vec3> directions,
+                                                           std::span<ProbeRay> rays,
+                                                           std::uint32_t seed) {
+                                    cpu_gatherer_->trace_probe_rays(origin, directions, rays, seed);
+                                };
+                                stats_.probes_gathered += probes_->gather(per_unit, tracer, &jobs_);
+                            },
+                            static_cast<double>(per_unit)});
+    }
+    for (std::size_t unit = units; unit < queued_probe_units_; ++unit) {
+        scheduler_.cancel(WorkKind::ProbeGather, unit);
+    }
+    queued_probe_units_ = units;
 }
 
 void LightingSystem::queue_photon_units() {

@@ -92,6 +92,7 @@ struct FrameCounters {
     std::size_t meshes_cached = 0;         ///< (scene, mesh) pairs with GPU buffers
     std::uint64_t page_uploads = 0;        ///< IIM page rectangles uploaded, since construction
     std::uint64_t texels_uploaded = 0;     ///< IIM texels uploaded, since construction
+    std::uint64_t probe_uploads = 0;       ///< irradiance probe uploads, since construction
     std::size_t specular_cube_maps = 0;    ///< specular cube maps allocated now
     std::uint64_t specular_faces = 0;      ///< specular cube faces rendered, since construction
     /// Primitives left out of a shadow map or a specular cube face because the view was

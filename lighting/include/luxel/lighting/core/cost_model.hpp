@@ -14,10 +14,11 @@ enum class WorkKind : std::uint8_t {
     CausticSlice,  ///< 1/K of a caustic photon list
     AimRebuild,    ///< rebuild of one surface's approximated illumination map
     IimGather,     ///< a batch of IIM texel gathers (size = texels)
+    ProbeGather,   ///< a pass of a few irradiance probes (size = probes)
 };
 // (The IIM's fade between its two buffers is a mix in the shader over time, not work the
 // scheduler runs: there is no blend kind.)
-inline constexpr std::size_t kWorkKindCount = 5;
+inline constexpr std::size_t kWorkKindCount = 6;
 
 /// "photon_probe", "group_retrace", ...: stable names for the HUD, logs and luxel-bench.
 [[nodiscard]] std::string_view name(WorkKind kind);
@@ -33,8 +34,8 @@ using PerKind = std::array<T, kWorkKindCount>;
 struct CostModelSettings {
     /// Priors, in ms per unit of size, used until measurements replace them. They are guesses
     /// of the order of magnitude on a desktop CPU, not measurements: probe, retrace, caustic
-    /// slice, AIM rebuild, IIM gather (per texel batch unit).
-    PerKind<double> prior_ms = {0.05, 0.2, 0.5, 1.0, 0.05};
+    /// slice, AIM rebuild, IIM gather (per texel batch unit), irradiance probe (per probe).
+    PerKind<double> prior_ms = {0.05, 0.2, 0.5, 1.0, 0.05, 0.3};
     /// How many measurements the prior counts as. 0 (the default): the first measurement
     /// replaces it, since a prior is a guess and may be off by 10x on another machine or
     /// scene. Then the first measurements are averaged evenly (weight 1/(prior_weight + n + 1))

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "luxel/lighting/core/gather.hpp"
+#include "luxel/lighting/core/irradiance_probes.hpp"
 #include "luxel/lighting/core/photon_tracer.hpp"
 #include "luxel/lighting/core/radiance_atlas.hpp"
 #include "luxel/lighting/core/ray_scene.hpp"
@@ -48,6 +49,13 @@ class CpuGatherer final : public IrradianceGatherer {
     /// Irradiance at one texel (what gather() does per texel).
     [[nodiscard]] glm::vec3 gather_one(const GatherTexel& texel) const;
 
+    /// The irradiance probes' rays (a ProbeRayTracer): from `origin` along each direction,
+    /// the radiance each brings back and where it first meets the light-mapped scene. A ray
+    /// passes through diffuse geometry that has no light map and emits nothing: what the
+    /// probes light must not hide their light from itself (IrradianceProbes).
+    void trace_probe_rays(const glm::vec3& origin, std::span<const glm::vec3> directions,
+                          std::span<ProbeRay> rays, std::uint32_t seed) const;
+
     /// Rays traced since construction (for rays-per-second figures).
     [[nodiscard]] std::uint64_t rays_traced() const { return rays_traced_; }
     [[nodiscard]] const CpuGatherSettings& settings() const { return settings_; }
@@ -57,6 +65,9 @@ class CpuGatherer final : public IrradianceGatherer {
     /// through mirrors and glass.
     [[nodiscard]] glm::vec3 trace(glm::vec3 origin, glm::vec3 direction, std::optional<RayHit> hit,
                                   std::uint32_t ray, std::uint32_t seed) const;
+
+    /// Whether a probe ray passes through this hit (diffuse, no light map, no emission).
+    [[nodiscard]] bool see_through(const RayHit& hit) const;
 
     const RayScene* scene_;
     const std::vector<TraceMaterial>* materials_ = nullptr;

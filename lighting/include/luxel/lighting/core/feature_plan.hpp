@@ -16,6 +16,8 @@ struct SceneCensus {
     std::uint32_t lights_total = 0;  ///< enabled or not
     std::uint32_t caustic_generators = 0;
     std::uint32_t lightmapped_surfaces = 0;
+    /// Mesh objects with no light-mapped surface: what the irradiance probes light.
+    std::uint32_t unmapped_receivers = 0;
     std::uint32_t dynamic_objects = 0;  ///< entities that may move (Dynamic mesh instances)
     std::uint32_t moving_objects = 0;   ///< of those, the ones that moved this frame
     std::uint32_t specular_materials = 0;
@@ -24,6 +26,8 @@ struct SceneCensus {
     /// AIM rebuilds or IIM gathers requested: with no light enabled, what the maps still hold
     /// of the lights switched off must be cleared (the passes stay on until it is).
     bool maps_pending = false;
+    /// Irradiance probes wait for a pass (IrradianceProbes::pending).
+    bool probes_pending = false;
     /// Nothing pending in the scheduler and every delta (delta_f, delta_i) under its threshold.
     bool converged = false;
 
@@ -32,17 +36,18 @@ struct SceneCensus {
 
 /// The passes and the per-frame work they imply (docs/METHOD.md §1.3).
 enum class Pass : std::uint8_t {
-    PhotonTracing,    ///< global photons: group retraces (and the photon map they feed)
-    SelectiveProbes,  ///< probe photons that find the groups a change invalidated
-    Caustics,         ///< caustic photon slices (tracing)
-    Aim,              ///< AIM rebuilds
-    IimGather,        ///< IIM texel gathers
-    Shadows,          ///< shadow maps (render)
-    Direct,           ///< direct lighting (render)
-    Specular,         ///< the specular term: reflection and refraction (render)
-    CausticFilter,    ///< caustic buffers and their filter/composite pass (render)
+    PhotonTracing,     ///< global photons: group retraces (and the photon map they feed)
+    SelectiveProbes,   ///< probe photons that find the groups a change invalidated
+    Caustics,          ///< caustic photon slices (tracing)
+    Aim,               ///< AIM rebuilds
+    IimGather,         ///< IIM texel gathers
+    Shadows,           ///< shadow maps (render)
+    Direct,            ///< direct lighting (render)
+    Specular,          ///< the specular term: reflection and refraction (render)
+    CausticFilter,     ///< caustic buffers and their filter/composite pass (render)
+    IrradianceProbes,  ///< probes gathered (when pending) and interpolated for unmapped receivers
 };
-inline constexpr std::size_t kPassCount = 9;
+inline constexpr std::size_t kPassCount = 10;
 
 /// "photon_tracing", "selective_probes", ...
 [[nodiscard]] std::string_view name(Pass pass);
@@ -58,6 +63,8 @@ inline constexpr std::size_t kPassCount = 9;
 ///   (shadows, direct, the specular term, the caustic filter over the caustics already traced).
 /// - Probes only where something can invalidate groups behind our back: dynamic objects or
 ///   static geometry edits. Light changes invalidate their own groups without probes.
+/// - Irradiance probes only for a lit scene with light-mapped surfaces (the AIM they gather
+///   from) and receivers that have no light map (what they light).
 ///
 /// from() is cheap and deterministic: call it every frame and compare with changed_from() to
 /// allocate or free what a pass needs when it turns on or off.
@@ -88,6 +95,7 @@ class FeaturePlan {
     [[nodiscard]] bool direct() const { return enabled(Pass::Direct); }
     [[nodiscard]] bool specular() const { return enabled(Pass::Specular); }
     [[nodiscard]] bool caustic_filter() const { return enabled(Pass::CausticFilter); }
+    [[nodiscard]] bool irradiance_probes() const { return enabled(Pass::IrradianceProbes); }
     /// Caustic photon lists and buffers exist (whether or not they are retraced this frame).
     [[nodiscard]] bool caustic_data() const { return caustic_filter(); }
     /// Anything traced or gathered this frame: false means the scheduler gets no lighting work.

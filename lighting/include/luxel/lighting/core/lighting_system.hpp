@@ -12,6 +12,7 @@
 #include "luxel/lighting/core/cpu_gather.hpp"
 #include "luxel/lighting/core/feature_plan.hpp"
 #include "luxel/lighting/core/illumination_maps.hpp"
+#include "luxel/lighting/core/irradiance_probes.hpp"
 #include "luxel/lighting/core/photon_world.hpp"
 #include "luxel/lighting/core/scheduler.hpp"
 #include "luxel/runtime/clock.hpp"
@@ -22,9 +23,11 @@ namespace luxel::lighting {
 /// The lighting system's scheduler defaults: the budget split so that a scene whose lights keep
 /// moving (every group retraced, every AIM due, every frame) still gathers IIM texels: retraces
 /// may use 45% of a frame's budget, caustic slices 25%, AIM rebuilds 35%; gathers and probes are
-/// uncapped (shares of kinds with nothing to do go to the others).
+/// uncapped (shares of kinds with nothing to do go to the others); irradiance probe passes
+/// 25%, so that a level full of probes never starves the light maps.
 [[nodiscard]] inline SchedulerSettings default_lighting_schedule() {
     SchedulerSettings settings;
+    settings.max_share[index(WorkKind::ProbeGather)] = 0.25;
     settings.max_share[index(WorkKind::GroupRetrace)] = 0.45;
     settings.max_share[index(WorkKind::CausticSlice)] = 0.25;
     settings.max_share[index(WorkKind::AimRebuild)] = 0.35;
@@ -43,6 +46,10 @@ struct LightingConfig {
     std::uint32_t texels_per_gather_unit = 16;
     std::uint32_t texels_per_aim_unit = 128;
     std::uint32_t groups_per_retrace_unit = 2;
+    /// The irradiance probes (for receivers without a light map, when the FeaturePlan has them)
+    /// and probes per unit of their passes.
+    IrradianceProbeSettings probes;
+    std::uint32_t probes_per_unit = 4;
     /// During warm_up the gather and AIM units are this many times larger: there is no frame
     /// budget to fit, and fewer, larger units spend less on scheduling and on starting each
     /// unit's parallel loop (the sandbox level's warm-up, docs/PERFORMANCE.md "Warm-up": 301
@@ -59,6 +66,7 @@ struct LightingStats {
     std::uint64_t caustic_photons_traced = 0;
     std::uint64_t aim_texels = 0;
     std::uint64_t texels_gathered = 0;
+    std::uint64_t probes_gathered = 0;  ///< irradiance probe passes
     std::size_t stored_hits = 0;
     std::size_t caustic_photons_stored = 0;
     std::size_t caustic_bytes = 0;
@@ -148,6 +156,9 @@ class LightingSystem {
     /// Read only: the renderer and the tools follow the pages through their versions
     /// (RadiancePage::changes_since); only the lighting system's units write the maps.
     [[nodiscard]] const IlluminationMaps& maps() const { return *maps_; }
+    /// The irradiance probes while the FeaturePlan has them (null otherwise): read only, the
+    /// renderer follows them through IrradianceProbes::version.
+    [[nodiscard]] const IrradianceProbes* irradiance_probes() const { return probes_.get(); }
     [[nodiscard]] const Scheduler& scheduler() const { return scheduler_; }
     [[nodiscard]] const LightingConfig& config() const { return config_; }
 
@@ -160,6 +171,10 @@ class LightingSystem {
     void queue_photon_units();
     /// Slices of the next AIM rebuild and of the next gather pass.
     void queue_map_units();
+    /// Creates, refits or frees the irradiance probes as the plan says.
+    void sync_probes();
+    /// Units of irradiance probe passes.
+    void queue_probe_units();
 
     ecs::Registry& registry_;
     JobSystem& jobs_;
@@ -167,6 +182,11 @@ class LightingSystem {
     std::unique_ptr<PhotonWorld> photons_;
     std::unique_ptr<IlluminationMaps> maps_;
     std::unique_ptr<CpuGatherer> cpu_gatherer_;
+    std::unique_ptr<IrradianceProbes> probes_;
+    /// The light-mapped surface count the probes' grid was fitted to (a new or removed surface
+    /// may change the level's extent).
+    std::uint32_t probe_grid_surfaces_ = 0;
+    std::size_t queued_probe_units_ = 0;
     IrradianceGatherer* gatherer_ = nullptr;
     Scheduler scheduler_;
     const Clock* clock_;

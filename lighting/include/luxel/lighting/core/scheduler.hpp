@@ -26,9 +26,10 @@ struct WorkUnit {
 
 struct SchedulerSettings {
     /// Weight of each kind's priorities, in docs/METHOD.md §1.2's order: photon probes,
-    /// retraces, caustic slices, AIM rebuilds, IIM gathers. Photons come first because
-    /// everything downstream is computed from them.
-    PerKind<double> weight = {6.0, 5.0, 4.0, 3.0, 2.0};
+    /// retraces, caustic slices, AIM rebuilds, IIM gathers; then irradiance probe passes,
+    /// between the AIM they read and the IIM gathers. Photons come first because everything
+    /// downstream is computed from them.
+    PerKind<double> weight = {6.0, 5.0, 4.0, 3.0, 2.0, 2.5};
     /// Added to a unit's effective priority for each frame it has waited, so that low-priority
     /// work rises over time instead of waiting behind a stream of fresh high-priority units.
     double aging_per_frame = 0.1;
