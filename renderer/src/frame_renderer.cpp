@@ -529,6 +529,9 @@ GLuint FrameRenderer::position_texture() const {
 GLuint FrameRenderer::normal_texture() const {
     return impl_->targets.normal.id();
 }
+GLuint FrameRenderer::lightmap_texture() const {
+    return impl_->targets.lightmap.id();
+}
 
 Image FrameRenderer::read(FrameImage image) const {
     const FrameTargets& t = impl_->targets;

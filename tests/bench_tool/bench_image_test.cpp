@@ -160,6 +160,37 @@ TEST(BenchImage, TheCameraFlagPlacesBothFrames) {
     }
 }
 
+TEST(BenchImage, PixelsWithoutALightMapAreMeasuredOnTheirOwn) {
+    // The skinned figure has no light map: the irradiance probes light it, and the error over
+    // its pixels is reported apart from the frame's. Without probes (probes=0) the figure
+    // lacks all its indirect light, and that error is larger.
+    luxel::testing::TempDir dir("luxel-bench-unmapped");
+    const std::filesystem::path out = dir / "out";
+    const std::filesystem::path level =
+        std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets/levels/prepared/skinned-figure.glb";
+    const CommandResult run = luxel_bench(
+        "--level " + quoted(level) +
+        " --budgets 100000 --frames 20 --checkpoint 20 --change none --ref-photons 200000 "
+        "--ref-caustic-photons 1000 --ref-spp 1 --image 48x36 --image-spp 64 --threads 2 "
+        "--camera 0.9,1.5,2.4:-0.5,0.9,0.2:40 --sweep probes=0 --out " +
+        quoted(out));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const CsvRows rows = read_csv(out / "runs.csv");
+    ASSERT_EQ(rows.size(), 3u);  // header, paper, probes=0
+    const auto value = [&](std::size_t row, const std::string& column) {
+        return cell_number(rows[row].at(column_index(rows, column)));
+    };
+    for (std::size_t r = 1; r < rows.size(); ++r) {
+        EXPECT_GT(value(r, "unmapped_pixels"), 100.0) << rows[r][1];
+        EXPECT_GT(value(r, "image_unmapped_relrmse"), 0.0) << rows[r][1];
+        EXPECT_LT(value(r, "image_unmapped_relrmse"), 1.0) << rows[r][1];
+        std::printf("[ figures  ] %s: pixels without a light map %.0f, their relRMSE %.4f\n",
+                    rows[r][1].c_str(), value(r, "unmapped_pixels"),
+                    value(r, "image_unmapped_relrmse"));
+    }
+    EXPECT_LT(value(1, "image_unmapped_relrmse"), value(2, "image_unmapped_relrmse"));
+}
+
 TEST(BenchImage, NoImageMarksTheColumnsNotMeasuredAndMakesNoContext) {
     luxel::testing::TempDir dir("luxel-bench-no-image");
     const std::filesystem::path out = dir / "out";

@@ -190,13 +190,22 @@ TEST(LightingSystem, ABudgetOfZeroPausesAndResumingFinishesTheBacklog) {
 
 }  // namespace
 
+TEST(LightingSystem, GlassWithoutALightMapNeedsNoIrradianceProbes) {
+    // cornell's glass sphere has no light map, but it shows what it refracts: no probes.
+    Game game("cornell", false);
+    game.frame(kUnlimited);
+    EXPECT_EQ(game.lighting->plan().census().unmapped_receivers, 0u);
+    EXPECT_FALSE(game.lighting->plan().irradiance_probes());
+    EXPECT_EQ(game.lighting->irradiance_probes(), nullptr);
+}
+
 TEST(LightingSystem, AReceiverWithoutALightMapIsLitByProbesThatExistOnlyForIt) {
     Game game("two-rooms", false);
     ASSERT_LE(game.converge(300), 300);
     // Every mesh of the level has a light map: no probes, none allocated.
     EXPECT_FALSE(game.lighting->plan().irradiance_probes());
     EXPECT_EQ(game.lighting->irradiance_probes(), nullptr);
-    EXPECT_NE(game.lighting->plan().reason(Pass::IrradianceProbes).find("every mesh"),
+    EXPECT_NE(game.lighting->plan().reason(Pass::IrradianceProbes).find("no receiver needs"),
               std::string::npos);
 
     // A grey crate without a light map on the west room's floor, at run time.

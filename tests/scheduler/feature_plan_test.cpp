@@ -32,7 +32,7 @@ TEST(FeaturePlan, IrradianceProbesOnlyForReceiversWithoutALightMapInALitMappedSc
     SceneCensus c = busy_scene();
     // Every mesh light-mapped: no probes.
     EXPECT_FALSE(FeaturePlan::from(c).irradiance_probes());
-    EXPECT_TRUE(contains(FeaturePlan::from(c).reason(Pass::IrradianceProbes), "every mesh"));
+    EXPECT_TRUE(contains(FeaturePlan::from(c).reason(Pass::IrradianceProbes), "no receiver needs"));
     c.unmapped_receivers = 2;
     c.probes_pending = true;
     const FeaturePlan on = FeaturePlan::from(c);

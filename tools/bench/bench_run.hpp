@@ -80,6 +80,10 @@ struct RunResult {
     bool image_measured = false;
     double image = 0.0;
     double image_net = 0.0;  ///< net_of_reference_noise(image, reference_se_image)
+    /// The image relRMSE over the pixels without a light map alone (the irradiance probes'
+    /// receivers) at the last static checkpoint; -1 where the frame has none.
+    double image_unmapped = -1.0;
+    std::size_t unmapped_pixels = 0;
     double image_after = 0.0;
     double reference_se_image = 0.0;
     double reference_se_image_after = 0.0;

@@ -202,6 +202,27 @@ void ConfigRun::frame_reference(const std::string& change, ReferenceImage& into)
 double ConfigRun::image_error(const ReferenceImage& reference, bool last, bool after) {
     const FrameShot shot = view_->render(now_);
     const double error = lighting::reference::image_relative_rmse(shot.image, reference.image);
+    if (!after) {
+        // Where the irradiance probes light (no light map): the same relRMSE over those
+        // pixels alone, which a whole-frame figure dilutes with every light-mapped wall.
+        double diff = 0.0;
+        double norm = 0.0;
+        std::size_t pixels = 0;
+        for (std::size_t p = 0; p < shot.unmapped.size(); ++p) {
+            if (shot.unmapped[p] == 0) {
+                continue;
+            }
+            ++pixels;
+            for (std::size_t c = 0; c < 3; ++c) {
+                const double a = shot.image.rgba[4 * p + c];
+                const double b = reference.image.rgba[4 * p + c];
+                diff += (a - b) * (a - b);
+                norm += b * b;
+            }
+        }
+        result_.unmapped_pixels = pixels;
+        result_.image_unmapped = pixels > 0 && norm > 0.0 ? std::sqrt(diff / norm) : -1.0;
+    }
     if (last) {
         write_side_by_side(options_.out / "frames" / file_name(after ? "after" : "static", ".png"),
                            shot.image, reference.image);
@@ -276,6 +297,10 @@ void ConfigRun::static_phase() {
     if (result_.image_measured) {
         std::fprintf(stderr, ", image %.4f (%.4f net of the reference's noise %.4f)", result_.image,
                      result_.image_net, result_.reference_se_image);
+        if (result_.unmapped_pixels > 0) {
+            std::fprintf(stderr, ", pixels without a light map %.4f (%zu pixels)",
+                         result_.image_unmapped, result_.unmapped_pixels);
+        }
     }
     std::fprintf(stderr, "\n");
 }

@@ -1,6 +1,9 @@
 #include "frame_view.hpp"
 
 #include <cmath>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "luxel/runtime/error.hpp"
 
@@ -93,6 +96,25 @@ FrameShot FrameView::render(double now_seconds) {
         shot.caustic_gpu_ms = stats.splat_ms + stats.filter_ms;
     }
     shot.image = renderer_.read(renderer::FrameImage::Frame);
+    const int w = shot.image.width;
+    const int h = shot.image.height;
+    std::vector<glm::vec4> lookup(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+    std::vector<glm::vec4> position(lookup.size());
+    const auto bytes = static_cast<GLsizei>(lookup.size() * sizeof(glm::vec4));
+    glGetTextureImage(renderer_.lightmap_texture(), 0, GL_RGBA, GL_FLOAT, bytes, lookup.data());
+    glGetTextureImage(renderer_.position_texture(), 0, GL_RGBA, GL_FLOAT, bytes, position.data());
+    shot.unmapped.assign(lookup.size(), 0);
+    for (int y = 0; y < h; ++y) {
+        // GL rows are bottom first, the image's top first.
+        for (int x = 0; x < w; ++x) {
+            const std::size_t gl =
+                static_cast<std::size_t>(h - 1 - y) * static_cast<std::size_t>(w) +
+                static_cast<std::size_t>(x);
+            shot.unmapped[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
+                          static_cast<std::size_t>(x)] =
+                position[gl].w > 0.5f && lookup[gl].z < 0.0f ? 1 : 0;
+        }
+    }
     return shot;
 }
 

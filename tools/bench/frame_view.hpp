@@ -3,9 +3,11 @@
 // The real-time frame for luxel-bench's image error: FrameRenderer and CausticPass on a
 // headless GL context, composed as the sandbox composes them, from the reference's camera.
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "luxel/ecs/registry.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
@@ -36,6 +38,9 @@ struct FrameShot {
     Image image;                  ///< the composed linear frame, rows top first
     double frame_gpu_ms = 0.0;    ///< FrameRenderer's passes (GPU timer queries)
     double caustic_gpu_ms = 0.0;  ///< CausticPass splat + filter (GPU); 0 without caustics
+    /// Per pixel (rows top first), 1 where geometry without a light map is drawn: the
+    /// receivers the irradiance probes light, where their error is measured on its own.
+    std::vector<std::uint8_t> unmapped;
 };
 
 /// One run's renderer. Needs the context current for its whole life.

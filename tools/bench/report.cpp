@@ -92,7 +92,9 @@ std::vector<std::string> row(const ReportInfo& info, const RunResult& r) {
             image_number(r, r.frame_gpu_ms, 3),
             image_number(r, r.caustic_gpu_ms, 3),
             r.animated_indirect.empty() ? kNotMeasured : number(r.animated_indirect_median),
-            r.animated_indirect.empty() ? kNotMeasured : number(r.animated_indirect_max)};
+            r.animated_indirect.empty() ? kNotMeasured : number(r.animated_indirect_max),
+            r.unmapped_pixels > 0 ? image_number(r, r.image_unmapped) : kNotMeasured,
+            std::to_string(r.unmapped_pixels)};
 }
 
 void write_csv(const std::filesystem::path& path, const std::vector<std::string>& header,
@@ -274,7 +276,9 @@ const std::vector<std::string>& run_columns() {
                                                   "frame_gpu_ms",
                                                   "caustic_gpu_ms",
                                                   "animated_indirect_median",
-                                                  "animated_indirect_max"};
+                                                  "animated_indirect_max",
+                                                  "image_unmapped_relrmse",
+                                                  "unmapped_pixels"};
     return columns;
 }
 

@@ -136,7 +136,7 @@ FeaturePlan::FeaturePlan(const SceneCensus& census) : census_(census) {
             "no light-mapped surface: no lit scene for irradiance probes to gather");
     } else if (c.unmapped_receivers == 0) {
         set(Pass::IrradianceProbes, false,
-            "every mesh has a light map: no receiver needs irradiance probes");
+            "every diffuse mesh has a light map: no receiver needs irradiance probes");
     } else {
         set(Pass::IrradianceProbes, true,
             receivers + (c.probes_pending ? "; probes gathering" : "; probes converged"));

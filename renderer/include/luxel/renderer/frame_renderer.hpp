@@ -188,6 +188,9 @@ class FrameRenderer {
     /// The G-buffer's world positions (RGBA32F, w = 1 where geometry is) and normals.
     [[nodiscard]] GLuint position_texture() const;
     [[nodiscard]] GLuint normal_texture() const;
+    /// The G-buffer's light-map lookup (RGBA32F: UV, IIM page layer, content; layer < 0 where
+    /// a pixel has no light map and the irradiance probes light it).
+    [[nodiscard]] GLuint lightmap_texture() const;
     /// Reads an image back (for EXR: write_exr(path, renderer.read(FrameImage::Frame))).
     [[nodiscard]] Image read(FrameImage image = FrameImage::Frame) const;
 
