@@ -38,6 +38,7 @@ lighting::LightingConfig BenchConfig::lighting() const {
     if (probes == 0) {
         config.probes.max_probes = 0;
     }
+    config.probes.spacing = static_cast<float>(probe_spacing);
     return config;
 }
 
@@ -53,6 +54,9 @@ std::string BenchConfig::knobs() const {
     }
     if (probes != 1) {
         out << " probes=" << probes;
+    }
+    if (probe_spacing != lighting::IrradianceProbeSettings{}.spacing) {
+        out << " probe_spacing=" << probe_spacing;
     }
     return out.str();
 }
@@ -97,6 +101,8 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.stitch = whole(value);
             } else if (sweep.knob == "probes") {
                 c.probes = whole(value);
+            } else if (sweep.knob == "probe_spacing") {
+                c.probe_spacing = std::stod(value);
             } else if (sweep.knob == "change_blend") {
                 c.change_blend = std::stod(value);
             } else if (sweep.knob == "keep") {

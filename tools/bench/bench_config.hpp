@@ -35,6 +35,8 @@ struct BenchConfig {
     /// Irradiance probes for receivers without a light map (1: on, default; 0: none placed,
     /// IrradianceProbeSettings::max_probes = 0).
     std::uint32_t probes = 1;
+    /// The irradiance probes' spacing in metres (IrradianceProbeSettings::spacing).
+    double probe_spacing = lighting::IrradianceProbeSettings{}.spacing;
     /// Seconds a local pass's texels fade in over (IlluminationSettings::change_blend_seconds).
     double change_blend = lighting::IlluminationSettings{}.change_blend_seconds;
     /// Standard deviations by which a full pass must show a texel's light changed before the

@@ -99,6 +99,11 @@ Sweep parse_sweep(const std::string& text) {
             if (value != "0" && value != "1") {
                 throw Error(what + ": '" + value + "' is not 0 (off) or 1 (on)");
             }
+        } else if (sweep.knob == "probe_spacing") {
+            const double v = number(value, what);
+            if (!(v >= 0.05 && v <= 100.0)) {
+                throw Error(what + ": '" + value + "' is not a spacing in metres in 0.05..100");
+            }
         } else if (sweep.knob == "change_blend") {
             const double v = number(value, what);
             if (!(v >= 0.0 && v <= 60.0)) {
@@ -111,12 +116,13 @@ Sweep parse_sweep(const std::string& text) {
                             "' is not a number of standard deviations in 0..100");
             }
         } else {
-            throw Error("--sweep " + sweep.knob +
-                        ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, filter, "
-                        "refine, local, change_blend, exact, contact, stitch, probes, keep, "
-                        "caustics, backend, "
-                        "kernel, "
-                        "aa)");
+            throw Error(
+                "--sweep " + sweep.knob +
+                ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, filter, "
+                "refine, local, change_blend, exact, contact, stitch, probes, probe_spacing, keep, "
+                "caustics, backend, "
+                "kernel, "
+                "aa)");
         }
     }
     return sweep;
