@@ -63,15 +63,18 @@ ProbeGrid room_grid(const LitCornell& lit) {
     return fit_probe_grid(box, 0.5f, 4096);
 }
 
+ProbeRayTracer tracer_of(const CpuGatherer& gatherer) {
+    return [&gatherer](const glm::vec3& origin, std::span<const glm::vec3> directions,
+                       std::span<ProbeRay> rays, std::uint32_t seed) {
+        gatherer.trace_probe_rays(origin, directions, rays, seed);
+    };
+}
+
 void ProbePass(benchmark::State& state) {
     LitCornell& lit = cornell();
     const CpuGatherer gatherer(lit.lighting->photons().ray_scene(), lit.lighting->maps().aim(),
                                {256, 1e6f});
-    const ProbeRayTracer tracer = [&](const glm::vec3& origin,
-                                      std::span<const glm::vec3> directions,
-                                      std::span<ProbeRay> rays, std::uint32_t seed) {
-        gatherer.trace_probe_rays(origin, directions, rays, seed);
-    };
+    const ProbeRayTracer tracer = tracer_of(gatherer);
     IrradianceProbes probes(room_grid(lit), {});
     CpuGatherer texel_gatherer(lit.lighting->photons().ray_scene(), lit.lighting->maps().aim(),
                                {256, 1e6f});
@@ -104,11 +107,7 @@ void ProbeLookup(benchmark::State& state) {
     LitCornell& lit = cornell();
     const CpuGatherer gatherer(lit.lighting->photons().ray_scene(), lit.lighting->maps().aim(),
                                {256, 1e6f});
-    const ProbeRayTracer tracer = [&](const glm::vec3& origin,
-                                      std::span<const glm::vec3> directions,
-                                      std::span<ProbeRay> rays, std::uint32_t seed) {
-        gatherer.trace_probe_rays(origin, directions, rays, seed);
-    };
+    const ProbeRayTracer tracer = tracer_of(gatherer);
     IrradianceProbes probes(room_grid(lit), {});
     while (probes.pending() > 0) {
         probes.gather(256, tracer, &lit.jobs);

@@ -3,11 +3,14 @@
 // and probe rays passing through geometry that has no light map.
 
 #include <cmath>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
 
+#include "cube_scene.hpp"
 #include "luxel/lighting/core/cpu_gather.hpp"
 #include "luxel/lighting/core/irradiance_probes.hpp"
 #include "luxel/lighting/core/octahedral.hpp"
@@ -106,32 +109,19 @@ TEST(IrradianceProbes, GridCoversTheLevelWithProbesHalfASpacingOutside) {
 
 // --- Scenes -----------------------------------------------------------------------------
 
-/// Appends an axis-aligned box [lo, hi] whose faces point inwards (`inwards`) or outwards, all
-/// of surface `surface`, with light-map UVs (0, 0) (the atlas below is one texel per page).
+/// Appends the box [lo, hi] (luxel::testing::append_box) facing inwards (`inwards`: a room)
+/// or outwards, all of surface `surface`, light-map UVs at the one-texel pages' centre.
 void add_box(TriangleMesh& mesh, const glm::vec3& lo, const glm::vec3& hi, bool inwards,
              std::int32_t surface) {
-    const glm::vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z},
-                            {lo.x, hi.y, lo.z}, {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z},
-                            {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
-    // Outward-facing quads (counter-clockwise seen from outside).
-    const int quads[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                             {3, 7, 6, 2}, {0, 4, 7, 3}, {1, 2, 6, 5}};
-    for (const auto& q : quads) {
-        const auto base = static_cast<std::uint32_t>(mesh.positions.size());
-        for (int k = 0; k < 4; ++k) {
-            mesh.positions.push_back(c[q[k]]);
-            mesh.lightmap_uvs.emplace_back(0.5f, 0.5f);
-        }
-        if (inwards) {
-            mesh.indices.insert(mesh.indices.end(),
-                                {base, base + 2, base + 1, base, base + 3, base + 2});
-        } else {
-            mesh.indices.insert(mesh.indices.end(),
-                                {base, base + 1, base + 2, base, base + 2, base + 3});
-        }
-        mesh.surface_ids.insert(mesh.surface_ids.end(), 2, surface);
-        mesh.material_ids.insert(mesh.material_ids.end(), 2, 0u);
+    const std::size_t first = mesh.indices.size();
+    luxel::testing::append_box(lo, hi, mesh.positions, mesh.indices);
+    mesh.lightmap_uvs.resize(mesh.positions.size(), glm::vec2(0.5f));
+    for (std::size_t i = first; inwards && i < mesh.indices.size(); i += 3) {
+        std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
     }
+    const std::size_t triangles = (mesh.indices.size() - first) / 3;
+    mesh.surface_ids.insert(mesh.surface_ids.end(), triangles, surface);
+    mesh.material_ids.insert(mesh.material_ids.end(), triangles, 0u);
 }
 
 /// An atlas of one-texel pages, surface s on page s, each of the given radiance.
@@ -145,36 +135,50 @@ RadianceAtlas flat_atlas(const std::vector<glm::vec3>& radiance) {
     return atlas;
 }
 
-ProbeRayTracer tracer_of(const CpuGatherer& gatherer) {
-    return [&gatherer](const glm::vec3& origin, std::span<const glm::vec3> directions,
-                       std::span<ProbeRay> rays, std::uint32_t seed) {
-        gatherer.trace_probe_rays(origin, directions, rays, seed);
-    };
-}
+/// Probes over [lo, hi] gathered to convergence (every pass of every probe) in a scene of
+/// static `meshes` and `dynamic` ones, lit by `atlas` through the CPU gather's rays.
+struct ConvergedProbes {
+    RayScene scene;
+    RadianceAtlas atlas;
+    JobSystem jobs{2};
+    std::unique_ptr<CpuGatherer> gatherer;
+    std::unique_ptr<IrradianceProbes> probes;
 
-/// Gathers every pass of every probe.
-void converge(IrradianceProbes& probes, const ProbeRayTracer& tracer, JobSystem& jobs) {
-    for (int guard = 0; guard < 10000 && probes.pending() > 0; ++guard) {
-        probes.gather(64, tracer, &jobs);
+    ConvergedProbes(const std::vector<TriangleMesh>& meshes, RadianceAtlas lights,
+                    const glm::vec3& lo, const glm::vec3& hi,
+                    const std::vector<TriangleMesh>& dynamic = {})
+        : atlas(std::move(lights)) {
+        for (const TriangleMesh& mesh : meshes) {
+            scene.add_object(mesh, glm::mat4(1.0f), false);
+        }
+        for (const TriangleMesh& mesh : dynamic) {
+            scene.add_object(mesh, glm::mat4(1.0f), true);
+        }
+        scene.commit();
+        gatherer = std::make_unique<CpuGatherer>(scene, atlas, CpuGatherSettings{64, 1e6f});
+        AxisBox level;
+        level.add(lo);
+        level.add(hi);
+        probes = std::make_unique<IrradianceProbes>(fit_probe_grid(level, 0.5f, 4096),
+                                                    IrradianceProbeSettings{});
+        const ProbeRayTracer tracer = [this](const glm::vec3& origin,
+                                             std::span<const glm::vec3> directions,
+                                             std::span<ProbeRay> rays, std::uint32_t seed) {
+            gatherer->trace_probe_rays(origin, directions, rays, seed);
+        };
+        for (int guard = 0; guard < 10000 && probes->pending() > 0; ++guard) {
+            probes->gather(64, tracer, &jobs);
+        }
     }
-    ASSERT_EQ(probes.pending(), 0u);
-}
+};
 
 TEST(IrradianceProbes, ClosedBoxOfConstantRadianceGivesPiLEverywhereInside) {
     TriangleMesh room;
     add_box(room, {0, 0, 0}, {3, 2.5f, 4}, true, 0);
-    RayScene scene;
-    scene.add_object(room, glm::mat4(1.0f), false);
-    scene.commit();
     const glm::vec3 l(0.4f, 0.8f, 1.6f);
-    const RadianceAtlas atlas = flat_atlas({l});
-    JobSystem jobs(2);
-    const CpuGatherer gatherer(scene, atlas, {64, 1e6f});
-    AxisBox level;
-    level.add({0, 0, 0});
-    level.add({3, 2.5f, 4});
-    IrradianceProbes probes(fit_probe_grid(level, 0.5f, 4096), {});
-    converge(probes, tracer_of(gatherer), jobs);
+    const ConvergedProbes lit({room}, flat_atlas({l}), {0, 0, 0}, {3, 2.5f, 4});
+    const IrradianceProbes& probes = *lit.probes;
+    ASSERT_EQ(probes.pending(), 0u);
     // Probes half a spacing outside the walls see the room's backs: out.
     std::size_t active = 0;
     for (const ProbeState& p : probes.probes()) {
@@ -205,17 +209,10 @@ TEST(IrradianceProbes, TenCentimetreWallKeepsALitRoomsLightOutOfTheDarkOne) {
     TriangleMesh mesh;
     add_box(mesh, {-3, 0, 0}, {-0.05f, 2.5f, 3}, true, 0);  // left room, lit
     add_box(mesh, {0.05f, 0, 0}, {3, 2.5f, 3}, true, 1);    // right room, dark
-    RayScene scene;
-    scene.add_object(mesh, glm::mat4(1.0f), false);
-    scene.commit();
-    const RadianceAtlas atlas = flat_atlas({glm::vec3(1.0f), glm::vec3(0.0f)});
-    JobSystem jobs(2);
-    const CpuGatherer gatherer(scene, atlas, {64, 1e6f});
-    AxisBox level;
-    level.add({-3, 0, 0});
-    level.add({3, 2.5f, 3});
-    IrradianceProbes probes(fit_probe_grid(level, 0.5f, 4096), {});
-    converge(probes, tracer_of(gatherer), jobs);
+    const ConvergedProbes rooms({mesh}, flat_atlas({glm::vec3(1.0f), glm::vec3(0.0f)}), {-3, 0, 0},
+                                {3, 2.5f, 3});
+    const IrradianceProbes& probes = *rooms.probes;
+    ASSERT_EQ(probes.pending(), 0u);
     const float lit = glm::pi<float>();
     // Receivers 5 cm to 1 m from the wall, facing it, along it and away from it, each seen
     // from a camera in its own room.
@@ -241,19 +238,11 @@ TEST(IrradianceProbes, RaysPassThroughGeometryWithoutALightMap) {
     add_box(room, {0, 0, 0}, {3, 2.5f, 3}, true, 0);
     TriangleMesh crate;
     add_box(crate, {1.1f, 0.0f, 1.1f}, {1.9f, 0.8f, 1.9f}, false, 1);
-    RayScene scene;
-    scene.add_object(room, glm::mat4(1.0f), false);
-    scene.add_object(crate, glm::mat4(1.0f), true);
-    scene.commit();
     RadianceAtlas atlas = flat_atlas({glm::vec3(1.0f)});
     atlas.surface_page.push_back(-1);  // the crate: no light map
-    JobSystem jobs(2);
-    const CpuGatherer gatherer(scene, atlas, {64, 1e6f});
-    AxisBox level;
-    level.add({0, 0, 0});
-    level.add({3, 2.5f, 3});
-    IrradianceProbes probes(fit_probe_grid(level, 0.5f, 4096), {});
-    converge(probes, tracer_of(gatherer), jobs);
+    const ConvergedProbes lit({room}, std::move(atlas), {0, 0, 0}, {3, 2.5f, 3}, {crate});
+    const IrradianceProbes& probes = *lit.probes;
+    ASSERT_EQ(probes.pending(), 0u);
     // On the crate's top and sides, as everywhere in the room: pi.
     EXPECT_NEAR(probes.irradiance({1.5f, 0.8f, 1.5f}, {0, 1, 0}).x, glm::pi<float>(), 0.03f);
     EXPECT_NEAR(probes.irradiance({1.9f, 0.4f, 1.5f}, {1, 0, 0}).x, glm::pi<float>(), 0.03f);
@@ -273,18 +262,10 @@ TEST(IrradianceProbes, AProbeInsideGeometryMovesOutOrStaysOut) {
         add_box(mesh, {0, 0, 0}, {3, 3, 3}, true, 0);
         add_box(mesh, glm::vec3(1.25f - half, 0.5f, 1.25f - half),
                 glm::vec3(1.25f + half, 2.0f, 1.25f + half), false, 0);
-        RayScene scene;
-        scene.add_object(mesh, glm::mat4(1.0f), false);
-        scene.commit();
-        const RadianceAtlas atlas = flat_atlas({glm::vec3(1.0f)});
-        JobSystem jobs(2);
-        const CpuGatherer gatherer(scene, atlas, {64, 1e6f});
-        AxisBox level;
-        level.add({0, 0, 0});
-        level.add({3, 3, 3});
-        IrradianceProbes probes(fit_probe_grid(level, 0.5f, 4096), {});
+        const ConvergedProbes lit({mesh}, flat_atlas({glm::vec3(1.0f)}), {0, 0, 0}, {3, 3, 3});
+        const IrradianceProbes& probes = *lit.probes;
         ASSERT_EQ(probes.grid().counts, glm::ivec3(8));
-        converge(probes, tracer_of(gatherer), jobs);
+        ASSERT_EQ(probes.pending(), 0u);
         const ProbeState& inside = probes.probes()[probes.grid().index({3, 3, 3})];
         if (half < 0.1f) {
             EXPECT_TRUE(inside.active);
