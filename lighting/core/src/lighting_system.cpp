@@ -164,6 +164,33 @@ SceneCensus LightingSystem::take_census() const {
         mapped += surface.texels.texels.empty() ? 0u : 1u;
     }
     census.lightmapped_surfaces = mapped;
+    census.unmapped_receivers = unmapped_receivers_;
+    census.probes_pending = probes_ != nullptr && probes_->pending() > 0;
+    census.dynamic_objects = static_cast<std::uint32_t>(photons_->dynamic_object_count());
+    const PhotonSyncStats& sync = photons_->last_sync();
+    census.moving_objects = sync.objects_moved;
+    census.geometry_changes = sync.meshes_changed;
+    std::uint32_t specular = 0;
+    for (const TraceMaterial& material : photons_->materials()) {
+        specular += material.scattering != Scattering::Diffuse ? 1u : 0u;
+    }
+    census.specular_materials = specular;
+    const std::uint64_t probe_cycle = config_.photons.selective.per_group;
+    census.maps_pending = !maps_->aim_requests().empty() || !maps_->gather_requests().empty();
+    census.converged = photons_->pending_groups().empty() && !photons_->caustics_pending() &&
+                       !census.maps_pending && !census.probes_pending &&
+                       scheduler_.pending_total() == 0 && frames_since_change_ >= probe_cycle;
+    return census;
+}
+
+void LightingSystem::count_unmapped_receivers() {
+    // Meshes come and go only through a sync that reports them, and surfaces only with them:
+    // counted again then, not every frame.
+    if (photons_->last_sync().meshes_changed == 0 &&
+        maps_->surfaces().size() == counted_surfaces_) {
+        return;
+    }
+    counted_surfaces_ = maps_->surfaces().size();
     // Receivers without a light map: mesh objects none of whose surfaces is mapped, and that
     // have a diffuse primitive (glass and mirrors show what they reflect and refract, not
     // indirect light of their own).
@@ -196,23 +223,7 @@ SceneCensus LightingSystem::take_census() const {
             });
         unmapped += diffuse ? 1u : 0u;
     }
-    census.unmapped_receivers = unmapped;
-    census.probes_pending = probes_ != nullptr && probes_->pending() > 0;
-    census.dynamic_objects = static_cast<std::uint32_t>(photons_->dynamic_object_count());
-    const PhotonSyncStats& sync = photons_->last_sync();
-    census.moving_objects = sync.objects_moved;
-    census.geometry_changes = sync.meshes_changed;
-    std::uint32_t specular = 0;
-    for (const TraceMaterial& material : photons_->materials()) {
-        specular += material.scattering != Scattering::Diffuse ? 1u : 0u;
-    }
-    census.specular_materials = specular;
-    const std::uint64_t probe_cycle = config_.photons.selective.per_group;
-    census.maps_pending = !maps_->aim_requests().empty() || !maps_->gather_requests().empty();
-    census.converged = photons_->pending_groups().empty() && !photons_->caustics_pending() &&
-                       !census.maps_pending && !census.probes_pending &&
-                       scheduler_.pending_total() == 0 && frames_since_change_ >= probe_cycle;
-    return census;
+    unmapped_receivers_ = unmapped;
 }
 
 const LightingStats& LightingSystem::update(double budget_ms, double now_seconds) {
@@ -230,6 +241,7 @@ const LightingStats& LightingSystem::update(double budget_ms, double now_seconds
 
     stats_ = {};
     stats_.frame = frame_;
+    count_unmapped_receivers();
     stats_.census = take_census();
     plan_ = FeaturePlan::from(stats_.census);
     sync_probes();

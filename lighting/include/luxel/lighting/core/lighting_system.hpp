@@ -164,6 +164,9 @@ class LightingSystem {
 
   private:
     SceneCensus take_census() const;
+    /// Counts the diffuse mesh objects without a light map (SceneCensus::unmapped_receivers)
+    /// when meshes or surfaces changed.
+    void count_unmapped_receivers();
     /// Why the warm-up can make no progress, after this update and `idle_updates` without any.
     [[nodiscard]] std::string warm_up_stall(int idle_updates) const;
     void queue_work();
@@ -187,6 +190,9 @@ class LightingSystem {
     /// may change the level's extent).
     std::uint32_t probe_grid_surfaces_ = 0;
     std::size_t queued_probe_units_ = 0;
+    std::uint32_t unmapped_receivers_ = 0;
+    /// The surface count unmapped_receivers_ was counted at (max: never counted).
+    std::size_t counted_surfaces_ = std::numeric_limits<std::size_t>::max();
     IrradianceGatherer* gatherer_ = nullptr;
     Scheduler scheduler_;
     const Clock* clock_;
