@@ -21,6 +21,7 @@
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/scene_instance.hpp"
+#include "luxel/world/skinning.hpp"
 #include "luxel/world/sky.hpp"
 #include "validator.hpp"
 
@@ -141,9 +142,10 @@ TEST(BuiltInLevels, CausticsHasThreeGeneratorsAndEveryLightKind) {
 
 TEST(BuiltInLevels, SandboxHasEverythingTheGameLevelPromises) {
     Loaded level("sandbox");
-    // A door that swings, a glass sculpture that turns, a lamp that swings, a switched light,
-    // and a ball the game's bounce system moves (dynamic, no animation of its own).
-    EXPECT_EQ(level.scene->animations.size(), 3u);
+    // A door that swings, a glass sculpture that turns, a lamp that swings, a figure that walks,
+    // a switched light, and a ball the game's bounce system moves (dynamic, no animation of its
+    // own).
+    EXPECT_EQ(level.scene->animations.size(), 4u);
     EXPECT_EQ(count<lighting::PointLight>(level.registry), 4u);
     EXPECT_EQ(count<world::LightSwitch>(level.registry), 1u);
     EXPECT_EQ(count<lighting::CausticGenerator>(level.registry), 1u);
@@ -165,6 +167,58 @@ TEST(BuiltInLevels, SandboxHasEverythingTheGameLevelPromises) {
     const glm::vec3 after =
         level.registry.get<ecs::WorldTransform>(level["swinging lamp"]).position();
     EXPECT_GT(std::abs(after.x - before.x), 0.3f);  // 0.9 m cord, 30 degrees: 0.45 m
+}
+
+// The walker (issue 29: the main job shows a skinned character): one skinned mesh that walks
+// from the west room through the corridor to the east room and back, upright, 1.72 m tall,
+// through the doorway only while the door stands open.
+TEST(BuiltInLevels, SandboxHasAFigureThatWalksThroughBothRooms) {
+    Loaded level("sandbox");
+    ASSERT_EQ(level.instance.skinned.size(), 1u);
+    ASSERT_EQ(level.scene->skins.size(), 1u);
+    ecs::TransformSystem transforms(level.registry);
+    struct Stop {
+        double time;
+        float x_min;
+        float x_max;
+    };
+    // Times into the 16 s loop: standing in the west room, in the doorway (x = 0), in the
+    // corridor, standing in the east room, back in the doorway, and home again a loop later.
+    const Stop stops[] = {{1.0, -4.0f, -2.5f}, {4.9, -0.4f, 0.4f},  {6.0, 0.5f, 2.5f},
+                          {9.0, 3.5f, 5.0f},   {13.0, -0.4f, 0.4f}, {17.0, -4.0f, -2.5f}};
+    double now = 0.0;
+    for (const Stop& stop : stops) {
+        world::update_animations(level.registry, stop.time - now);
+        now = stop.time;
+        transforms.update();
+        world::update_skins(level.registry);
+        const auto& mesh = level.registry.get<scene::MeshInstance>(level.instance.skinned[0]);
+        ASSERT_TRUE(mesh.posed);
+        glm::vec3 lo(1e9f);
+        glm::vec3 hi(-1e9f);
+        for (const scene::Primitive& primitive : mesh.geometry().primitives) {
+            for (const glm::vec3& p : primitive.positions) {
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
+            }
+        }
+        const glm::vec3 centre = 0.5f * (lo + hi);
+        EXPECT_GT(centre.x, stop.x_min) << "t = " << stop.time;
+        EXPECT_LT(centre.x, stop.x_max) << "t = " << stop.time;
+        EXPECT_NEAR(lo.y, 0.0f, 0.05f) << "t = " << stop.time << ": feet on the floor";
+        EXPECT_NEAR(hi.y, 1.72f, 0.05f) << "t = " << stop.time << ": upright";
+        // Inside the rooms and the corridor (z within the corridor's walls in the doorway).
+        const bool in_doorway = std::abs(centre.x) < 0.5f;
+        const float half_width = in_doorway ? 0.5f : 2.0f;
+        if (in_doorway) {
+            // The door (1 m wide, hinged at x = 0) stands open into the west room.
+            const glm::vec3 door =
+                level.registry.get<ecs::WorldTransform>(level["door"]).position();
+            EXPECT_LT(door.x, -0.4f) << "t = " << stop.time << ": the door is in the way";
+        }
+        EXPECT_GT(lo.z, -half_width) << "t = " << stop.time;
+        EXPECT_LT(hi.z, half_width) << "t = " << stop.time;
+    }
 }
 
 TEST(BuiltInLevels, SandboxHasDaylightThroughAWindowInEachRoom) {

@@ -82,6 +82,26 @@ int LevelBuilder::add_camera(const std::string& name, glm::vec3 eye, glm::vec3 t
     return index;
 }
 
+int LevelBuilder::add_skin(const std::string& name, std::vector<int> joints) {
+    const std::vector<glm::mat4> world = scene_.world_matrices();
+    scene::Skin skin;
+    skin.name = name;
+    for (const int joint : joints) {
+        skin.inverse_bind_matrices.push_back(
+            glm::inverse(world.at(static_cast<std::size_t>(joint))));
+    }
+    skin.joints = std::move(joints);
+    scene_.skins.push_back(std::move(skin));
+    return static_cast<int>(scene_.skins.size()) - 1;
+}
+
+int LevelBuilder::add_skinned_mesh_node(const std::string& name, scene::Primitive primitive,
+                                        int material, int skin) {
+    const int index = add_mesh_node(name, std::move(primitive), material);
+    node(index).skin = skin;
+    return index;
+}
+
 void LevelBuilder::animate(const std::string& animation_name, int node_index,
                            scene::AnimatedProperty property, scene::Interpolation interpolation,
                            std::vector<float> times, std::vector<glm::vec4> values) {

@@ -30,6 +30,14 @@ class LevelBuilder {
     /// A perspective camera at `eye` looking at `target` (+y up).
     int add_camera(const std::string& name, glm::vec3 eye, glm::vec3 target, float yfov_radians);
 
+    /// A skin (glTF 3.7.3) over `joints` (node indices), bound where the joints stand now: each
+    /// inverse bind matrix is the inverse of its joint's world matrix in the nodes' own TRS.
+    int add_skin(const std::string& name, std::vector<int> joints);
+    /// A root node drawing `primitive` (with joints and weights) deformed by skin `skin`; as
+    /// glTF says, its own transform is ignored, so it has none.
+    int add_skinned_mesh_node(const std::string& name, scene::Primitive primitive, int material,
+                              int skin);
+
     /// Animates one property of a node through keyframes (times in seconds).
     void animate(const std::string& animation_name, int node, scene::AnimatedProperty property,
                  scene::Interpolation interpolation, std::vector<float> times,

@@ -7,6 +7,7 @@
 
 #include "level_builder.hpp"
 #include "mesh_builders.hpp"
+#include "walker.hpp"
 
 namespace luxel::levels {
 namespace {
@@ -341,6 +342,7 @@ scene::Scene make_sandbox() {
     const int door_paint = level.add_diffuse("door", glm::vec3(0.20f, 0.30f, 0.55f));
     const int ball_paint = level.add_diffuse("ball", glm::vec3(0.85f, 0.15f, 0.10f));
     const int shade = level.add_diffuse("lamp shade", glm::vec3(0.9f, 0.85f, 0.7f));
+    const int overalls = level.add_diffuse("overalls", glm::vec3(0.80f, 0.55f, 0.20f));
     const int sculpture_glass = level.add_material(glass("sculpture glass", 1.5f));
 
     auto room = [&](const std::string& prefix, float x0, float x1, int walls, bool west) {
@@ -438,6 +440,22 @@ scene::Scene make_sandbox() {
         level.add_mesh_node("ball", make_sphere(0.2f, 32, 16), ball_paint, -1, {-1.2f, 0.2f, 0.9f});
     level.node(ball).flags.dynamic = true;
     level.node(ball).flags.raw["bounce"] = {{"height", 1.0}, {"period", 1.2}};
+
+    // A figure (a skinned mesh, issue 29) that walks from the west room's end wall through the
+    // corridor to the east room's north side and back on a 16 s loop, twice the door's, passing
+    // the doorway at 4.9 s and 13 s while the door stands open (4-6 s of its 8 s loop), along
+    // z = 0: clear of the open door leaf (z < -0.5), the ball (z = 0.9) and the lamp's cord.
+    add_walker(level, "walker", overalls,
+               {{0.0f, {-3.4f, 0.0f}},
+                {1.6f, {-3.4f, 0.0f}},
+                {4.9f, {0.0f, 0.0f}},
+                {7.4f, {3.0f, 0.0f}},
+                {8.9f, {4.3f, -1.2f}},
+                {9.2f, {4.3f, -1.2f}},
+                {10.6f, {3.0f, 0.0f}},
+                {13.0f, {0.0f, 0.0f}},
+                {15.6f, {-3.4f, 0.0f}},
+                {16.0f, {-3.4f, 0.0f}}});
 
     // The corridor light switches on for 2 s of every 4.
     const int corridor_light =

@@ -25,7 +25,7 @@ struct LevelRecipe {
 [[nodiscard]] scene::Scene make_caustics();
 /// The sandbox game level (issue 10): two rooms joined by a corridor, a swinging door, a turning
 /// glass sculpture, a bouncing ball (moved by a game system from extras.luxel.bounce), a
-/// swinging lamp and a switched light.
+/// swinging lamp, a switched light, and a skinned figure walking through both rooms.
 [[nodiscard]] scene::Scene make_sandbox();
 /// A closed sphere seen from inside, uniform albedo and emission (stability checks: the exact
 /// radiance inside is L = Le / (1 - albedo)).
