@@ -1,8 +1,10 @@
 #include "sandbox_app.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
+#include "luxel/lighting/core/cost_model.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/log.hpp"
 #include "luxel/scene/gltf.hpp"
@@ -137,7 +139,18 @@ SandboxApp::FrameResult SandboxApp::frame(double time, double dt,
     report.counters["caustic_photons_traced"] = static_cast<double>(stats.caustic_photons_traced);
     report.counters["aim_texels"] = static_cast<double>(stats.aim_texels);
     report.counters["texels_gathered"] = static_cast<double>(stats.texels_gathered);
+    report.counters["probes_gathered"] = static_cast<double>(stats.probes_gathered);
     report.counters["work_units"] = static_cast<double>(stats.schedule.units_done);
+    // Where the budget went, per kind of unit, and what came before the scheduler (change
+    // tracking, the ray scene's commit): a moving character's cost shows here.
+    double scheduled_ms = 0.0;
+    for (std::size_t k = 0; k < lighting::kWorkKindCount; ++k) {
+        const double ms = stats.schedule.kinds[k].ms;
+        report.counters[std::string(lighting::name(static_cast<lighting::WorkKind>(k))) + "_ms"] =
+            ms;
+        scheduled_ms += ms;
+    }
+    report.counters["outside_units_ms"] = std::max(0.0, result.lighting_ms - scheduled_ms);
     report.counters["units_pending"] = static_cast<double>(stats.schedule.pending_after());
     report.counters["stored_hits"] = static_cast<double>(stats.stored_hits);
     report.counters["passes_active"] = static_cast<double>(lighting_->plan().active_count());

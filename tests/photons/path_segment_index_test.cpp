@@ -119,6 +119,24 @@ TEST(PathSegmentIndex, FindsExactlyTheGroupsABruteForceTestFinds) {
         }
         const AxisBox huge = box_of(glm::vec3(-1e5f), glm::vec3(1e5f));
         EXPECT_EQ(index.groups_meeting(huge), brute_force(groups, huge)) << when;
+        // Several boxes at once (a moved object's old and new places, overlapping, and one
+        // elsewhere, and an empty one): the union of what each box alone finds.
+        for (int q = 0; q < 100; ++q) {
+            const glm::vec3 lo(room(rng), room(rng), room(rng));
+            const glm::vec3 extent(size(rng), size(rng), size(rng));
+            const glm::vec3 elsewhere(room(rng), room(rng), room(rng));
+            const std::vector<AxisBox> boxes{
+                box_of(lo, lo + extent), box_of(lo + 0.1f * extent, lo + 1.1f * extent),
+                box_of(elsewhere, elsewhere + extent), AxisBox{}};
+            std::vector<std::uint32_t> expected;
+            for (const AxisBox& box : boxes) {
+                const std::vector<std::uint32_t> one = brute_force(groups, box);
+                expected.insert(expected.end(), one.begin(), one.end());
+            }
+            std::sort(expected.begin(), expected.end());
+            expected.erase(std::unique(expected.begin(), expected.end()), expected.end());
+            EXPECT_EQ(index.groups_meeting(boxes), expected) << when << ", boxes " << q;
+        }
         // The check compared something: most random boxes meet some group, not all meet all.
         EXPECT_GT(meeting, 100) << when;
     };

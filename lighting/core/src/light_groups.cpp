@@ -171,26 +171,17 @@ void LightGroups::add_pending(std::uint32_t group) {
 }
 
 std::size_t LightGroups::invalidate_crossing(std::span<const AxisBox> boxes) {
-    std::vector<std::uint32_t> crossing;
-    for (const AxisBox& box : boxes) {
-        const std::vector<std::uint32_t> found = paths_.groups_meeting(box);
-        crossing.insert(crossing.end(), found.begin(), found.end());
-    }
-    std::sort(crossing.begin(), crossing.end());
-    crossing.erase(std::unique(crossing.begin(), crossing.end()), crossing.end());
+    const std::vector<std::uint32_t> crossing = paths_.groups_meeting(boxes);
     // First in the queue, in group order (the retrace takes the oldest first); a group already
     // pending moves to the front with them.
-    std::size_t added = 0;
-    for (const std::uint32_t group : crossing) {
-        const auto found = std::find(pending_.begin(), pending_.end(), group);
-        if (found == pending_.end()) {
-            ++added;
-        } else {
-            pending_.erase(found);
-        }
-    }
+    // One pass over the queue (crossing is sorted), not a search of it per crossing group.
+    const std::size_t before = pending_.size();
+    std::erase_if(pending_, [&](std::uint32_t group) {
+        return std::binary_search(crossing.begin(), crossing.end(), group);
+    });
+    const std::size_t moved = before - pending_.size();
     pending_.insert(pending_.begin(), crossing.begin(), crossing.end());
-    return added;
+    return crossing.size() - moved;
 }
 
 void LightGroups::drop_pending(const LightPhotons& photons) {

@@ -33,6 +33,16 @@ bool finite(const glm::vec3& v) {
 }  // namespace
 
 bool segment_meets_box(const PathSegment& segment, const AxisBox& box) {
+    // Most segments a query tests pass nowhere near the box, which their own bounds tell with
+    // six comparisons and no division (exact: a segment lies within its bounds). Branch-free,
+    // since a branch per axis mispredicts on segments rejected at random.
+    const glm::vec3 low = glm::min(segment.from, segment.to);
+    const glm::vec3 high = glm::max(segment.from, segment.to);
+    if (static_cast<int>(high.x < box.min.x) | static_cast<int>(high.y < box.min.y) |
+        static_cast<int>(high.z < box.min.z) | static_cast<int>(low.x > box.max.x) |
+        static_cast<int>(low.y > box.max.y) | static_cast<int>(low.z > box.max.z)) {
+        return false;
+    }
     if (box.empty() || !finite(segment.from) || !finite(segment.to)) {
         return false;
     }
@@ -221,16 +231,12 @@ void PathSegmentIndex::clear_group(std::uint32_t group) {
     entry = Group{};
 }
 
-bool PathSegmentIndex::group_meets(const Group& group, const AxisBox& box) const {
-    return std::any_of(group.segments.begin(), group.segments.end(),
-                       [&](const PathSegment& s) { return segment_meets_box(s, box); });
+std::vector<std::uint32_t> PathSegmentIndex::groups_meeting(const AxisBox& box) const {
+    return groups_meeting(std::span<const AxisBox>(&box, 1));
 }
 
-std::vector<std::uint32_t> PathSegmentIndex::groups_meeting(const AxisBox& box) const {
-    std::vector<std::uint32_t> found;
-    if (box.empty() || segment_count_ == 0 || !finite(box.min) || !finite(box.max)) {
-        return found;
-    }
+void PathSegmentIndex::add_candidates(const AxisBox& box, std::uint32_t box_index,
+                                      std::vector<Candidate>& candidates) const {
     const double scale = 1.0 / static_cast<double>(cell_size_);
     const glm::dvec3 lo = glm::dvec3(box.min) * scale - kQueryMargin;
     const glm::dvec3 hi = glm::dvec3(box.max) * scale + kQueryMargin;
@@ -242,36 +248,68 @@ std::vector<std::uint32_t> PathSegmentIndex::groups_meeting(const AxisBox& box) 
         cells *= std::floor(hi[axis]) - std::floor(lo[axis]) + 1.0;
     }
     scan_all = scan_all || cells > static_cast<double>(kMaxQueryCells);
-    std::vector<std::uint32_t> candidates;
     if (scan_all) {
         // A box as large as the scene meets most groups anyway: test them all.
         for (std::uint32_t g = 0; g < groups_.size(); ++g) {
-            candidates.push_back(g);
+            candidates.push_back({g, box_index});
         }
-    } else {
-        const glm::i64vec3 first(static_cast<std::int64_t>(std::floor(lo.x)),
-                                 static_cast<std::int64_t>(std::floor(lo.y)),
-                                 static_cast<std::int64_t>(std::floor(lo.z)));
-        const glm::i64vec3 end(static_cast<std::int64_t>(std::floor(hi.x)),
-                               static_cast<std::int64_t>(std::floor(hi.y)),
-                               static_cast<std::int64_t>(std::floor(hi.z)));
-        for (std::int64_t z = first.z; z <= end.z; ++z) {
-            for (std::int64_t y = first.y; y <= end.y; ++y) {
-                for (std::int64_t x = first.x; x <= end.x; ++x) {
-                    const auto cell = cell_groups_.find(cell_key(x, y, z));
-                    if (cell != cell_groups_.end()) {
-                        candidates.insert(candidates.end(), cell->second.begin(),
-                                          cell->second.end());
+        return;
+    }
+    const glm::i64vec3 first(static_cast<std::int64_t>(std::floor(lo.x)),
+                             static_cast<std::int64_t>(std::floor(lo.y)),
+                             static_cast<std::int64_t>(std::floor(lo.z)));
+    const glm::i64vec3 end(static_cast<std::int64_t>(std::floor(hi.x)),
+                           static_cast<std::int64_t>(std::floor(hi.y)),
+                           static_cast<std::int64_t>(std::floor(hi.z)));
+    for (std::int64_t z = first.z; z <= end.z; ++z) {
+        for (std::int64_t y = first.y; y <= end.y; ++y) {
+            for (std::int64_t x = first.x; x <= end.x; ++x) {
+                const auto cell = cell_groups_.find(cell_key(x, y, z));
+                if (cell != cell_groups_.end()) {
+                    for (const std::uint32_t g : cell->second) {
+                        candidates.push_back({g, box_index});
                     }
                 }
             }
         }
-        candidates.insert(candidates.end(), unbinned_.begin(), unbinned_.end());
-        std::sort(candidates.begin(), candidates.end());
-        candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
     }
-    for (const std::uint32_t g : candidates) {
-        if (group_meets(groups_[g], box)) {
+    for (const std::uint32_t g : unbinned_) {
+        candidates.push_back({g, box_index});
+    }
+}
+
+std::vector<std::uint32_t> PathSegmentIndex::groups_meeting(std::span<const AxisBox> boxes) const {
+    std::vector<std::uint32_t> found;
+    if (segment_count_ == 0) {
+        return found;
+    }
+    std::vector<Candidate> candidates;
+    for (std::size_t b = 0; b < boxes.size(); ++b) {
+        const AxisBox& box = boxes[b];
+        if (!box.empty() && finite(box.min) && finite(box.max)) {
+            add_candidates(box, static_cast<std::uint32_t>(b), candidates);
+        }
+    }
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    // Each candidate group's segments are read once for every box it may meet: the two boxes
+    // of a moved object (where it was, where it is) mostly overlap, and reading the segments
+    // is what a query costs.
+    std::vector<const AxisBox*> its_boxes;
+    for (std::size_t run = 0; run < candidates.size();) {
+        const std::uint32_t g = candidates[run].group;
+        its_boxes.clear();
+        std::size_t next = run;
+        for (; next < candidates.size() && candidates[next].group == g; ++next) {
+            its_boxes.push_back(&boxes[candidates[next].box]);
+        }
+        run = next;
+        const bool meets = std::any_of(
+            groups_[g].segments.begin(), groups_[g].segments.end(), [&](const PathSegment& s) {
+                return std::any_of(its_boxes.begin(), its_boxes.end(),
+                                   [&](const AxisBox* box) { return segment_meets_box(s, *box); });
+            });
+        if (meets) {
             found.push_back(g);
         }
     }

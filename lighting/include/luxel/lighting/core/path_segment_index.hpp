@@ -51,6 +51,10 @@ class PathSegmentIndex {
 
     /// The groups with a segment that meets `box`, ascending, without repeats.
     [[nodiscard]] std::vector<std::uint32_t> groups_meeting(const AxisBox& box) const;
+    /// The groups with a segment that meets any of `boxes`, ascending, without repeats; one
+    /// read of each candidate group's segments for all the boxes it may meet, cheaper than a
+    /// query per box when boxes overlap (an object's old and new places).
+    [[nodiscard]] std::vector<std::uint32_t> groups_meeting(std::span<const AxisBox> boxes) const;
 
     [[nodiscard]] std::span<const PathSegment> segments(std::uint32_t group) const;
     [[nodiscard]] std::size_t group_count() const { return groups_.size(); }
@@ -66,6 +70,15 @@ class PathSegmentIndex {
         bool unbinned = false;
     };
 
+    struct Candidate {
+        std::uint32_t group = 0;
+        std::uint32_t box = 0;
+        auto operator<=>(const Candidate&) const = default;
+    };
+    /// The groups binned in the cells `box` covers (all of them for a box too large for the
+    /// grid) and the unbinned ones, each as (group, box_index).
+    void add_candidates(const AxisBox& box, std::uint32_t box_index,
+                        std::vector<Candidate>& candidates) const;
     /// The cells the segment passes through, appended to `cells`; false when there would be
     /// more than kMaxCellsPerSegment.
     bool add_cells(const PathSegment& segment, std::vector<std::uint64_t>& cells) const;
@@ -74,7 +87,6 @@ class PathSegmentIndex {
     /// 8 bytes a cell for every group would double the index's memory for a walk that costs
     /// about what storing them did.
     bool cells_of(std::span<const PathSegment> segments, std::vector<std::uint64_t>& cells) const;
-    [[nodiscard]] bool group_meets(const Group& group, const AxisBox& box) const;
 
     std::vector<Group> groups_;
     std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cell_groups_;
