@@ -171,16 +171,28 @@ void LightGroups::add_pending(std::uint32_t group) {
 }
 
 std::size_t LightGroups::invalidate_crossing(std::span<const AxisBox> boxes) {
-    const std::vector<std::uint32_t> crossing = paths_.groups_meeting(boxes);
+    // Groups an earlier frame's crossing already queued are still at the front of the queue,
+    // waiting for their retrace: the query skips them (in the sandbox level, where five objects
+    // move every frame, most of what it would find).
+    const std::vector<std::uint32_t> crossing = paths_.groups_meeting(boxes, crossing_pending_);
+    if (crossing.empty()) {
+        return 0;
+    }
     // First in the queue, in group order (the retrace takes the oldest first); a group already
-    // pending moves to the front with them.
-    // One pass over the queue (crossing is sorted), not a search of it per crossing group.
+    // pending for another reason moves to the front with them. One pass over the queue
+    // (crossing is sorted), not a search of it per crossing group.
     const std::size_t before = pending_.size();
     std::erase_if(pending_, [&](std::uint32_t group) {
         return std::binary_search(crossing.begin(), crossing.end(), group);
     });
     const std::size_t moved = before - pending_.size();
     pending_.insert(pending_.begin(), crossing.begin(), crossing.end());
+    if (crossing_pending_.size() <= crossing.back()) {
+        crossing_pending_.resize(static_cast<std::size_t>(crossing.back()) + 1, 0);
+    }
+    for (const std::uint32_t group : crossing) {
+        crossing_pending_[group] = 1;
+    }
     return crossing.size() - moved;
 }
 
@@ -188,6 +200,10 @@ void LightGroups::drop_pending(const LightPhotons& photons) {
     std::erase_if(pending_, [&](std::uint32_t g) {
         return g >= photons.first_group() && g < photons.first_group() + photons.group_count();
     });
+    for (std::uint32_t g = photons.first_group();
+         g < photons.first_group() + photons.group_count() && g < crossing_pending_.size(); ++g) {
+        crossing_pending_[g] = 0;
+    }
 }
 
 std::vector<ecs::Entity> LightGroups::enabled_entities() const {
@@ -247,6 +263,11 @@ EmissionStats LightGroups::retrace_pending(const RayScene& scene,
     const std::vector<std::uint32_t> batch(pending_.begin(),
                                            pending_.begin() + static_cast<std::ptrdiff_t>(count));
     pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(count));
+    for (const std::uint32_t group : batch) {
+        if (group < crossing_pending_.size()) {
+            crossing_pending_[group] = 0;
+        }
+    }
     const auto lights = active();
     // Without exact invalidation no index is kept: it is never asked.
     return retrace_groups(scene, materials, lights, map_, batch, jobs,

@@ -93,6 +93,10 @@ class LightGroups {
     std::map<ecs::Entity, Record> lights_;
     std::map<ecs::Entity, PiecesCache> pieces_;
     std::vector<std::uint32_t> pending_;
+    /// Per group, 1 while it is in pending_ because invalidate_crossing put it there: a moving
+    /// object finds the same groups every frame, and these need no second look until they are
+    /// retraced (or dropped), which clears the mark.
+    std::vector<std::uint8_t> crossing_pending_;
     PathSegmentIndex paths_;
     std::uint32_t next_seed_ = 1;
     std::vector<glm::vec3> portals_;

@@ -278,7 +278,8 @@ void PathSegmentIndex::add_candidates(const AxisBox& box, std::uint32_t box_inde
     }
 }
 
-std::vector<std::uint32_t> PathSegmentIndex::groups_meeting(std::span<const AxisBox> boxes) const {
+std::vector<std::uint32_t> PathSegmentIndex::groups_meeting(
+    std::span<const AxisBox> boxes, std::span<const std::uint8_t> skip) const {
     std::vector<std::uint32_t> found;
     if (segment_count_ == 0) {
         return found;
@@ -290,6 +291,8 @@ std::vector<std::uint32_t> PathSegmentIndex::groups_meeting(std::span<const Axis
             add_candidates(box, static_cast<std::uint32_t>(b), candidates);
         }
     }
+    std::erase_if(candidates,
+                  [&](const Candidate& c) { return c.group < skip.size() && skip[c.group] != 0; });
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
     // Each candidate group's segments are read once for every box it may meet: the two boxes

@@ -53,8 +53,10 @@ class PathSegmentIndex {
     [[nodiscard]] std::vector<std::uint32_t> groups_meeting(const AxisBox& box) const;
     /// The groups with a segment that meets any of `boxes`, ascending, without repeats; one
     /// read of each candidate group's segments for all the boxes it may meet, cheaper than a
-    /// query per box when boxes overlap (an object's old and new places).
-    [[nodiscard]] std::vector<std::uint32_t> groups_meeting(std::span<const AxisBox> boxes) const;
+    /// query per box when boxes overlap (an object's old and new places). Groups g with
+    /// skip[g] != 0 are neither tested nor returned (the caller knows their answer already).
+    [[nodiscard]] std::vector<std::uint32_t> groups_meeting(
+        std::span<const AxisBox> boxes, std::span<const std::uint8_t> skip = {}) const;
 
     [[nodiscard]] std::span<const PathSegment> segments(std::uint32_t group) const;
     [[nodiscard]] std::size_t group_count() const { return groups_.size(); }
