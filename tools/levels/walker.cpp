@@ -35,12 +35,15 @@ struct Part {
     Joint joint;
 };
 
-const Part kParts[] = {{{0.22f, 0.60f, 0.40f}, {0.0f, 1.15f, 0.0f}, kRoot},                // torso
-                       {{0.22f, 0.24f, 0.20f}, {0.0f, 1.60f, 0.0f}, kRoot},                // head
-                       {{0.16f, 0.85f, 0.16f}, {0.0f, 0.425f, -0.1f}, kLeftLeg},           //
-                       {{0.16f, 0.85f, 0.16f}, {0.0f, 0.425f, 0.1f}, kRightLeg},           //
-                       {{0.12f, 0.62f, 0.12f}, {0.0f, 1.41f - 0.31f, -0.27f}, kLeftArm},   //
-                       {{0.12f, 0.62f, 0.12f}, {0.0f, 1.41f - 0.31f, 0.27f}, kRightArm}};  //
+// Torso and head ride on the root; each leg hangs from its hip, each arm from its shoulder.
+const Part kParts[] = {
+    {{0.22f, 0.60f, 0.40f}, {0.0f, 1.15f, 0.0f}, kRoot},
+    {{0.22f, 0.24f, 0.20f}, {0.0f, 1.60f, 0.0f}, kRoot},
+    {{0.16f, 0.85f, 0.16f}, {0.0f, 0.425f, -0.1f}, kLeftLeg},
+    {{0.16f, 0.85f, 0.16f}, {0.0f, 0.425f, 0.1f}, kRightLeg},
+    {{0.12f, 0.62f, 0.12f}, {0.0f, 1.41f - 0.31f, -0.27f}, kLeftArm},
+    {{0.12f, 0.62f, 0.12f}, {0.0f, 1.41f - 0.31f, 0.27f}, kRightArm},
+};
 
 glm::quat heading(glm::vec2 direction) {
     // A yaw turns +x towards -z for a positive angle, so facing (x, z) is atan2(-z, x).
