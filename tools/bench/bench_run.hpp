@@ -84,6 +84,9 @@ struct RunResult {
     /// receivers) at the last static checkpoint; -1 where the frame has none.
     double image_unmapped = -1.0;
     std::size_t unmapped_pixels = 0;
+    /// The same over their interior: pixels whose 5x5 neighbourhood has no light map either.
+    double image_unmapped_interior = -1.0;
+    std::size_t unmapped_interior_pixels = 0;
     double image_after = 0.0;
     double reference_se_image = 0.0;
     double reference_se_image_after = 0.0;

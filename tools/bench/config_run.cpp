@@ -107,6 +107,49 @@ world::SceneInstance posed_instance(ecs::Registry& registry,
     return instance;
 }
 
+/// relRMSE of the frame against the reference over the pixels without a light map whose
+/// (2 margin + 1)^2 neighbourhood has none either (margin 0: every such pixel).
+struct UnmappedError {
+    double relrmse = -1.0;
+    std::size_t pixels = 0;
+};
+
+UnmappedError unmapped_error(const FrameShot& shot, const Image& reference, int margin) {
+    const int w = shot.image.width;
+    const int h = shot.image.height;
+    const auto unmapped = [&](int x, int y) {
+        return x >= 0 && y >= 0 && x < w && y < h &&
+               shot.unmapped[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
+                             static_cast<std::size_t>(x)] != 0;
+    };
+    double diff = 0.0;
+    double norm = 0.0;
+    UnmappedError error;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            bool inside = true;
+            for (int dy = -margin; dy <= margin && inside; ++dy) {
+                for (int dx = -margin; dx <= margin && inside; ++dx) {
+                    inside = unmapped(x + dx, y + dy);
+                }
+            }
+            if (!inside) {
+                continue;
+            }
+            ++error.pixels;
+            const glm::vec4 a = shot.image.pixel(x, y);
+            const glm::vec4 b = reference.pixel(x, y);
+            for (int c = 0; c < 3; ++c) {
+                const double d = static_cast<double>(a[c]) - static_cast<double>(b[c]);
+                diff += d * d;
+                norm += static_cast<double>(b[c]) * static_cast<double>(b[c]);
+            }
+        }
+    }
+    error.relrmse = error.pixels > 0 && norm > 0.0 ? std::sqrt(diff / norm) : -1.0;
+    return error;
+}
+
 }  // namespace
 
 ConfigRun::ConfigRun(const LevelRunContext& context, const BenchConfig& config)
@@ -204,24 +247,16 @@ double ConfigRun::image_error(const ReferenceImage& reference, bool last, bool a
     const double error = lighting::reference::image_relative_rmse(shot.image, reference.image);
     if (!after) {
         // Where the irradiance probes light (no light map): the same relRMSE over those
-        // pixels alone, which a whole-frame figure dilutes with every light-mapped wall.
-        double diff = 0.0;
-        double norm = 0.0;
-        std::size_t pixels = 0;
-        for (std::size_t p = 0; p < shot.unmapped.size(); ++p) {
-            if (shot.unmapped[p] == 0) {
-                continue;
-            }
-            ++pixels;
-            for (std::size_t c = 0; c < 3; ++c) {
-                const double a = shot.image.rgba[4 * p + c];
-                const double b = reference.image.rgba[4 * p + c];
-                diff += (a - b) * (a - b);
-                norm += b * b;
-            }
-        }
-        result_.unmapped_pixels = pixels;
-        result_.image_unmapped = pixels > 0 && norm > 0.0 ? std::sqrt(diff / norm) : -1.0;
+        // pixels alone, which a whole-frame figure dilutes with every light-mapped wall; and
+        // over their interior (the whole 5x5 neighbourhood without a light map), which leaves
+        // out the silhouettes, where a dark receiver against a bright wall makes edge aliasing
+        // weigh as much as the probes' error.
+        const UnmappedError all = unmapped_error(shot, reference.image, 0);
+        const UnmappedError interior = unmapped_error(shot, reference.image, 2);
+        result_.unmapped_pixels = all.pixels;
+        result_.image_unmapped = all.relrmse;
+        result_.unmapped_interior_pixels = interior.pixels;
+        result_.image_unmapped_interior = interior.relrmse;
     }
     if (last) {
         write_side_by_side(options_.out / "frames" / file_name(after ? "after" : "static", ".png"),
@@ -298,8 +333,10 @@ void ConfigRun::static_phase() {
         std::fprintf(stderr, ", image %.4f (%.4f net of the reference's noise %.4f)", result_.image,
                      result_.image_net, result_.reference_se_image);
         if (result_.unmapped_pixels > 0) {
-            std::fprintf(stderr, ", pixels without a light map %.4f (%zu pixels)",
-                         result_.image_unmapped, result_.unmapped_pixels);
+            std::fprintf(stderr,
+                         ", pixels without a light map %.4f (%zu pixels; interior %.4f, %zu)",
+                         result_.image_unmapped, result_.unmapped_pixels,
+                         result_.image_unmapped_interior, result_.unmapped_interior_pixels);
         }
     }
     std::fprintf(stderr, "\n");
