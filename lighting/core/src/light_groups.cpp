@@ -172,8 +172,8 @@ void LightGroups::add_pending(std::uint32_t group) {
 
 std::size_t LightGroups::invalidate_crossing(std::span<const AxisBox> boxes) {
     // Groups an earlier frame's crossing already queued are still at the front of the queue,
-    // waiting for their retrace: the query skips them (in the sandbox level, where five objects
-    // move every frame, most of what it would find).
+    // waiting for their retrace: the query skips them (in the sandbox level, where several
+    // objects move every frame, most of what it would find).
     const std::vector<std::uint32_t> crossing = paths_.groups_meeting(boxes, crossing_pending_);
     if (crossing.empty()) {
         return 0;
