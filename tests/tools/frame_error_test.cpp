@@ -50,7 +50,8 @@ TEST(FrameError, ARegionShowsThePatchTheWholeFrameDilutes) {
                                           " --region 8,4,16,8 --region 16,8,32,24 --block 2");
     ASSERT_EQ(r.exit_code, 0) << r.output;
     // The patch: every block at half, so relRMSE 50% and the means' ratio 0.5.
-    EXPECT_NE(r.output.find("region 8,4,16,8: relRMSE 50.00%, mean ratio 0.5000 (8 blocks of 2x2)"),
+    EXPECT_NE(r.output.find("region 8,4,16,8: relRMSE 50.00%, mean ratio 0.5000 (8 blocks of 2x2); "
+                            "mean RGB 0.5 1 1.5 against 1 2 3"),
               std::string::npos)
         << r.output;
     EXPECT_NE(r.output.find("region 16,8,32,24: relRMSE 0.00%, mean ratio 1.0000"),

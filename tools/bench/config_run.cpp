@@ -14,6 +14,7 @@
 #include "luxel/lighting/reference/error_metrics.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
+#include "luxel/runtime/image.hpp"
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/skinning.hpp"
 #include "luxel/world/sky.hpp"
@@ -259,8 +260,11 @@ double ConfigRun::image_error(const ReferenceImage& reference, bool last, bool a
         result_.image_unmapped_interior = interior.relrmse;
     }
     if (last) {
-        write_side_by_side(options_.out / "frames" / file_name(after ? "after" : "static", ".png"),
-                           shot.image, reference.image);
+        const char* phase = after ? "after" : "static";
+        write_side_by_side(options_.out / "frames" / file_name(phase, ".png"), shot.image,
+                           reference.image);
+        // The frame itself, linear, for luxel-frame-error against the cached reference frame.
+        write_exr(options_.out / "frames" / file_name(phase, ".exr"), shot.image);
     }
     if (!after) {
         frame_gpu_ms_.push_back(shot.frame_gpu_ms);

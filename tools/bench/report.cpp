@@ -392,7 +392,7 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
            << image.width << "x" << image.height << ", " << image.spp
            << " spp; \"image\" is its relRMSE at the last static frame, (net) the same with the "
               "reference frame's own noise taken out. Frames side by side (real time | "
-              "reference) in frames/.\n\n";
+              "reference) in frames/, each real-time frame also as linear EXR.\n\n";
     } else {
         md << "Image error: **not measured** (--no-image).\n\n";
     }

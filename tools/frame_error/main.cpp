@@ -46,6 +46,10 @@ struct Figures {
     double relative_rmse = 0.0;
     double mean_ratio = 0.0;
     long blocks = 0;
+    /// Mean linear RGB of the frame and of the reference over the region: a colour shift
+    /// (a wall's tint missing) shows here before it shows in one number.
+    glm::dvec3 frame_mean{0.0};
+    glm::dvec3 reference_mean{0.0};
 };
 
 /// The N x N block means of `image` over `r` (a block partly outside `r` is left out), as an
@@ -77,13 +81,17 @@ Figures compare(const luxel::Image& frame, const luxel::Image& reference, const 
     Figures out;
     out.relative_rmse = luxel::lighting::reference::image_relative_rmse(a, b);
     out.blocks = static_cast<long>(a.width) * a.height;
-    double frame_sum = 0.0;
-    double reference_sum = 0.0;
     for (std::size_t i = 0; i < a.rgba.size(); i += 4) {
         for (std::size_t c = 0; c < 3; ++c) {
-            frame_sum += a.rgba[i + c];
-            reference_sum += b.rgba[i + c];
+            out.frame_mean[static_cast<int>(c)] += a.rgba[i + c];
+            out.reference_mean[static_cast<int>(c)] += b.rgba[i + c];
         }
+    }
+    const double frame_sum = out.frame_mean.x + out.frame_mean.y + out.frame_mean.z;
+    const double reference_sum = out.reference_mean.x + out.reference_mean.y + out.reference_mean.z;
+    if (out.blocks > 0) {
+        out.frame_mean /= static_cast<double>(out.blocks);
+        out.reference_mean /= static_cast<double>(out.blocks);
     }
     const double inf = std::numeric_limits<double>::infinity();
     out.mean_ratio =
@@ -143,10 +151,13 @@ int run(int argc, char** argv) {
                                     " frame, or smaller than one block");
         }
         const Figures f = compare(frame, reference, r, block);
-        char line[256];
+        char line[512];
         std::snprintf(line, sizeof(line),
-                      "%s: relRMSE %.2f%%, mean ratio %.4f (%ld blocks of %dx%d)", r.name.c_str(),
-                      100.0 * f.relative_rmse, f.mean_ratio, f.blocks, block, block);
+                      "%s: relRMSE %.2f%%, mean ratio %.4f (%ld blocks of %dx%d); mean RGB "
+                      "%.4g %.4g %.4g against %.4g %.4g %.4g",
+                      r.name.c_str(), 100.0 * f.relative_rmse, f.mean_ratio, f.blocks, block, block,
+                      f.frame_mean.x, f.frame_mean.y, f.frame_mean.z, f.reference_mean.x,
+                      f.reference_mean.y, f.reference_mean.z);
         std::cout << line << "\n";
     }
     return 0;
