@@ -5,22 +5,25 @@
 
 struct ProbeRecord {
     vec4 position;       // xyz world position (grid + offset), w: 1 = active
-    vec4 irradiance[9];  // SH band 0-2 irradiance coefficients (cosine convolution folded in)
+    vec4 irradiance[9];  // SH band 0-2 irradiance coefficients (cosine convolution folded in),
+                         // with u_probe_basis 1; zero with the octahedral atlas
 };
 
 layout(std430, binding = 2) readonly buffer ProbeRecords {
     ProbeRecord u_probe[];
 };
 layout(binding = 18) uniform sampler2D u_probe_depth;  // RG32F: mean distance, mean square
+layout(binding = 19) uniform sampler2D u_probe_irradiance;  // RGBA16F: irradiance, u_probe_basis 0
 
 uniform int u_probes_on;
 uniform vec3 u_probe_origin;
 uniform float u_probe_spacing;
 uniform vec3 u_probe_counts;
 uniform int u_probe_tiles_per_row;
+uniform int u_probe_basis;  // 0: octahedral irradiance tiles (ProbeBasis::Octahedral), 1: SH
 
-const int PROBE_DEPTH_SIZE = 8;   // kProbeDepthSize
-const int PROBE_DEPTH_TILE = 10;  // kProbeDepthTile
+const int PROBE_DEPTH_SIZE = 8;         // kProbeDepthSize (tiles one texel wider each side)
+const int PROBE_IRRADIANCE_SIZE = 16;   // kProbeIrradianceSize
 
 float probe_sign_not_zero(float x) {
     return x >= 0.0 ? 1.0 : -1.0;
@@ -53,12 +56,27 @@ vec3 probe_sh_irradiance(int index, vec3 n) {
     return max(e, vec3(0.0));
 }
 
-// Mean distance and mean square from probe `index` towards `direction`, bilinear in its tile.
-vec2 probe_depth_towards(int index, vec3 direction) {
+// Bilinear lookup towards `direction` in probe `index`'s tile of an atlas of `size`-square
+// octahedral maps with a one-texel border (IrradianceProbes' sample_tile).
+vec4 probe_tile_sample(sampler2D atlas, int size, int index, vec3 direction) {
     vec2 square = probe_octahedral_encode(direction);
     ivec2 tile = ivec2(index % u_probe_tiles_per_row, index / u_probe_tiles_per_row);
-    vec2 texel = vec2(tile * PROBE_DEPTH_TILE) + 1.0 + (square * 0.5 + 0.5) * float(PROBE_DEPTH_SIZE);
-    return texture(u_probe_depth, texel / vec2(textureSize(u_probe_depth, 0))).rg;
+    vec2 texel = vec2(tile * (size + 2)) + 1.0 + (square * 0.5 + 0.5) * float(size);
+    return texture(atlas, texel / vec2(textureSize(atlas, 0)));
+}
+
+// Mean distance and mean square from probe `index` towards `direction`.
+vec2 probe_depth_towards(int index, vec3 direction) {
+    return probe_tile_sample(u_probe_depth, PROBE_DEPTH_SIZE, index, direction).rg;
+}
+
+// Probe `index`'s own irradiance for a surface facing `n` (IrradianceProbes::probe_irradiance).
+vec3 probe_own_irradiance(int index, vec3 n) {
+    if (u_probe_basis == 1) {
+        return probe_sh_irradiance(index, n);
+    }
+    return max(probe_tile_sample(u_probe_irradiance, PROBE_IRRADIANCE_SIZE, index, n).rgb,
+               vec3(0.0));
 }
 
 int probe_index(ivec3 cell, ivec3 counts) {
@@ -119,7 +137,7 @@ vec3 probe_irradiance(vec3 point, vec3 normal, vec3 viewer) {
             weight *= weight * weight / (crush * crush);
         }
         weight *= trilinear.x * trilinear.y * trilinear.z;
-        sum += weight * probe_sh_irradiance(index, n);
+        sum += weight * probe_own_irradiance(index, n);
         weights += weight;
     }
     return weights > 0.0 ? max(sum / weights, vec3(0.0)) : vec3(0.0);

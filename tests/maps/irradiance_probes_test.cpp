@@ -2,7 +2,9 @@
 // the grid over a level, a closed box of constant radiance, light kept out by a 10 cm wall,
 // and probe rays passing through geometry that has no light map.
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -82,6 +84,92 @@ TEST(IrradianceProbes, OctahedralMapRoundTrips) {
     // The poles and the folds.
     EXPECT_NEAR(octahedral_decode(octahedral_encode({0, 0, -1})).z, -1.0f, 1e-6f);
     EXPECT_NEAR(octahedral_decode(octahedral_encode({1, 0, 0})).x, 1.0f, 1e-6f);
+}
+
+/// How far one probe's irradiance is from the exact integral of `radiance`, over normals whose
+/// exact irradiance is at least 3% of the brightest (the skinned figure's faces towards the
+/// open side of its room are at 4%; below, a relative error means little on a screen).
+struct BasisError {
+    double rms = 0.0;
+    double worst = 0.0;
+    int normals = 0;
+};
+
+template <class Radiance>
+BasisError basis_error(ProbeBasis basis, const Radiance& radiance) {
+    const ProbeRayTracer tracer = [&](const glm::vec3&, std::span<const glm::vec3> directions,
+                                      std::span<ProbeRay> rays, std::uint32_t) {
+        for (std::size_t i = 0; i < directions.size(); ++i) {
+            rays[i] = {radiance(directions[i]), 1.0f, true, false};
+        }
+    };
+    AxisBox level;
+    level.add({0.0f, 0.0f, 0.0f});
+    level.add({1.0f, 1.0f, 1.0f});
+    IrradianceProbeSettings settings;
+    settings.basis = basis;
+    settings.rays_per_probe = 8192;  // 4 passes: the sampling noise well under the basis' error
+    IrradianceProbes probes(fit_probe_grid(level, 1.0f, 4096), settings);
+    while (probes.pending() > 0) {
+        probes.gather(64, tracer, nullptr);
+    }
+    const std::vector<glm::vec3> quadrature = sphere_directions(40000);
+    const std::vector<glm::vec3> normals = sphere_directions(300);
+    std::vector<double> exact(normals.size(), 0.0);
+    for (std::size_t k = 0; k < normals.size(); ++k) {
+        for (const glm::vec3& d : quadrature) {
+            exact[k] +=
+                static_cast<double>(radiance(d).y * std::max(0.0f, glm::dot(normals[k], d)));
+        }
+        exact[k] *= 4.0 * glm::pi<double>() / static_cast<double>(quadrature.size());
+    }
+    const double brightest = *std::max_element(exact.begin(), exact.end());
+    BasisError out;
+    double square = 0.0;
+    for (std::size_t k = 0; k < normals.size(); ++k) {
+        if (exact[k] < 0.03 * brightest) {
+            continue;
+        }
+        const double relative =
+            std::abs(static_cast<double>(probes.probe_irradiance(0, normals[k]).y) - exact[k]) /
+            exact[k];
+        out.worst = std::max(out.worst, relative);
+        square += relative * relative;
+        ++out.normals;
+    }
+    out.rms = out.normals > 0 ? std::sqrt(square / out.normals) : 0.0;
+    return out;
+}
+
+TEST(IrradianceProbes, TheOctahedralMapHoldsTheDimSideThatHarmonicsMiss) {
+    // A probe in a room with an open side: a lamp-lit patch, bright, in a cone around +x (35
+    // degrees: a pool of light; 50: a lit wall), the floor below, dim, the rest black.
+    // Irradiance for normals turned away from the patch falls to a few per cent of the bright
+    // side's, and band-2 harmonics ring there (in the skinned-figure level, -40% on such
+    // faces: docs/RESULTS.md). The octahedral map must hold both within 4% rms; the harmonics
+    // are measured beside it, and must be the worse by half on the pool of light.
+    for (const float degrees : {35.0f, 50.0f}) {
+        const float edge = std::cos(glm::radians(degrees));
+        const auto radiance = [edge](const glm::vec3& d) {
+            if (d.x > edge) {
+                return glm::vec3(10.0f, 8.0f, 6.0f);
+            }
+            return d.y < 0.0f ? glm::vec3(0.3f) : glm::vec3(0.0f);
+        };
+        const BasisError oct = basis_error(ProbeBasis::Octahedral, radiance);
+        const BasisError sh = basis_error(ProbeBasis::Sh2, radiance);
+        std::printf(
+            "[ figures  ] a %.0f-degree patch: octahedral rms %.1f%% (worst %.1f%%), "
+            "band-2 SH rms %.1f%% (worst %.1f%%), over %d normals\n",
+            static_cast<double>(degrees), 100.0 * oct.rms, 100.0 * oct.worst, 100.0 * sh.rms,
+            100.0 * sh.worst, oct.normals);
+        ASSERT_GT(oct.normals, 200);
+        EXPECT_LT(oct.rms, 0.04) << degrees;
+        EXPECT_LT(oct.worst, 0.2) << degrees;
+        if (degrees < 40.0f) {
+            EXPECT_LT(oct.rms, 0.5 * sh.rms);
+        }
+    }
 }
 
 TEST(IrradianceProbes, GridCoversTheLevelWithProbesHalfASpacingOutside) {
@@ -246,9 +334,9 @@ TEST(IrradianceProbes, RaysPassThroughGeometryWithoutALightMap) {
     // On the crate's top and sides, as everywhere in the room: pi.
     EXPECT_NEAR(probes.irradiance({1.5f, 0.8f, 1.5f}, {0, 1, 0}).x, glm::pi<float>(), 0.03f);
     EXPECT_NEAR(probes.irradiance({1.9f, 0.4f, 1.5f}, {1, 0, 0}).x, glm::pi<float>(), 0.03f);
-    for (const ProbeState& p : probes.probes()) {
-        if (p.active) {
-            EXPECT_NEAR(evaluate(p.irradiance, {0, 1, 0}).x, glm::pi<float>(), 0.03f);
+    for (std::size_t i = 0; i < probes.probes().size(); ++i) {
+        if (probes.probes()[i].active) {
+            EXPECT_NEAR(probes.probe_irradiance(i, {0, 1, 0}).x, glm::pi<float>(), 0.03f);
         }
     }
 }

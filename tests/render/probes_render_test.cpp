@@ -1,7 +1,7 @@
 // Irradiance probes in the frame: a crate without a light map in a prepared level is lit in
 // the indirect term by shaders/render/irradiance_probes.glsl exactly as
 // IrradianceProbes::irradiance says on the CPU, pixel for pixel, while the light-mapped
-// surfaces around it keep their IIM.
+// surfaces around it keep their IIM; with either basis a probe can store its irradiance in.
 
 #include <algorithm>
 #include <cmath>
@@ -26,7 +26,9 @@ constexpr float kAlbedo = 0.5f;
 const glm::vec3 kCrate(-2.0f, 0.25f, 0.0f);  // on the west room's floor
 constexpr float kHalf = 0.25f;
 
-TEST(ProbesRender, ACrateWithoutALightMapShowsTheProbesIrradiance) {
+class ProbesRender : public ::testing::TestWithParam<ProbeBasis> {};
+
+TEST_P(ProbesRender, ACrateWithoutALightMapShowsTheProbesIrradiance) {
     const auto context = test::make_render_context();
     test::RenderWorld world;
     world::instantiate(
@@ -34,7 +36,9 @@ TEST(ProbesRender, ACrateWithoutALightMapShowsTheProbesIrradiance) {
         std::make_shared<scene::Scene>(scene::load_gltf(test::prepared_level("two-rooms"))), {});
     world.add_mesh(luxel::testing::cube_scene(kHalf, luxel::testing::diffuse_material(kAlbedo)),
                    kCrate);
-    world.start();
+    lighting::LightingConfig config = test::small_lighting_config();
+    config.probes.basis = GetParam();
+    world.start(config);
     world.lighting->warm_up(world.time, 1e9);
     world.update();
     ASSERT_TRUE(world.lighting->plan().irradiance_probes());
@@ -78,10 +82,19 @@ TEST(ProbesRender, ACrateWithoutALightMapShowsTheProbesIrradiance) {
     std::printf("%zu crate pixels: median error %.4f%%, 95th percentile %.4f%%\n", errors.size(),
                 100.0 * static_cast<double>(errors[errors.size() / 2]),
                 100.0 * static_cast<double>(errors[errors.size() * 95 / 100]));
-    // The GPU filters the distance tiles with its own sub-texel precision: per pixel the two
-    // agree to a fraction of a per cent, at the visibility test's steep edges to a few.
-    EXPECT_LT(errors[errors.size() / 2], 0.002f);  // llvmpipe: 0.0000%
+    // The GPU filters the tiles with its own sub-texel precision, and holds the octahedral
+    // irradiance in half floats: per pixel the two agree to a fraction of a per cent, at the
+    // visibility test's steep edges to a few.
+    EXPECT_LT(errors[errors.size() / 2], 0.002f);  // llvmpipe: 0.03% octahedral, 0.0000% SH
     EXPECT_LT(errors[errors.size() * 95 / 100], 0.02f);
 }
+
+INSTANTIATE_TEST_SUITE_P(Bases, ProbesRender,
+                         ::testing::Values(ProbeBasis::Octahedral, ProbeBasis::Sh2),
+                         [](const ::testing::TestParamInfo<ProbeBasis>& basis) {
+                             return basis.param == ProbeBasis::Octahedral
+                                        ? std::string("Octahedral")
+                                        : std::string("Sh2");
+                         });
 
 }  // namespace

@@ -39,6 +39,8 @@ lighting::LightingConfig BenchConfig::lighting() const {
         config.probes.max_probes = 0;
     }
     config.probes.spacing = static_cast<float>(probe_spacing);
+    config.probes.basis =
+        probe_basis == "sh2" ? lighting::ProbeBasis::Sh2 : lighting::ProbeBasis::Octahedral;
     return config;
 }
 
@@ -57,6 +59,9 @@ std::string BenchConfig::knobs() const {
     }
     if (probe_spacing != lighting::IrradianceProbeSettings{}.spacing) {
         out << " probe_spacing=" << probe_spacing;
+    }
+    if (probe_basis != "oct") {
+        out << " probe_basis=" << probe_basis;
     }
     return out.str();
 }
@@ -103,6 +108,8 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.probes = whole(value);
             } else if (sweep.knob == "probe_spacing") {
                 c.probe_spacing = std::stod(value);
+            } else if (sweep.knob == "probe_basis") {
+                c.probe_basis = value;
             } else if (sweep.knob == "change_blend") {
                 c.change_blend = std::stod(value);
             } else if (sweep.knob == "keep") {

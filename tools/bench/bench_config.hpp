@@ -37,6 +37,9 @@ struct BenchConfig {
     std::uint32_t probes = 1;
     /// The irradiance probes' spacing in metres (IrradianceProbeSettings::spacing).
     double probe_spacing = lighting::IrradianceProbeSettings{}.spacing;
+    /// How each probe stores its irradiance (IrradianceProbeSettings::basis): "oct" (the
+    /// octahedral map, default) or "sh2" (band-2 spherical harmonics).
+    std::string probe_basis = "oct";
     /// Seconds a local pass's texels fade in over (IlluminationSettings::change_blend_seconds).
     double change_blend = lighting::IlluminationSettings{}.change_blend_seconds;
     /// Standard deviations by which a full pass must show a texel's light changed before the

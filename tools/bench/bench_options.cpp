@@ -104,6 +104,11 @@ Sweep parse_sweep(const std::string& text) {
             if (!(v >= 0.05 && v <= 100.0)) {
                 throw Error(what + ": '" + value + "' is not a spacing in metres in 0.05..100");
             }
+        } else if (sweep.knob == "probe_basis") {
+            if (value != "oct" && value != "sh2") {
+                throw Error(what + ": '" + value +
+                            "' is not oct (octahedral irradiance maps) or sh2 (band-2 harmonics)");
+            }
         } else if (sweep.knob == "change_blend") {
             const double v = number(value, what);
             if (!(v >= 0.0 && v <= 60.0)) {
@@ -119,7 +124,8 @@ Sweep parse_sweep(const std::string& text) {
             throw Error(
                 "--sweep " + sweep.knob +
                 ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, filter, "
-                "refine, local, change_blend, exact, contact, stitch, probes, probe_spacing, keep, "
+                "refine, local, change_blend, exact, contact, stitch, probes, probe_spacing, "
+                "probe_basis, keep, "
                 "caustics, backend, "
                 "kernel, "
                 "aa)");

@@ -69,12 +69,87 @@ glm::vec3 fibonacci_direction(std::uint32_t i, std::uint32_t n) {
     return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
-/// The direction at the centre of interior distance texel (x, y).
-glm::vec3 texel_direction(int x, int y) {
-    const float n = static_cast<float>(kProbeDepthSize);
+/// The direction at the centre of interior texel (x, y) of a `size`-square octahedral map.
+glm::vec3 texel_direction(int x, int y, int size) {
+    const float n = static_cast<float>(size);
     return octahedral_decode(
         glm::vec2((static_cast<float>(x) + 0.5f) / n, (static_cast<float>(y) + 0.5f) / n) * 2.0f -
         1.0f);
+}
+
+constexpr std::size_t kIrradianceTexels =
+    static_cast<std::size_t>(kProbeIrradianceSize) * kProbeIrradianceSize;
+
+/// The irradiance map's texel directions, row by row, as three arrays (computed once): the
+/// convolution below runs over texels in its inner loop, which the compiler vectorises.
+struct TexelDirections {
+    std::array<float, kIrradianceTexels> x{};
+    std::array<float, kIrradianceTexels> y{};
+    std::array<float, kIrradianceTexels> z{};
+};
+const TexelDirections& irradiance_texel_directions() {
+    static const TexelDirections directions = [] {
+        TexelDirections out;
+        for (int ty = 0; ty < kProbeIrradianceSize; ++ty) {
+            for (int tx = 0; tx < kProbeIrradianceSize; ++tx) {
+                const glm::vec3 d = texel_direction(tx, ty, kProbeIrradianceSize);
+                const std::size_t t = static_cast<std::size_t>(ty) * kProbeIrradianceSize +
+                                      static_cast<std::size_t>(tx);
+                out.x[t] = d.x;
+                out.y[t] = d.y;
+                out.z[t] = d.z;
+            }
+        }
+        return out;
+    }();
+    return directions;
+}
+
+/// Writes a `size`-square octahedral map into its tile of size + 2 texels with the border that
+/// makes bilinear filtering seamless: across each edge of the square lies the same edge,
+/// mirrored about its midpoint; across each corner, the opposite corner.
+template <class Value, class Interior>
+void fill_tile(int size, std::span<Value> tile, const Interior& interior) {
+    const int n = size;
+    const auto put = [&](int x, int y, const Value& value) {
+        tile[static_cast<std::size_t>(y) * static_cast<std::size_t>(n + 2) +
+             static_cast<std::size_t>(x)] = value;
+    };
+    for (int y = 0; y < n; ++y) {
+        for (int x = 0; x < n; ++x) {
+            put(x + 1, y + 1, interior(x, y));
+        }
+    }
+    for (int k = 0; k < n; ++k) {
+        put(k + 1, 0, interior(n - 1 - k, 0));
+        put(k + 1, n + 1, interior(n - 1 - k, n - 1));
+        put(0, k + 1, interior(0, n - 1 - k));
+        put(n + 1, k + 1, interior(n - 1, n - 1 - k));
+    }
+    put(0, 0, interior(n - 1, n - 1));
+    put(n + 1, 0, interior(0, n - 1));
+    put(0, n + 1, interior(n - 1, 0));
+    put(n + 1, n + 1, interior(0, 0));
+}
+
+/// Bilinear lookup towards `direction` in a tile written by fill_tile (as a GPU sampler with
+/// linear filtering reads the same tile).
+template <class Value>
+Value sample_tile(int size, std::span<const Value> tile, const glm::vec3& direction) {
+    const int side = size + 2;
+    const glm::vec2 square = octahedral_encode(direction);
+    // In tile texels (centres at t + 0.5), the interior starting after the border.
+    const glm::vec2 f = (square * 0.5f + 0.5f) * static_cast<float>(size) + 1.0f - 0.5f;
+    const glm::ivec2 t0 =
+        glm::clamp(glm::ivec2(glm::floor(f)), glm::ivec2(0), glm::ivec2(side - 2));
+    const glm::vec2 w = glm::clamp(f - glm::vec2(t0), glm::vec2(0.0f), glm::vec2(1.0f));
+    const auto at = [&](int x, int y) {
+        return tile[static_cast<std::size_t>(y) * static_cast<std::size_t>(side) +
+                    static_cast<std::size_t>(x)];
+    };
+    const Value top = glm::mix(at(t0.x, t0.y), at(t0.x + 1, t0.y), w.x);
+    const Value bottom = glm::mix(at(t0.x, t0.y + 1), at(t0.x + 1, t0.y + 1), w.x);
+    return glm::mix(top, bottom, w.y);
 }
 
 bool finite(const glm::vec3& v) {
@@ -210,18 +285,48 @@ void IrradianceProbes::gather_probe(std::size_t index, const ProbeRayTracer& tra
     // distances folded into the texels.
     const float max_depth = 2.0f * grid_.spacing;
     const float weight = 4.0f * glm::pi<float>() / static_cast<float>(n);
-    for (std::uint32_t i = 0; i < n; ++i) {
-        const ShBasis y = sh_basis(directions[i]);
-        const glm::vec3 radiance = finite(rays[i].radiance)
-                                       ? glm::max(rays[i].radiance, glm::vec3(0.0f))
-                                       : glm::vec3(0.0f);
-        for (std::size_t c = 0; c < kShCoefficients; ++c) {
-            sum.radiance_sum.c[c] += radiance * (y[c] * weight);
+    for (ProbeRay& ray : rays) {
+        ray.radiance =
+            finite(ray.radiance) ? glm::max(ray.radiance, glm::vec3(0.0f)) : glm::vec3(0.0f);
+    }
+    if (settings_.basis == ProbeBasis::Sh2) {
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const ShBasis y = sh_basis(directions[i]);
+            for (std::size_t c = 0; c < kShCoefficients; ++c) {
+                sum.radiance_sum.c[c] += rays[i].radiance * (y[c] * weight);
+            }
+        }
+    } else {
+        // Each texel's irradiance, E(t) = sum_i L_i max(0, t . w_i) 4 pi / n: the cosine
+        // convolution done exactly for the texel's direction, nothing truncated. Rays outside,
+        // texels inside and branch-free, so that the inner loop vectorises (tests/bench
+        // ProbePass measures it).
+        const TexelDirections& texels = irradiance_texel_directions();
+        std::array<float, kIrradianceTexels> red{};
+        std::array<float, kIrradianceTexels> green{};
+        std::array<float, kIrradianceTexels> blue{};
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const glm::vec3 w = directions[i];
+            const glm::vec3 l = rays[i].radiance;
+            if (l.x == 0.0f && l.y == 0.0f && l.z == 0.0f) {
+                continue;  // a ray that left the level, or met a black surface
+            }
+            for (std::size_t t = 0; t < kIrradianceTexels; ++t) {
+                const float c =
+                    std::max(0.0f, texels.x[t] * w.x + texels.y[t] * w.y + texels.z[t] * w.z);
+                red[t] += l.x * c;
+                green[t] += l.y * c;
+                blue[t] += l.z * c;
+            }
+        }
+        sum.irradiance_sum.resize(kIrradianceTexels, glm::vec3(0.0f));
+        for (std::size_t t = 0; t < kIrradianceTexels; ++t) {
+            sum.irradiance_sum[t] += glm::vec3(red[t], green[t], blue[t]) * weight;
         }
     }
     for (int ty = 0; ty < kProbeDepthSize; ++ty) {
         for (int tx = 0; tx < kProbeDepthSize; ++tx) {
-            const glm::vec3 texel = texel_direction(tx, ty);
+            const glm::vec3 texel = texel_direction(tx, ty, kProbeDepthSize);
             glm::vec3& cell = sum.depth_sum[static_cast<std::size_t>(ty) * kProbeDepthSize +
                                             static_cast<std::size_t>(tx)];
             for (std::uint32_t i = 0; i < n; ++i) {
@@ -246,58 +351,44 @@ void IrradianceProbes::publish(std::size_t index) {
     const Accumulator& sum = sums_[index];
     ProbeState& state = states_[index];
     const float passes = static_cast<float>(std::max<std::uint32_t>(sum.passes, 1));
-    ShRgb radiance;
-    for (std::size_t c = 0; c < kShCoefficients; ++c) {
-        radiance.c[c] = sum.radiance_sum.c[c] / passes;
+    if (settings_.basis == ProbeBasis::Sh2) {
+        ShRgb radiance;
+        for (std::size_t c = 0; c < kShCoefficients; ++c) {
+            radiance.c[c] = sum.radiance_sum.c[c] / passes;
+        }
+        state.irradiance = convolve_cosine(radiance);
+    } else {
+        state.irradiance_map.resize(kProbeIrradianceTexels);
+        fill_tile<glm::vec3>(kProbeIrradianceSize, state.irradiance_map, [&](int x, int y) {
+            const std::size_t t =
+                static_cast<std::size_t>(y) * kProbeIrradianceSize + static_cast<std::size_t>(x);
+            return t < sum.irradiance_sum.size() ? sum.irradiance_sum[t] / passes : glm::vec3(0.0f);
+        });
     }
-    state.irradiance = convolve_cosine(radiance);
     state.active = true;
     const float max_depth = 2.0f * grid_.spacing;
-    constexpr int n = kProbeDepthSize;
-    const auto interior = [&](int x, int y) {
-        const glm::vec3& cell =
-            sum.depth_sum[static_cast<std::size_t>(y) * n + static_cast<std::size_t>(x)];
+    fill_tile<glm::vec2>(kProbeDepthSize, state.depth, [&](int x, int y) {
+        const glm::vec3& cell = sum.depth_sum[static_cast<std::size_t>(y) * kProbeDepthSize +
+                                              static_cast<std::size_t>(x)];
         return cell.x > 0.0f ? glm::vec2(cell.y / cell.x, cell.z / cell.x)
                              : glm::vec2(max_depth, max_depth * max_depth);
-    };
-    const auto put = [&](int x, int y, glm::vec2 value) {
-        state.depth[static_cast<std::size_t>(y) * kProbeDepthTile + static_cast<std::size_t>(x)] =
-            value;
-    };
-    for (int y = 0; y < n; ++y) {
-        for (int x = 0; x < n; ++x) {
-            put(x + 1, y + 1, interior(x, y));
-        }
-    }
-    // The border: across each edge of the octahedral square lies the same edge, mirrored
-    // about its midpoint; across each corner, the opposite corner.
-    for (int k = 0; k < n; ++k) {
-        put(k + 1, 0, interior(n - 1 - k, 0));
-        put(k + 1, n + 1, interior(n - 1 - k, n - 1));
-        put(0, k + 1, interior(0, n - 1 - k));
-        put(n + 1, k + 1, interior(n - 1, n - 1 - k));
-    }
-    put(0, 0, interior(n - 1, n - 1));
-    put(n + 1, 0, interior(0, n - 1));
-    put(0, n + 1, interior(n - 1, 0));
-    put(n + 1, n + 1, interior(0, 0));
+    });
 }
 
 glm::vec2 IrradianceProbes::depth_towards(std::size_t index, const glm::vec3& direction) const {
+    return sample_tile<glm::vec2>(kProbeDepthSize, states_[index].depth, direction);
+}
+
+glm::vec3 IrradianceProbes::probe_irradiance(std::size_t index, const glm::vec3& normal) const {
     const ProbeState& state = states_[index];
-    const glm::vec2 square = octahedral_encode(direction);
-    // In tile texels (centres at t + 0.5), the interior starting after the border.
-    const glm::vec2 f = (square * 0.5f + 0.5f) * static_cast<float>(kProbeDepthSize) + 1.0f - 0.5f;
-    const glm::ivec2 t0 =
-        glm::clamp(glm::ivec2(glm::floor(f)), glm::ivec2(0), glm::ivec2(kProbeDepthTile - 2));
-    const glm::vec2 w = glm::clamp(f - glm::vec2(t0), glm::vec2(0.0f), glm::vec2(1.0f));
-    const auto at = [&](int x, int y) {
-        return state
-            .depth[static_cast<std::size_t>(y) * kProbeDepthTile + static_cast<std::size_t>(x)];
-    };
-    const glm::vec2 top = glm::mix(at(t0.x, t0.y), at(t0.x + 1, t0.y), w.x);
-    const glm::vec2 bottom = glm::mix(at(t0.x, t0.y + 1), at(t0.x + 1, t0.y + 1), w.x);
-    return glm::mix(top, bottom, w.y);
+    if (settings_.basis == ProbeBasis::Sh2) {
+        return evaluate(state.irradiance, normal);
+    }
+    if (state.irradiance_map.size() != kProbeIrradianceTexels) {
+        return glm::vec3(0.0f);
+    }
+    return glm::max(sample_tile<glm::vec3>(kProbeIrradianceSize, state.irradiance_map, normal),
+                    glm::vec3(0.0f));
 }
 
 glm::vec3 IrradianceProbes::irradiance(const glm::vec3& point, const glm::vec3& normal,
@@ -369,7 +460,7 @@ glm::vec3 IrradianceProbes::irradiance(const glm::vec3& point, const glm::vec3& 
             weight *= weight * weight / (kCrush * kCrush);
         }
         weight *= trilinear.x * trilinear.y * trilinear.z;
-        sum += weight * evaluate(probe.irradiance, n);
+        sum += weight * probe_irradiance(index, n);
         weights += weight;
     }
     if (!(weights > 0.0f)) {

@@ -19,6 +19,20 @@ class JobSystem;
 
 namespace luxel::lighting {
 
+/// How a probe stores its irradiance over the sphere of normals.
+enum class ProbeBasis : std::uint8_t {
+    /// An octahedral map of irradiance (kProbeIrradianceSize texels square), each texel the
+    /// cosine-weighted sum of the pass's rays about its direction, filtered bilinearly: as
+    /// DDGI stores it. Follows a room's contrast (a bright lamp-lit wall behind, an open side
+    /// in front) to a few per cent where band-2 harmonics are off by tens of per cent on the
+    /// dim side (docs/RESULTS.md, "irradiance probes").
+    Octahedral,
+    /// Band-2 spherical harmonics (nine coefficients per channel, Ramamoorthi & Hanrahan):
+    /// twelve times smaller, smooth, but their truncation ringing misses dim directions next
+    /// to bright ones.
+    Sh2,
+};
+
 struct IrradianceProbeSettings {
     /// The finest spacing (metres); a level that would need more than max_probes gets a
     /// coarser grid (fit_probe_grid).
@@ -28,6 +42,7 @@ struct IrradianceProbeSettings {
     std::uint32_t rays_per_probe = 256;
     /// Passes averaged while the lighting holds still: the SH noise falls as 1/sqrt(passes).
     std::uint32_t refine_passes = 4;
+    ProbeBasis basis = ProbeBasis::Octahedral;
 };
 
 /// The interior of one probe's distance square (texels per side, octahedral map) and the tile
@@ -37,11 +52,23 @@ inline constexpr int kProbeDepthSize = 8;
 inline constexpr int kProbeDepthTile = kProbeDepthSize + 2;
 inline constexpr std::size_t kProbeDepthTexels =
     static_cast<std::size_t>(kProbeDepthTile) * kProbeDepthTile;
+/// The same for the irradiance map (ProbeBasis::Octahedral): 16 texels square. The bilinear
+/// filter's own error grows with the texel (a bright patch's edge is curved): 12 texels gave
+/// 5.7% rms over the normals of a lit wall where 16 give 2.6%, as band-2 harmonics do there
+/// (tests/maps, TheOctahedralMapHoldsTheDimSideThatHarmonicsMiss).
+inline constexpr int kProbeIrradianceSize = 16;
+inline constexpr int kProbeIrradianceTile = kProbeIrradianceSize + 2;
+inline constexpr std::size_t kProbeIrradianceTexels =
+    static_cast<std::size_t>(kProbeIrradianceTile) * kProbeIrradianceTile;
 
 /// What one probe shows the renderer.
 struct ProbeState {
-    /// Irradiance coefficients (the cosine convolution folded in): E(n) = evaluate(irradiance, n).
+    /// ProbeBasis::Sh2: irradiance coefficients (the cosine convolution folded in),
+    /// E(n) = evaluate(irradiance, n).
     ShRgb irradiance;
+    /// ProbeBasis::Octahedral: irradiance (W/m^2) per octahedral texel, rows of
+    /// kProbeIrradianceTile with the same border as `depth`; empty for the other basis.
+    std::vector<glm::vec3> irradiance_map;
     /// Where the probe was moved from its grid position to leave the geometry it sat in.
     glm::vec3 offset{0.0f};
     /// false: inside geometry (or not gathered yet); it takes no part in interpolation.
@@ -119,11 +146,16 @@ class IrradianceProbes {
     /// Mean distance and mean square towards `direction` from probe `index`, bilinear in its
     /// tile (as the GPU's sampler filters it).
     [[nodiscard]] glm::vec2 depth_towards(std::size_t index, const glm::vec3& direction) const;
+    /// Probe `index`'s own irradiance for a surface facing unit `normal`, from its basis
+    /// (the octahedral map bilinear in its tile, as the GPU filters it).
+    [[nodiscard]] glm::vec3 probe_irradiance(std::size_t index, const glm::vec3& normal) const;
 
   private:
     /// Running sums of one probe's passes.
     struct Accumulator {
-        ShRgb radiance_sum;  ///< sum over passes of each pass's projection
+        ShRgb radiance_sum;  ///< Sh2: sum over passes of each pass's projection
+        /// Octahedral: per interior texel, the sum over passes of each pass's irradiance.
+        std::vector<glm::vec3> irradiance_sum;
         std::array<glm::vec3, static_cast<std::size_t>(kProbeDepthSize) * kProbeDepthSize>
             depth_sum{};  ///< per interior texel: sum of weights, of w * d, of w * d^2
         std::uint32_t passes = 0;
