@@ -8,6 +8,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "luxel/lighting/core/octahedral.hpp"
+#include "luxel/lighting/core/splitmix.hpp"
 #include "luxel/runtime/jobs.hpp"
 
 namespace luxel::lighting {
@@ -37,13 +38,7 @@ glm::vec3 pass_numbers(std::size_t probe, std::uint32_t pass) {
     std::uint64_t h = (static_cast<std::uint64_t>(probe) << 32) ^ pass;
     glm::vec3 out;
     for (int i = 0; i < 3; ++i) {
-        // splitmix64: well mixed from consecutive inputs.
-        h += 0x9e3779b97f4a7c15ull;
-        std::uint64_t z = h;
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        z ^= z >> 31;
-        out[i] = static_cast<float>(z >> 40) / static_cast<float>(1ull << 24);
+        out[i] = unit_interval(splitmix64(h));
     }
     return out;
 }
