@@ -15,6 +15,12 @@
 #define GATHER_TILES_UNIT 1     // the tile atlas the scene pass drew
 #define GATHER_SKY_UNIT 2       // the sky (lighting::SkyTexture) for pixels that leave the level
 
+// The surface id a vertex of a mirror or glass triangle carries: the scene pass marks its pixels
+// (alpha 0.5, no radiance), the reduction sums their weight apart, and the CPU traces rays
+// through them (HemiPlaneGatherer), since the plane cannot follow a specular bounce.
+#define GATHER_SPECULAR_SURFACE (-2)
+#define GATHER_SPECULAR_ALPHA 0.5
+
 // struct GatherView, std430: four vec4s. right x up = -forward, so triangles whose front faces
 // the texel wind counter-clockwise on the plane, as GL's front faces do.
 #define GATHER_VIEW_SIZE 64

@@ -22,6 +22,11 @@ uniform bool u_mirrored;  // the model matrix flips winding: front faces wind cl
 layout(location = 0) out vec4 o_radiance;
 
 void main() {
+    if (v_surface == GATHER_SPECULAR_SURFACE) {
+        // A mirror or glass: hides what lies behind it, and is marked for the CPU's rays.
+        o_radiance = vec4(0.0, 0.0, 0.0, GATHER_SPECULAR_ALPHA);
+        return;
+    }
     vec3 radiance = vec3(0.0);
     bool front = gl_FrontFacing != u_mirrored;
     if (front && v_surface >= 0 && 2 * v_surface + 1 < surface_pages.length()) {

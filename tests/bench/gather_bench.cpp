@@ -1,7 +1,8 @@
 // Final-gather benchmarks: the GPU hemi-plane (HemiPlaneGatherer) against the CPU backend
 // (CpuGatherer) in the same run, on the same texels, for scenes of 34, 8,800, 13,000 and
 // 133,000 triangles. Figures and the command that produced them are in docs/PERFORMANCE.md.
-//   HemiPlane/scene/batch   one gather() of 256 texels (a = 2, 64 x 64 pixels) with
+//   HemiPlane/scene/batch   one gather() of 256 texels (a = 2, 64 x 64 pixels, its 16 horizon
+//        rays per texel on the calling thread; no material table, so no specular rays) with
 //        `batch` texels per submission; counters: texels/s and ms per texel. The GL renderer
 //        (llvmpipe without a GPU) is the benchmark's label.
 //   Cpu/scene               CpuGatherer with 1024 rays per texel on 2 job threads.

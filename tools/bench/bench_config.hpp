@@ -47,8 +47,11 @@ struct BenchConfig {
     double keep = lighting::IlluminationSettings{}.change_test_sigmas;
     std::uint32_t caustic_photons = 10'000;  ///< per (generator, light) pair; the paper's
     std::uint32_t caustic_slices = 8;        ///< ... over 8 frames
-    /// The final-gather backend: "cpu" (Embree rays, `rays` per texel) or "gpu" (the
-    /// hemi-plane, HemiPlaneGatherer, in the bench's GL context; `rays` does not apply).
+    /// The final-gather backend: "cpu" (Embree rays, `rays` per texel) or the hemi-plane
+    /// (HemiPlaneGatherer, in the bench's GL context; `rays` does not apply): "gpu" as luxel
+    /// runs it (turned each pass, the band it misses and the light behind mirrors and glass
+    /// traced by CPU rays), "gpu-turn" (turned, no CPU rays), "gpu-plane" (the paper's plane
+    /// alone).
     std::string backend = "cpu";
     /// The screen-space caustic filter of the frame (CausticPass): larsen, box, cone (the round
     /// cone) or world (the world-space cone). Changes only the image and its caustic pass time.

@@ -72,8 +72,9 @@ Sweep parse_sweep(const std::string& text) {
                 throw Error(what + ": '" + value + "' is not a whole number >= 1");
             }
         } else if (sweep.knob == "backend") {
-            if (value != "cpu" && value != "gpu") {
-                throw Error(what + ": '" + value + "' is not a gather backend (cpu, gpu)");
+            if (value != "cpu" && value != "gpu" && value != "gpu-plane" && value != "gpu-turn") {
+                throw Error(what + ": '" + value +
+                            "' is not a gather backend (cpu, gpu, gpu-plane, gpu-turn)");
             }
         } else if (sweep.knob == "kernel") {
             if (value != "larsen" && value != "box" && value != "cone" && value != "world") {

@@ -19,7 +19,8 @@ constexpr float kAutoOffset = 0.3f;  ///< metres along +x: the cube slides 0.7 m
 bool sweeps_gpu_backend(const Options& options) {
     return std::any_of(options.sweeps.begin(), options.sweeps.end(), [](const Sweep& sweep) {
         return sweep.knob == "backend" &&
-               std::find(sweep.values.begin(), sweep.values.end(), "gpu") != sweep.values.end();
+               std::any_of(sweep.values.begin(), sweep.values.end(),
+                           [](const std::string& v) { return v.rfind("gpu", 0) == 0; });
     });
 }
 

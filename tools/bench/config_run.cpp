@@ -164,10 +164,18 @@ ConfigRun::ConfigRun(const LevelRunContext& context, const BenchConfig& config)
     world::update_skins(registry_);  // skinned meshes follow their joints
     lighting_ =
         std::make_unique<lighting::LightingSystem>(registry_, *context.jobs, config.lighting());
-    if (config.backend == "gpu") {
+    if (config.backend.rfind("gpu", 0) == 0) {
+        // gpu: the hemi-plane as luxel runs it (turned each pass, the band it misses and the
+        // light behind mirrors and glass traced by CPU rays); gpu-turn: turned, no CPU rays;
+        // gpu-plane: the paper's plane alone.
+        lighting::HemiPlaneSettings hemi;
+        hemi.rotate = config.backend != "gpu-plane";
+        if (config.backend != "gpu") {
+            hemi.horizon_rays = 0;
+            hemi.specular_rays = 0;
+        }
         gpu_gatherer_ = std::make_unique<lighting::HemiPlaneGatherer>(
-            lighting_->photons().ray_scene(), lighting_->maps().aim(),
-            lighting::HemiPlaneSettings{}, *context.shaders);
+            lighting_->photons().ray_scene(), lighting_->maps().aim(), hemi, *context.shaders);
         lighting_->set_gatherer(gpu_gatherer_.get());
     }
     if (options_.image.enabled) {

@@ -99,7 +99,7 @@ int run(int argc, char** argv) {
                    "probes 0|1, probe_spacing METRES, probe_basis oct|sh2, "
                    "keep SIGMAS, "
                    "caustics NxK, "
-                   "backend cpu|gpu, kernel "
+                   "backend cpu|gpu|gpu-turn|gpu-plane, kernel "
                    "larsen|box|cone|world, aa on|off); repeatable, "
                    "each varies one knob from the paper's configuration");
     app.add_option("--image", image_size,

@@ -73,6 +73,23 @@ bool finite_vector(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
+/// Traces `directions` from `origin` in bundles of 64 that leave together (one Embree stream
+/// each, RayScene::intersect_from) and calls visit(i, first hit of ray i) for each, in order.
+template <class Visit>
+void for_each_first_hit(const RayScene& scene, float max_distance, const glm::vec3& origin,
+                        std::span<const glm::vec3> directions, const Visit& visit) {
+    constexpr std::size_t kBundle = 64;
+    std::array<std::optional<RayHit>, kBundle> hits;
+    for (std::size_t first = 0; first < directions.size(); first += kBundle) {
+        const std::size_t bundle = std::min(kBundle, directions.size() - first);
+        scene.intersect_from(origin, directions.subspan(first, bundle), max_distance,
+                             std::span(hits.data(), bundle));
+        for (std::size_t k = 0; k < bundle; ++k) {
+            visit(first + k, hits[k]);
+        }
+    }
+}
+
 }  // namespace
 
 CpuGatherer::CpuGatherer(const RayScene& scene, const RadianceAtlas& atlas,
@@ -188,20 +205,35 @@ bool CpuGatherer::see_through(const RayHit& hit) const {
     return diffuse && !mapped && !emits;
 }
 
+void CpuGatherer::trace_gather_rays(const glm::vec3& origin, std::span<const glm::vec3> directions,
+                                    std::span<glm::vec3> radiance, std::uint32_t seed,
+                                    std::span<std::uint8_t> specular) const {
+    const std::size_t count = std::min(directions.size(), radiance.size());
+    for_each_first_hit(
+        *scene_, settings_.max_distance, origin, directions.first(count),
+        [&](std::size_t i, const std::optional<RayHit>& hit) {
+            if (i < specular.size()) {
+                specular[i] = hit && materials_ != nullptr && hit->material < materials_->size() &&
+                                      (*materials_)[hit->material].scattering != Scattering::Diffuse
+                                  ? 1
+                                  : 0;
+            }
+            const glm::vec3 l =
+                trace(origin, directions[i], hit, static_cast<std::uint32_t>(i), seed);
+            radiance[i] = finite_vector(l) ? glm::max(l, glm::vec3(0.0f)) : glm::vec3(0.0f);
+        });
+}
+
 void CpuGatherer::trace_probe_rays(const glm::vec3& origin, std::span<const glm::vec3> directions,
                                    std::span<ProbeRay> rays, std::uint32_t seed) const {
     const std::size_t count = std::min(directions.size(), rays.size());
     // Geometry a ray may pass through before it gives up (a crowd of props in a row).
     constexpr int kMaxSeeThrough = 8;
-    constexpr std::size_t kBundle = 64;
-    std::array<std::optional<RayHit>, kBundle> hits;
-    for (std::size_t first = 0; first < count; first += kBundle) {
-        const std::size_t bundle = std::min(kBundle, count - first);
-        scene_->intersect_from(origin, directions.subspan(first, bundle), settings_.max_distance,
-                               std::span(hits.data(), bundle));
-        for (std::size_t k = 0; k < bundle; ++k) {
-            const glm::vec3 direction = directions[first + k];
-            std::optional<RayHit> hit = hits[k];
+    for_each_first_hit(
+        *scene_, settings_.max_distance, origin, directions.first(count),
+        [&](std::size_t i, const std::optional<RayHit>& first_hit) {
+            const glm::vec3 direction = directions[i];
+            std::optional<RayHit> hit = first_hit;
             glm::vec3 from = origin;
             float travelled = 0.0f;
             for (int pass = 0; pass < kMaxSeeThrough && hit && see_through(*hit); ++pass) {
@@ -211,7 +243,7 @@ void CpuGatherer::trace_probe_rays(const glm::vec3& origin, std::span<const glm:
                 hit = scene_->intersect(from, direction,
                                         std::max(settings_.max_distance - travelled, 0.0f));
             }
-            ProbeRay& out = rays[first + k];
+            ProbeRay& out = rays[i];
             out.distance = hit ? travelled + hit->distance : settings_.max_distance;
             out.hit = hit.has_value();
             const TraceMaterial* material =
@@ -222,11 +254,10 @@ void CpuGatherer::trace_probe_rays(const glm::vec3& origin, std::span<const glm:
             out.back_face =
                 hit.has_value() && diffuse && glm::dot(hit->geometric_normal, direction) >= 0.0f;
             const glm::vec3 radiance =
-                trace(from, direction, hit, static_cast<std::uint32_t>(first + k), seed);
+                trace(from, direction, hit, static_cast<std::uint32_t>(i), seed);
             out.radiance =
                 finite_vector(radiance) ? glm::max(radiance, glm::vec3(0.0f)) : glm::vec3(0.0f);
-        }
-    }
+        });
 }
 
 void CpuGatherer::gather(std::span<const GatherTexel> texels, std::span<glm::vec3> irradiance) {

@@ -151,6 +151,7 @@ WarmUpResult LightingSystem::warm_up(double now_seconds, double max_ms,
 
 void LightingSystem::set_gatherer(IrradianceGatherer* gatherer) {
     gatherer_ = gatherer != nullptr ? gatherer : cpu_gatherer_.get();
+    gatherer_->set_materials(&photons_->materials());
     maps_->set_refinement(gatherer_->refines());
 }
 

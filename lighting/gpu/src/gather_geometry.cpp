@@ -7,6 +7,8 @@
 
 #include <glm/glm.hpp>
 
+#include "gather/gather_interface.h"
+
 namespace luxel::lighting {
 namespace {
 
@@ -17,7 +19,8 @@ struct GatherVertex {
 };
 static_assert(sizeof(GatherVertex) == 24);
 
-GatherGeometry::Object upload(const TriangleMesh& mesh) {
+GatherGeometry::Object upload(const TriangleMesh& mesh,
+                              const std::vector<TraceMaterial>* materials) {
     std::vector<GatherVertex> vertices;
     std::vector<std::uint32_t> indices;
     vertices.reserve(mesh.positions.size());
@@ -28,7 +31,12 @@ GatherGeometry::Object upload(const TriangleMesh& mesh) {
     const bool has_uvs = mesh.lightmap_uvs.size() == mesh.positions.size();
     const std::size_t triangles = mesh.triangle_count();
     for (std::size_t t = 0; t < triangles; ++t) {
-        const std::int32_t surface = t < mesh.surface_ids.size() ? mesh.surface_ids[t] : -1;
+        const bool specular = materials != nullptr && t < mesh.material_ids.size() &&
+                              mesh.material_ids[t] < materials->size() &&
+                              (*materials)[mesh.material_ids[t]].scattering != Scattering::Diffuse;
+        const std::int32_t surface = specular                      ? GATHER_SPECULAR_SURFACE
+                                     : t < mesh.surface_ids.size() ? mesh.surface_ids[t]
+                                                                   : -1;
         for (std::size_t corner = 0; corner < 3; ++corner) {
             const std::uint32_t source = mesh.indices[3 * t + corner];
             const std::uint64_t key =
@@ -74,7 +82,7 @@ GatherGeometry::Object upload(const TriangleMesh& mesh) {
 
 }  // namespace
 
-void GatherGeometry::sync(const RayScene& scene) {
+void GatherGeometry::sync(const RayScene& scene, const std::vector<TraceMaterial>* materials) {
     const std::vector<ObjectId> ids = scene.objects();
     std::erase_if(objects_, [&](const auto& entry) {
         return !std::binary_search(ids.begin(), ids.end(), entry.first);
@@ -82,7 +90,7 @@ void GatherGeometry::sync(const RayScene& scene) {
     for (ObjectId id : ids) {
         const auto found = objects_.find(id);
         if (found == objects_.end() || found->second.deformations != scene.deformations(id)) {
-            Object object = upload(scene.mesh(id));
+            Object object = upload(scene.mesh(id), materials);
             object.deformations = scene.deformations(id);
             objects_.insert_or_assign(id, std::move(object));
             ++uploads_;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,6 +12,8 @@
 
 #include "gather/gather_interface.h"
 #include "gather_geometry.hpp"
+#include "luxel/lighting/core/cpu_gather.hpp"
+#include "luxel/lighting/core/splitmix.hpp"
 #include "luxel/lighting/gpu/hemi_plane_geometry.hpp"
 #include "luxel/lighting/gpu/sky_texture.hpp"
 #include "luxel/runtime/error.hpp"
@@ -52,16 +56,42 @@ bool finite(const glm::vec3& v) {
 struct TexelView {
     GpuView view{};
     bool valid = false;
+    /// Three numbers in [0, 1) for this texel and pass: the plane's turn about the normal and
+    /// the shift of the horizon rays' sequence.
+    glm::vec3 random{0.0f};
 };
 
-TexelView make_view(const GatherTexel& texel) {
+/// Three numbers from the texel centre's bits and the pass: unrelated for neighbouring texels
+/// and consecutive passes, the same on every run.
+glm::vec3 texel_numbers(const glm::vec3& position, std::uint32_t pass) {
+    std::uint64_t h = pass;
+    glm::vec3 out(0.0f);
+    for (int i = 0; i < 3; ++i) {
+        std::uint32_t bits = 0;
+        std::memcpy(&bits, &position[i], sizeof(bits));
+        h ^= static_cast<std::uint64_t>(bits) << (i == 1 ? 32 : 0);
+        out[i] = unit_interval(splitmix64(h));
+    }
+    return out;
+}
+
+TexelView make_view(const GatherTexel& texel, bool rotate) {
     TexelView result;
     const float length = glm::length(texel.normal);
     if (!finite(texel.position) || !(length > 0.0f) || !std::isfinite(length)) {
         result.view = {glm::vec4(0.0f), {1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
         return result;
     }
-    const HemiPlaneFrame frame = hemi_plane_frame(texel.normal / length);
+    HemiPlaneFrame frame = hemi_plane_frame(texel.normal / length);
+    result.random = texel_numbers(texel.position, texel.pass);
+    if (rotate) {
+        // The plane turned about the normal: the square's corners, its pixel grid and the band
+        // it misses fall elsewhere each pass (right x up stays -forward).
+        const float angle = glm::two_pi<float>() * result.random.x;
+        const glm::vec3 right = std::cos(angle) * frame.right + std::sin(angle) * frame.up;
+        frame.up = -std::sin(angle) * frame.right + std::cos(angle) * frame.up;
+        frame.right = right;
+    }
     // The CPU backend starts its rays from the same offset point; starting both there keeps
     // the two backends' answers comparable texel for texel.
     const glm::vec3 origin = offset_ray_origin(texel.position, frame.forward);
@@ -85,6 +115,42 @@ void validate(const HemiPlaneSettings& s) {
     }
     if (!(s.near_fraction > 0.0f) || !(s.near_fraction < 1.0f)) {
         throw Error("HemiPlaneSettings.near_fraction must be in (0, 1)");
+    }
+    if (s.horizon_rays < 0 || s.horizon_rays > 65536) {
+        throw Error("HemiPlaneSettings.horizon_rays must be in [0, 65536], got " +
+                    std::to_string(s.horizon_rays));
+    }
+    if (s.specular_rays < 0 || s.specular_rays > 65536) {
+        throw Error("HemiPlaneSettings.specular_rays must be in [0, 65536], got " +
+                    std::to_string(s.specular_rays));
+    }
+}
+
+/// Up to `count` directions cosine-distributed over the part of the hemisphere about `view`'s
+/// forward axis that its plane of half-width `a` does not show (|x| > a z or |y| > a z in the
+/// view's frame; `inside`: the part it shows): points of the R2 sequence shifted by `shift`,
+/// mapped to the cosine-weighted hemisphere, kept when they fall in the part. A low-discrepancy
+/// sequence restricted to a region stays evenly spread over it; 1 - F(a) of the points land
+/// outside the plane (16.9% at a = 2).
+void band_directions(const GpuView& view, float a, int count, glm::vec2 shift, bool inside,
+                     std::vector<glm::vec3>& out) {
+    out.clear();
+    const glm::vec3 right(view.right);
+    const glm::vec3 up(view.up);
+    const glm::vec3 forward(view.forward);
+    const int attempts = count * 64;
+    for (int i = 0; i < attempts && static_cast<int>(out.size()) < count; ++i) {
+        glm::vec2 u = shift + static_cast<float>(i) * glm::vec2(0.7548776662f, 0.5698402910f);
+        u -= glm::floor(u);
+        const float r = std::sqrt(u.x);
+        const float phi = glm::two_pi<float>() * u.y;
+        const float x = r * std::cos(phi);
+        const float y = r * std::sin(phi);
+        const float z = std::sqrt(std::max(0.0f, 1.0f - u.x));
+        const bool outside = std::abs(x) > a * z || std::abs(y) > a * z;
+        if (outside != inside) {
+            out.push_back(glm::normalize(x * right + y * up + z * forward));
+        }
     }
 }
 
@@ -129,10 +195,15 @@ struct HemiPlaneGatherer::Impl {
     gl::Buffer weights;
     gl::Buffer views;
     gl::Buffer sums;
+    /// The band the plane misses and the light behind mirrors and glass, traced on the CPU as
+    /// the CPU gather traces its rays.
+    CpuGatherer horizon;
+    const std::vector<TraceMaterial>* materials = nullptr;
+    bool materials_changed = false;
 
     Impl(const RayScene& s, const RadianceAtlas& a, HemiPlaneSettings settings_in,
          const ShaderLibrary& shaders)
-        : scene(&s), atlas(&a), settings(settings_in) {
+        : scene(&s), atlas(&a), settings(settings_in), horizon(s, a) {
         validate(settings);
         settings.texels_per_batch = fit_batch(settings.texels_per_batch, settings.resolution);
         coverage = hemi_plane_coverage(static_cast<double>(settings.half_width));
@@ -214,6 +285,87 @@ struct HemiPlaneGatherer::Impl {
         ++stats.batches;
     }
 
+    /// Per texel, the band's irradiance pi (1 - F(a)) mean(L) from settings.horizon_rays rays;
+    /// empty without horizon rays. A texel whose band rays could not be placed (none fell
+    /// outside the plane: never at a = 2) gets the plane's assumption instead.
+    std::vector<std::optional<glm::vec3>> trace_horizon(const std::vector<GpuView>& gpu_views,
+                                                        const std::vector<bool>& valid,
+                                                        const std::vector<glm::vec2>& shifts) {
+        if (settings.horizon_rays <= 0) {
+            return {};
+        }
+        std::vector<std::optional<glm::vec3>> band(gpu_views.size());
+        std::vector<glm::vec3> directions;
+        std::vector<glm::vec3> band_radiance;
+        const float share = static_cast<float>(glm::pi<double>() * (1.0 - coverage));
+        for (std::size_t i = 0; i < gpu_views.size(); ++i) {
+            if (!valid[i]) {
+                continue;
+            }
+            band_directions(gpu_views[i], settings.half_width, settings.horizon_rays, shifts[i],
+                            false, directions);
+            if (directions.empty()) {
+                continue;
+            }
+            band_radiance.resize(directions.size());
+            const auto seed = static_cast<std::uint32_t>(shifts[i].x * 4294967040.0f);
+            horizon.trace_gather_rays(glm::vec3(gpu_views[i].origin), directions, band_radiance,
+                                      seed);
+            glm::dvec3 sum(0.0);
+            for (const glm::vec3& l : band_radiance) {
+                sum += glm::dvec3(l);
+            }
+            band[i] = glm::vec3(sum / static_cast<double>(band_radiance.size())) * share;
+            stats.horizon_rays += band_radiance.size();
+        }
+        return band;
+    }
+
+    /// Per texel whose plane showed a mirror or glass (the reduction's alpha), the light behind
+    /// it: pi F(a) times the mean over settings.specular_rays rays cosine-distributed over the
+    /// plane's view of what those whose first hit is specular bring back. Empty when no texel
+    /// needs it or without a material table.
+    std::vector<glm::vec3> trace_specular(const std::vector<GpuView>& gpu_views,
+                                          const std::vector<bool>& valid,
+                                          const std::vector<glm::vec2>& shifts,
+                                          const std::vector<glm::vec4>& plane) {
+        if (settings.specular_rays <= 0 || materials == nullptr) {
+            return {};
+        }
+        std::vector<glm::vec3> out;
+        std::vector<glm::vec3> directions;
+        std::vector<glm::vec3> light;
+        std::vector<std::uint8_t> through;
+        const float share = static_cast<float>(glm::pi<double>() * coverage);
+        for (std::size_t i = 0; i < gpu_views.size(); ++i) {
+            if (!valid[i] || !(plane[i].w > 0.0f)) {
+                continue;
+            }
+            // Another stretch of the sequence than the horizon rays'.
+            const glm::vec2 shift = glm::fract(shifts[i] + glm::vec2(0.5f));
+            band_directions(gpu_views[i], settings.half_width, settings.specular_rays, shift, true,
+                            directions);
+            if (directions.empty()) {
+                continue;
+            }
+            light.resize(directions.size());
+            through.assign(directions.size(), 0);
+            const auto seed = static_cast<std::uint32_t>(shift.x * 4294967040.0f);
+            horizon.trace_gather_rays(glm::vec3(gpu_views[i].origin), directions, light, seed,
+                                      through);
+            glm::dvec3 sum(0.0);
+            for (std::size_t k = 0; k < light.size(); ++k) {
+                if (through[k] != 0) {
+                    sum += glm::dvec3(light[k]);
+                }
+            }
+            out.resize(gpu_views.size(), glm::vec3(0.0f));
+            out[i] = glm::vec3(sum / static_cast<double>(light.size())) * share;
+            stats.specular_rays += light.size();
+        }
+        return out;
+    }
+
     void gather(std::span<const GatherTexel> texels, std::span<glm::vec3> irradiance) {
         const std::size_t count = std::min(texels.size(), irradiance.size());
         if (count == 0) {
@@ -221,14 +373,20 @@ struct HemiPlaneGatherer::Impl {
         }
         std::vector<GpuView> gpu_views(count);
         std::vector<bool> valid(count);
+        std::vector<glm::vec2> shifts(count);
         for (std::size_t i = 0; i < count; ++i) {
-            const TexelView v = make_view(texels[i]);
+            const TexelView v = make_view(texels[i], settings.rotate);
             gpu_views[i] = v.view;
             valid[i] = v.valid;
+            shifts[i] = glm::vec2(v.random.y, v.random.z);
         }
 
         const gl::StateGuard guard;
-        geometry.sync(*scene);
+        if (materials_changed) {
+            geometry.clear();
+            materials_changed = false;
+        }
+        geometry.sync(*scene, materials);
         const std::uint64_t pages_before = radiance.page_uploads();
         radiance.sync(*atlas);
         // A pixel where nothing was drawn looks out of the level: the reduction reads the sky
@@ -268,6 +426,9 @@ struct HemiPlaneGatherer::Impl {
             render_batch(static_cast<int>(first), static_cast<int>(std::min(batch, count - first)));
         }
 
+        // While the GPU draws: the band the plane misses, on the CPU.
+        const std::vector<std::optional<glm::vec3>> band = trace_horizon(gpu_views, valid, shifts);
+
         // The reduction wrote the sums through an SSBO: make them visible to the read-back.
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         std::vector<glm::vec4> result(count);
@@ -277,9 +438,17 @@ struct HemiPlaneGatherer::Impl {
         glBindTextureUnit(kSkyUnit, 0);
         gl::check_error("HemiPlaneGatherer::gather");
 
-        const float scale = static_cast<float>(glm::pi<double>() / coverage);
+        const std::vector<glm::vec3> specular = trace_specular(gpu_views, valid, shifts, result);
+        const float pi = glm::pi<float>();
+        const float assumed = static_cast<float>(glm::pi<double>() / coverage);
         for (std::size_t i = 0; i < count; ++i) {
-            glm::vec3 e = glm::vec3(result[i]) * scale;
+            // With the band traced, the plane's sum is its own share of the hemisphere; without,
+            // it stands for the whole.
+            glm::vec3 e = band.empty() || !band[i] ? glm::vec3(result[i]) * assumed
+                                                   : glm::vec3(result[i]) * pi + *band[i];
+            if (!specular.empty()) {
+                e += specular[i];
+            }
             for (int c = 0; c < 3; ++c) {
                 // The contract: never NaN or negative, whatever the atlas held.
                 e[c] = e[c] >= 0.0f && std::isfinite(e[c]) ? e[c] : 0.0f;
@@ -303,6 +472,20 @@ HemiPlaneGatherer::~HemiPlaneGatherer() = default;
 void HemiPlaneGatherer::gather(std::span<const GatherTexel> texels,
                                std::span<glm::vec3> irradiance) {
     impl_->gather(texels, irradiance);
+}
+
+void HemiPlaneGatherer::set_materials(const std::vector<TraceMaterial>* materials) {
+    if (materials != impl_->materials) {
+        impl_->materials = materials;
+        impl_->horizon.set_materials(materials);
+        // Specular triangles are marked at upload: the next gather (in its GL context)
+        // uploads every object again.
+        impl_->materials_changed = true;
+    }
+}
+
+bool HemiPlaneGatherer::refines() const {
+    return impl_->settings.rotate || impl_->settings.horizon_rays > 0;
 }
 
 void HemiPlaneGatherer::refresh_geometry() {

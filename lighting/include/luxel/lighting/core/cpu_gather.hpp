@@ -39,7 +39,9 @@ class CpuGatherer final : public IrradianceGatherer {
     /// With the scene's material table (RayHit::material indexes it), rays follow mirrors and
     /// glass to the diffuse surface they show; without, specular surfaces read as their AIM
     /// (none: black).
-    void set_materials(const std::vector<TraceMaterial>* materials) { materials_ = materials; }
+    void set_materials(const std::vector<TraceMaterial>* materials) override {
+        materials_ = materials;
+    }
 
     [[nodiscard]] std::string_view name() const override { return "cpu"; }
     /// Each pass rotates the ray pattern anew (GatherTexel::pass).
@@ -48,6 +50,16 @@ class CpuGatherer final : public IrradianceGatherer {
 
     /// Irradiance at one texel (what gather() does per texel).
     [[nodiscard]] glm::vec3 gather_one(const GatherTexel& texel) const;
+
+    /// The radiance gather rays bring back from `origin` along each of `directions`, traced as
+    /// gather_one traces its own (the AIM at diffuse hits, mirrors and glass followed with
+    /// materials, the sky where a ray leaves; never NaN or negative): for a gatherer that
+    /// samples part of the hemisphere itself (HemiPlaneGatherer's horizon band).
+    /// With `specular` (one entry per direction), also whether each ray's first hit was a
+    /// mirror or glass.
+    void trace_gather_rays(const glm::vec3& origin, std::span<const glm::vec3> directions,
+                           std::span<glm::vec3> radiance, std::uint32_t seed,
+                           std::span<std::uint8_t> specular = {}) const;
 
     /// The irradiance probes' rays (a ProbeRayTracer): from `origin` along each direction,
     /// the radiance each brings back and where it first meets the light-mapped scene. A ray

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <span>
 #include <string_view>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -11,6 +12,8 @@
 /// backends: Embree rays on the CPU (CpuGatherer) and the hemi-plane on the GPU
 /// (lighting/gpu HemiPlaneGatherer).
 namespace luxel::lighting {
+
+struct TraceMaterial;  // photon_tracer.hpp
 
 /// A texel centre to gather at, in world space.
 struct GatherTexel {
@@ -34,6 +37,11 @@ class IrradianceGatherer {
     /// averaging them converges (a sampling gatherer: yes; a deterministic one: no, and the
     /// maps then do not refine).
     [[nodiscard]] virtual bool refines() const { return false; }
+    /// The material table RayHit::material indexes (the photon world's), so that the gather
+    /// follows mirrors and glass to the diffuse surfaces they show, as photons do; without
+    /// (null), a specular surface reads as its AIM (none: black). Read at every gather call;
+    /// LightingSystem sets it on whichever backend it is given.
+    virtual void set_materials(const std::vector<TraceMaterial>* materials) { (void)materials; }
 };
 
 /// The fraction of the cosine-weighted hemisphere a hemi-plane of half-width `a` at unit

@@ -27,6 +27,23 @@ struct HemiPlaneSettings {
     /// a * near of the texel's normal axis, so a texel on a floor d from a wall sees the whole
     /// wall as long as near < d / a. Depth is reversed float, so a tiny near costs no precision.
     float near_fraction = 1e-5f;
+    /// CPU rays per texel and pass for the band of the hemisphere the plane misses (1 - F(a)
+    /// of its cosine weight: 16.9% at a = 2), cosine-distributed over that band and traced as
+    /// the CPU gather traces its rays (CpuGatherer::trace_gather_rays), while the GPU draws.
+    /// 0: the band is assumed to look like what the plane sees (E = pi sum / F(a)), the
+    /// paper's approximation, biased wherever the horizon differs (a floor beside a wall).
+    int horizon_rays = 16;
+    /// CPU rays per texel and pass over the plane's own view, for a texel whose plane shows a
+    /// mirror or glass (with a material table): the plane cannot follow the bounce, so those
+    /// pixels' light comes from these rays, traced through the specular surfaces to the
+    /// diffuse ones they show (a floor seeing the lamp-lit ceiling through a glass sphere).
+    /// Only rays whose first hit is specular count. 0: such pixels stay black.
+    int specular_rays = 32;
+    /// Each pass (GatherTexel::pass) turns the plane about the texel's normal by a new angle,
+    /// so that averaged passes wash out its pixel grid's edges; the horizon and specular rays
+    /// are new each pass either way. With neither turn nor rays every pass repeats the last
+    /// and the gatherer does not refine (refines()).
+    bool rotate = true;
 };
 
 /// Counters since construction, for tests and benchmarks.
@@ -36,12 +53,18 @@ struct HemiPlaneStats {
     std::uint64_t draws = 0;
     std::uint64_t object_uploads = 0;  ///< objects whose geometry was uploaded
     std::uint64_t page_uploads = 0;    ///< AIM pages uploaded
+    std::uint64_t horizon_rays = 0;    ///< CPU rays traced for the band the plane misses
+    std::uint64_t specular_rays = 0;   ///< CPU rays traced through mirrors and glass
 };
 
 /// The GPU backend of final gathering: the hemi-plane (docs/METHOD.md §6.2-6.3). From each texel
 /// centre the AIM-lit scene is rendered onto one plane of half-width a at unit distance along
 /// the normal, each pixel is weighted by dA / (pi (x^2 + y^2 + 1)^2), the weighted radiance is
-/// summed in 32-bit float by a compute shader, and E = pi * sum / F(a). A pixel where nothing
+/// summed in 32-bit float by a compute shader, and E = pi * sum + the band the plane misses:
+/// pi (1 - F(a)) times the mean of `horizon_rays` CPU rays cosine-distributed over that band
+/// (without them, E = pi * sum / F(a), the band assumed to look like the plane). Each pass
+/// turns the plane about the normal by a new angle, so that passes average out the plane's
+/// pixel grid and the band's sampling noise (docs/METHOD.md §6.3). A pixel where nothing
 /// was drawn looks out of the level and reads the atlas's skies along its direction (as the CPU
 /// gather's escaping rays do), through a SkyTexture.
 ///
@@ -72,6 +95,11 @@ class HemiPlaneGatherer final : public IrradianceGatherer {
     HemiPlaneGatherer& operator=(const HemiPlaneGatherer&) = delete;
 
     [[nodiscard]] std::string_view name() const override { return "hemi-plane"; }
+    /// Yes when each pass turns the plane or draws new horizon rays (the defaults).
+    [[nodiscard]] bool refines() const override;
+    /// Mirrors and glass drawn as such and followed by the CPU's rays (specular_rays); the
+    /// geometry is uploaded again with the new table.
+    void set_materials(const std::vector<TraceMaterial>* materials) override;
     void gather(std::span<const GatherTexel> texels, std::span<glm::vec3> irradiance) override;
 
     /// Drops the uploaded geometry; the next gather() uploads every object again.
