@@ -2,16 +2,15 @@
 
 #include <array>
 
+#include "luxel/runtime/texture_sampling.hpp"
+
 namespace luxel::renderer {
 namespace {
 
 gl::Texture target_texture(GLenum format, int width, int height) {
     gl::Texture texture = gl::Texture::create_2d(format, width, height);
     // Every pass reads these with texelFetch, one texel per pixel.
-    glTextureParameteri(texture.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(texture.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl::set_sampling(texture.id(), gl::Sampling::Exact);
     return texture;
 }
 
@@ -62,8 +61,7 @@ FrameTargets::FrameTargets(int w, int h, bool anti_aliasing) : width(w), height(
     frame_target = single_target(frame, "frame target");
     if (anti_aliasing) {
         composed = target_texture(GL_RGBA32F, w, h);
-        glTextureParameteri(composed.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTextureParameteri(composed.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        gl::set_sampling(composed.id(), gl::Sampling::Filtered);
         composed_target = single_target(composed, "composed target");
     }
     gl::check_error("FrameTargets");

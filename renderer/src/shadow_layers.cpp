@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "luxel/runtime/texture_sampling.hpp"
+
 namespace luxel::renderer {
 
 ShadowLayers::ShadowLayers(GLenum target, int size) : target_(target), size_(std::max(size, 1)) {}
@@ -37,11 +39,7 @@ void ShadowLayers::grow(int capacity) {
     glTextureStorage3D(id, 1, GL_DEPTH_COMPONENT32F, size_, size_, capacity * faces());
     // Raw depths read at texel centres: the shaders compare them themselves
     // (shaders/render/shadow.glsl), so no comparison mode and no filtering.
-    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    gl::set_sampling(id, gl::Sampling::Exact);
     if (capacity_ > 0) {
         glCopyImageSubData(texture_.id(), target_, 0, 0, 0, 0, id, target_, 0, 0, 0, 0, size_,
                            size_, capacity_ * faces());

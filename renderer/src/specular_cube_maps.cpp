@@ -12,6 +12,7 @@
 #include "fill_budget.hpp"
 #include "luxel/runtime/log.hpp"
 #include "luxel/runtime/shader_library.hpp"
+#include "luxel/runtime/texture_sampling.hpp"
 #include "material_textures.hpp"
 
 namespace luxel::renderer {
@@ -39,11 +40,7 @@ SpecularCubeMaps::CubeMap SpecularCubeMaps::allocate() const {
     cube_map.cube = gl::Texture::create(GL_TEXTURE_CUBE_MAP);
     // Radiance: 32-bit like every radiance target (half floats overflow at 65,504).
     glTextureStorage2D(cube_map.cube.id(), 1, GL_RGBA32F, size_, size_);
-    glTextureParameteri(cube_map.cube.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(cube_map.cube.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(cube_map.cube.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(cube_map.cube.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(cube_map.cube.id(), GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    gl::set_sampling(cube_map.cube.id(), gl::Sampling::Filtered);
     cube_map.depth = gl::Renderbuffer::create(GL_DEPTH_COMPONENT32F, size_, size_);
     cube_map.framebuffer = gl::Framebuffer::create();
     cube_map.framebuffer.attach(GL_DEPTH_ATTACHMENT, cube_map.depth);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "luxel/runtime/error.hpp"
+#include "luxel/runtime/texture_sampling.hpp"
 
 namespace luxel::gl {
 
@@ -82,11 +83,10 @@ Texture Texture::create_2d(GLenum internal_format, int width, int height, int le
     glCreateTextures(GL_TEXTURE_2D, 1, &id);
     Texture texture(id, GL_TEXTURE_2D, width, height);
     glTextureStorage2D(id, levels < 1 ? 1 : levels, internal_format, width, height);
-    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER,
-                        levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
-    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    set_sampling(id, Sampling::Filtered);
+    if (levels > 1) {
+        glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    }
     check_error("Texture::create_2d");
     return texture;
 }

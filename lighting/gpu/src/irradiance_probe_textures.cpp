@@ -15,15 +15,6 @@ struct ProbeRecord {
 };
 static_assert(sizeof(ProbeRecord) == 10 * sizeof(glm::vec4));
 
-gl::Texture linear_atlas(GLenum format, int width, int height) {
-    gl::Texture texture = gl::Texture::create_2d(format, width, height);
-    glTextureParameteri(texture.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(texture.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return texture;
-}
-
 /// Copies one probe's tile (rows of `side` texels) into its place in an atlas's texels.
 template <class Texel, class Value>
 void copy_tile(std::span<const Value> tile, int side, std::size_t index, int tiles_per_row,
@@ -65,12 +56,15 @@ void IrradianceProbeTextures::sync(const IrradianceProbes* probes) {
         const int rows = static_cast<int>((count_ + static_cast<std::size_t>(tiles_per_row_) - 1) /
                                           static_cast<std::size_t>(tiles_per_row_));
         records_ = gl::Buffer::create(count_ * sizeof(ProbeRecord));
-        depth_ = linear_atlas(GL_RG32F, tiles_per_row_ * kProbeDepthTile, rows * kProbeDepthTile);
+        // create_2d's textures filter bilinearly and clamp at the edges, as the atlases are read.
+        depth_ = gl::Texture::create_2d(GL_RG32F, tiles_per_row_ * kProbeDepthTile,
+                                        rows * kProbeDepthTile);
         basis_ = probes->settings().basis;
-        irradiance_ = basis_ == ProbeBasis::Octahedral
-                          ? linear_atlas(GL_RGBA16F, tiles_per_row_ * kProbeIrradianceTile,
+        irradiance_ =
+            basis_ == ProbeBasis::Octahedral
+                ? gl::Texture::create_2d(GL_RGBA16F, tiles_per_row_ * kProbeIrradianceTile,
                                          rows * kProbeIrradianceTile)
-                          : gl::Texture{};
+                : gl::Texture{};
         source_ = probes;
     }
     std::vector<ProbeRecord> records(count_);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "luxel/runtime/texture_sampling.hpp"
+
 namespace luxel::lighting {
 namespace {
 
@@ -10,10 +12,7 @@ gl::Texture make_array(GLenum format, int size, int layers) {
     const GLuint id = texture.id();
     glTextureStorage3D(id, 1, format, size, size, layers);
     // texelFetch only: the blend must happen per texel before any filtering.
-    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl::set_sampling(id, gl::Sampling::Exact);
     return texture;
 }
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "luxel/runtime/texture_sampling.hpp"
+
 namespace luxel::lighting {
 
 void RadianceTexture::allocate(const RadianceAtlas& atlas) {
@@ -13,10 +15,7 @@ void RadianceTexture::allocate(const RadianceAtlas& atlas) {
     const auto layers = static_cast<GLsizei>(std::max<std::size_t>(atlas.pages.size(), 1));
     texture_ = gl::Texture::create(GL_TEXTURE_2D_ARRAY);
     glTextureStorage3D(texture_.id(), 1, GL_RGB32F, layer_size_, layer_size_, layers);
-    glTextureParameteri(texture_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(texture_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(texture_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(texture_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl::set_sampling(texture_.id(), gl::Sampling::Filtered);
     // Unused corners of smaller pages and the empty layer (no page yet) read as black.
     const float zero[3] = {0.0f, 0.0f, 0.0f};
     glClearTexImage(texture_.id(), 0, GL_RGB, GL_FLOAT, zero);
