@@ -279,6 +279,7 @@ struct FrameRenderer::Impl {
         clear_colour(fbo);
         indirect_program.use();
         indirect_program.set("u_now", static_cast<float>(now_seconds));
+        indirect_program.set("u_bicubic", settings.bicubic_light_maps ? 1 : 0);
         indirect_program.set("u_camera", camera.position);
         glBindTextureUnit(0, targets.albedo.id());
         glBindTextureUnit(1, targets.normal.id());

@@ -151,6 +151,13 @@ int run(int argc, char** argv) {
            "anti-aliasing of the frame's geometric edges (docs/METHOD.md 8.4)")
         ->check(CLI::IsMember({"on", "off"}))
         ->default_str("on");
+    app.add_option_function<std::string>(
+           "--lightmap-filter",
+           [&](const std::string& text) { options.app.bicubic_light_maps = text == "bicubic"; },
+           "how light maps are read: bilinear, or bicubic (a cubic B-spline: smoother, slightly "
+           "blurred; levels prepared with luxel-prep --padding 2 suit it best)")
+        ->check(CLI::IsMember({"bilinear", "bicubic"}))
+        ->default_str("bilinear");
     Size size;
     app.add_option_function<std::string>(
         "--size",

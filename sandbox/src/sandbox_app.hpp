@@ -32,6 +32,7 @@ struct AppSettings {
     std::optional<scene::SkySpec> sky;  ///< --sky: instead of the level's
     prep::AutoPrepSettings auto_prep;   ///< --no-auto-prep, --prep-cache
     bool anti_aliasing = true;          ///< --aa: smooth the frame's geometric edges
+    bool bicubic_light_maps = false;    ///< --lightmap-filter bicubic
 };
 
 /// The game: a level in an ECS registry, the game systems that move it, the lighting system and

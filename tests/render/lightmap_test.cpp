@@ -1,11 +1,16 @@
 // Light maps in the frame: a surface whose IIM holds a known constant renders that radiance
 // (or albedo * E / pi where the IIM holds irradiance), the front/back blend mixes previous and
-// current as the clock says, and a changed rectangle uploads only its texels.
+// current as the clock says, a changed rectangle uploads only its texels, and the bicubic
+// option keeps gradients and smooths the texel grid.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/constants.hpp>
@@ -81,6 +86,7 @@ class Lightmaps : public ::testing::Test {
             settings.height = kSize;
             // Pixel values against the IIM, edges of the plane included: no edge filter.
             settings.anti_aliasing = false;
+            settings.bicubic_light_maps = bicubic_;
             renderer_ = std::make_unique<renderer::FrameRenderer>(world_.registry, *world_.lighting,
                                                                   settings);
         }
@@ -115,6 +121,40 @@ class Lightmaps : public ::testing::Test {
         return checked;
     }
 
+    /// Plane A's pixels in the screen row whose texel row (v * page) is nearest `texel_row`, in
+    /// screen order, as (texel x, radiance). The camera looks straight down, so a screen row
+    /// keeps one v and runs along u.
+    std::vector<std::pair<float, glm::vec3>> row_of_a(double now, float texel_row) {
+        renderer().render(renderer::FrameCamera::look_at({0.0f, 4.0f, 0.0f}, glm::vec3(0.0f),
+                                                         {0.0f, 0.0f, -1.0f}, 1.0f, 1.0f),
+                          now);
+        const Image indirect = renderer().read(renderer::FrameImage::Indirect);
+        const auto positions = test::read_texture(renderer().position_texture(), kSize, kSize);
+        int best_row = -1;
+        float best = 1e9f;
+        std::vector<std::vector<std::pair<float, glm::vec3>>> rows(kSize);
+        for (int y = 0; y < kSize; ++y) {
+            for (int x = 0; x < kSize; ++x) {
+                const glm::vec4 p =
+                    positions[static_cast<std::size_t>((kSize - 1 - y) * kSize + x)];
+                if (p.w == 0.0f || p.x > 0.0f) {
+                    continue;
+                }
+                const glm::vec3 local = glm::vec3(p) - kCentreA;
+                const glm::vec2 t = glm::vec2(local.x + 1.0f, local.z + 1.0f) * (kPage / 2.0f);
+                rows[static_cast<std::size_t>(y)].emplace_back(t.x,
+                                                               glm::vec3(indirect.pixel(x, y)));
+                if (std::abs(t.y - texel_row) < best) {
+                    best = std::abs(t.y - texel_row);
+                    best_row = y;
+                }
+            }
+        }
+        return best_row < 0 ? std::vector<std::pair<float, glm::vec3>>{}
+                            : rows[static_cast<std::size_t>(best_row)];
+    }
+
+    bool bicubic_ = false;
     std::unique_ptr<GlContext> context_;
     test::RenderWorld world_;
     ecs::Entity a_;
@@ -212,6 +252,68 @@ TEST_F(Lightmaps, OnlyTheDirtyRectangleIsUploaded) {
     EXPECT_GT(inside, 20);
     EXPECT_EQ(renderer().counters().page_uploads, uploads + 1);
     EXPECT_EQ(renderer().counters().texels_uploaded, texels + 9u);
+}
+
+TEST_F(Lightmaps, BicubicKeepsGradientsExactAndSmoothsTheTexelGridsCreases) {
+    // FrameSettings::bicubic_light_maps against bilinear on plane A's radiance page, long
+    // after the commit (no blend): first a gradient along u, which both filters reproduce
+    // exactly away from the page's border, then one bright texel (4, 4) on a floor of 1, whose
+    // bilinear image is a tent with a crease at every texel centre and whose B-spline image is
+    // smooth, lower and never negative.
+    const double late = kCommitted + 100.0;
+    IimPage& page = page_of(a_);
+    fill(page_of(b_), kCurrentB);
+    auto ramp = [](float f) { return kCurrentA * (0.5f + 0.25f * f); };
+    struct Profile {
+        float peak = 0.0f;
+        float lowest = 1e9f;
+        float crease = 0.0f;  ///< largest second difference between neighbouring pixels
+    };
+    std::array<Profile, 2> profiles;
+    for (const bool bicubic : {false, true}) {
+        bicubic_ = bicubic;
+        renderer_.reset();
+        fill(page, kCurrentA);
+        for (int y = 0; y < kPage; ++y) {
+            for (int x = 0; x < kPage; ++x) {
+                page.current.at(x, y) = ramp(static_cast<float>(x));
+            }
+        }
+        int checked = 0;
+        for (const auto& [t, l] : row_of_a(late, 3.5f)) {
+            // f = t - 0.5: the B-spline's taps f - 1 .. f + 2 stay on the page for f in [1, 5].
+            if (t > 1.6f && t < 5.4f) {
+                expect_close(l, ramp(t - 0.5f), 0.01f, bicubic ? "bicubic ramp" : "bilinear ramp");
+                ++checked;
+            }
+        }
+        EXPECT_GT(checked, 15);
+
+        fill(page, glm::vec3(1.0f));
+        page.current.at(4, 4) = glm::vec3(20.0f);
+        const std::vector<std::pair<float, glm::vec3>> row = row_of_a(late, 4.5f);
+        ASSERT_GT(row.size(), 30u);
+        Profile& profile = profiles[bicubic ? 1 : 0];
+        for (std::size_t i = 0; i < row.size(); ++i) {
+            profile.peak = std::max(profile.peak, row[i].second.g);
+            profile.lowest = std::min(profile.lowest, row[i].second.g);
+            if (i > 0 && i + 1 < row.size()) {
+                const float second =
+                    row[i - 1].second.g - 2.0f * row[i].second.g + row[i + 1].second.g;
+                profile.crease = std::max(profile.crease, std::abs(second));
+            }
+        }
+        std::printf("[ figures  ] %s: peak %.3f, lowest %.3f, largest second difference %.3f\n",
+                    bicubic ? "bicubic" : "bilinear", profile.peak, profile.lowest, profile.crease);
+    }
+    const Profile& bilinear = profiles[0];
+    const Profile& bicubic = profiles[1];
+    EXPECT_GT(bilinear.peak, 15.0f);
+    // The B-spline at a texel centre: 2/3 of it and 1/6 of each neighbour, 1 + 19 * 4/9 in
+    // two dimensions.
+    EXPECT_NEAR(bicubic.peak, 1.0f + 19.0f * 4.0f / 9.0f, 0.1f * 19.0f * 4.0f / 9.0f);
+    EXPECT_GE(bicubic.lowest, 1.0f - 1e-3f);
+    EXPECT_LT(bicubic.crease, 0.4f * bilinear.crease);
 }
 
 }  // namespace

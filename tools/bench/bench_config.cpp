@@ -63,6 +63,9 @@ std::string BenchConfig::knobs() const {
     if (probe_basis != "oct") {
         out << " probe_basis=" << probe_basis;
     }
+    if (lightmap != "bilinear") {
+        out << " lightmap=" << lightmap;
+    }
     return out.str();
 }
 
@@ -120,6 +123,8 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.kernel = value;
             } else if (sweep.knob == "aa") {
                 c.aa = value;
+            } else if (sweep.knob == "lightmap") {
+                c.lightmap = value;
             } else {
                 continue;  // budget: handled above
             }

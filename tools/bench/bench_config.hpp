@@ -59,6 +59,9 @@ struct BenchConfig {
     /// The frame's anti-aliasing of geometric edges (FrameSettings::anti_aliasing): "on" or
     /// "off". Changes only the image and its anti-aliasing pass time.
     std::string aa = "on";
+    /// How the frame reads light maps (FrameSettings::bicubic_light_maps): "bilinear" or
+    /// "bicubic". Changes only the image.
+    std::string lightmap = "bilinear";
 
     [[nodiscard]] lighting::LightingConfig lighting() const;
     /// "groups=77 per_group=40 ..." for logs and the Markdown table.

@@ -85,6 +85,10 @@ Sweep parse_sweep(const std::string& text) {
             if (value != "on" && value != "off") {
                 throw Error(what + ": '" + value + "' is not on or off");
             }
+        } else if (sweep.knob == "lightmap") {
+            if (value != "bilinear" && value != "bicubic") {
+                throw Error(what + ": '" + value + "' is not bilinear or bicubic");
+            }
         } else if (sweep.knob == "filter") {
             const double v = number(value, what);
             if (v < 0.0 || v > 16.0 || v != std::floor(v)) {
@@ -129,7 +133,7 @@ Sweep parse_sweep(const std::string& text) {
                 "probe_basis, keep, "
                 "caustics, backend, "
                 "kernel, "
-                "aa)");
+                "aa, lightmap)");
         }
     }
     return sweep;
@@ -230,7 +234,8 @@ void validate(const Options& options) {
         throw Error("--image-spp: need at least one sample per pixel");
     }
     for (const Sweep& sweep : options.sweeps) {
-        if ((sweep.knob == "kernel" || sweep.knob == "aa") && !options.image.enabled) {
+        if ((sweep.knob == "kernel" || sweep.knob == "aa" || sweep.knob == "lightmap") &&
+            !options.image.enabled) {
             throw Error("--sweep " + sweep.knob +
                         ": it only changes the image, which --no-image turns off");
         }

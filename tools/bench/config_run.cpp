@@ -192,9 +192,10 @@ ConfigRun::ConfigRun(const LevelRunContext& context, const BenchConfig& config)
         if (!camera_) {
             camera_ = ref::default_camera(options_.image.width, options_.image.height);
         }
-        view_ = std::make_unique<FrameView>(registry_, *lighting_, *camera_,
-                                            parse_kernel(config.kernel), config.aa == "on",
-                                            *context.shaders);
+        const FrameChoices choices{parse_kernel(config.kernel), config.aa == "on",
+                                   config.lightmap == "bicubic"};
+        view_ =
+            std::make_unique<FrameView>(registry_, *lighting_, *camera_, choices, *context.shaders);
     }
 }
 

@@ -11,11 +11,12 @@ namespace luxel::bench {
 namespace {
 
 renderer::FrameSettings frame_settings(const lighting::reference::ReferenceCamera& camera,
-                                       lighting::CausticKernel kernel, bool anti_aliasing) {
+                                       const FrameChoices& choices) {
     renderer::FrameSettings settings;
-    settings.anti_aliasing = anti_aliasing;
+    settings.anti_aliasing = choices.anti_aliasing;
+    settings.bicubic_light_maps = choices.bicubic_light_maps;
     settings.caustics = lighting::CausticPassSettings{};
-    settings.caustics->kernel = kernel;
+    settings.caustics->kernel = choices.kernel;
     settings.width = camera.width;
     settings.height = camera.height;
     // The timings reported are this frame's, not a frame still in flight.
@@ -81,10 +82,9 @@ renderer::FrameCamera frame_camera(const lighting::reference::ReferenceCamera& c
 
 FrameView::FrameView(ecs::Registry& registry, const lighting::LightingSystem& lighting,
                      const lighting::reference::ReferenceCamera& camera,
-                     lighting::CausticKernel kernel, bool anti_aliasing,
-                     const ShaderLibrary& shaders)
+                     const FrameChoices& choices, const ShaderLibrary& shaders)
     : camera_(frame_camera(camera)),
-      renderer_(registry, lighting, frame_settings(camera, kernel, anti_aliasing), shaders) {}
+      renderer_(registry, lighting, frame_settings(camera, choices), shaders) {}
 
 FrameShot FrameView::render(double now_seconds) {
     // As the sandbox: the renderer's own caustic pass runs between its G-buffer and its

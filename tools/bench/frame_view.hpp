@@ -43,12 +43,19 @@ struct FrameShot {
     std::vector<std::uint8_t> unmapped;
 };
 
+/// The knobs of a run that change only its frame (BenchConfig::kernel, aa, lightmap).
+struct FrameChoices {
+    lighting::CausticKernel kernel = lighting::CausticKernel::Larsen;
+    bool anti_aliasing = true;
+    bool bicubic_light_maps = false;
+};
+
 /// One run's renderer. Needs the context current for its whole life.
 class FrameView {
   public:
     FrameView(ecs::Registry& registry, const lighting::LightingSystem& lighting,
-              const lighting::reference::ReferenceCamera& camera, lighting::CausticKernel kernel,
-              bool anti_aliasing, const ShaderLibrary& shaders);
+              const lighting::reference::ReferenceCamera& camera, const FrameChoices& choices,
+              const ShaderLibrary& shaders);
     FrameView(const FrameView&) = delete;
     FrameView& operator=(const FrameView&) = delete;
 

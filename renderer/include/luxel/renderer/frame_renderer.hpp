@@ -33,6 +33,11 @@ struct FrameSettings {
     /// where the G-buffer shows two surfaces meeting take the mix of both sides their coverage
     /// gives; every other pixel is the composite's exactly. false: no edge pass, no extra target.
     bool anti_aliasing = true;
+    /// Light maps read through a cubic B-spline (16 texels) instead of bilinearly (4): smooth
+    /// gradients without the texel grid's creases at the same texel count, slightly blurred
+    /// (render/iim.glsl). Levels prepared with `luxel-prep --padding 2` keep its wider
+    /// footprint inside each chart's gutter.
+    bool bicubic_light_maps = false;
     /// Wait for this frame's GPU timer queries in render() (benchmarks, tests). Otherwise
     /// render() reports the latest frame whose queries are done, without stalling the GPU.
     bool wait_for_timings = false;
