@@ -3,10 +3,14 @@
 
 #include <cmath>
 #include <filesystem>
+#include <memory>
+#include <span>
+#include <string_view>
 
 #include <gtest/gtest.h>
 
 #include "luxel/lighting/core/cpu_gather.hpp"
+#include "luxel/lighting/core/gather.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/jobs.hpp"
 #include "luxel/scene/gltf.hpp"
@@ -107,7 +111,97 @@ TEST(IlluminationMaps, GatherPassesRunInSlicesAndFadeIn) {
     EXPECT_EQ(world.maps->counters().gather_passes, 1u);
     const auto dirty = world.maps->iim_pages()[0].current.changes_since(0).rect;
     EXPECT_GT(dirty.width, 0);
-    EXPECT_LE(dirty.width, 12);  // the chart and its one-texel ring, not the page
+    EXPECT_LE(dirty.width, 14);  // the chart and its two padding rings, not the page
+}
+
+/// A gatherer that knows the answer: irradiance 1 W/m^2 left of x = 2.5 m, 4 right of it.
+class TwoValueGatherer : public lighting::IrradianceGatherer {
+  public:
+    [[nodiscard]] std::string_view name() const override { return "two values"; }
+    void gather(std::span<const lighting::GatherTexel> texels,
+                std::span<glm::vec3> irradiance) override {
+        for (std::size_t i = 0; i < texels.size() && i < irradiance.size(); ++i) {
+            irradiance[i] = glm::vec3(texels[i].position.x < 2.5f ? 1.0f : 4.0f);
+        }
+    }
+};
+
+/// A 0.4 m square at y = 0 whose 4 x 4 texels (0.1 m) start at page texel (left, 2).
+scene::Primitive square_at(float x0, int left, int page_size) {
+    scene::Primitive p;
+    p.material = 0;
+    for (int j = 0; j <= 1; ++j) {
+        for (int i = 0; i <= 1; ++i) {
+            p.positions.emplace_back(x0 + 0.4f * static_cast<float>(i), 0.0f,
+                                     0.4f * static_cast<float>(j));
+            p.normals.emplace_back(0.0f, 1.0f, 0.0f);
+            p.texcoords1.emplace_back(
+                (static_cast<float>(left) + 4.0f * static_cast<float>(i)) /
+                    static_cast<float>(page_size),
+                (2.0f + 4.0f * static_cast<float>(j)) / static_cast<float>(page_size));
+        }
+    }
+    p.indices = {0, 2, 1, 1, 2, 3};
+    return p;
+}
+
+TEST(IlluminationMaps, PaddingFillsTwoRingsAndLeavesANeighboursFirstRingToIt) {
+    // Two squares on one 20-texel page: A's texels at x 2..5, B's at 8..11, two texels apart
+    // as luxel-prep's default padding of 1 packs them; right of B the page is free. The first
+    // ring serves bilinear lookups, the second bicubic ones (docs/METHOD.md §8.5) where the
+    // chart has room for it; texel 7, two from A but next to B, belongs to B's first ring.
+    constexpr int kPage = 20;
+    auto level = std::make_shared<scene::Scene>();
+    scene::Material material;
+    material.base_color = glm::vec4(glm::vec3(0.5f), 1.0f);
+    level->materials.push_back(material);
+    level->meshes.push_back({"A", {square_at(0.0f, 2, kPage)}});
+    level->meshes.push_back({"B", {square_at(5.0f, 8, kPage)}});
+    ecs::Registry registry;
+    ecs::TransformSystem transforms(registry);
+    for (const int mesh : {0, 1}) {
+        const ecs::Entity entity = registry.create();
+        registry.emplace<scene::MeshInstance>(entity, level, mesh);
+        scene::LightmapLayout layout;
+        layout.texel_size = 0.1f;
+        layout.page_size = kPage;
+        scene::LightmapSurface surface;
+        surface.id = 0;
+        surface.primitive = 0;
+        surface.rect = {mesh == 0 ? 2 : 8, 2, 4, 4};
+        surface.charts = {surface.rect};
+        surface.area = 0.16;
+        surface.texels = 16;
+        layout.surfaces.push_back(surface);
+        registry.emplace<lighting::LightmappedSurface>(entity, layout);
+        registry.emplace<ecs::Transform>(entity, ecs::Transform{});
+    }
+    transforms.update();
+    lighting::PhotonWorld photons(registry);
+    photons.sync();
+    lighting::IlluminationMaps maps(registry, photons);
+    maps.sync();
+    TwoValueGatherer gatherer;
+    for (const auto& request : maps.gather_requests()) {
+        maps.gather(request.surface, 1u << 20, gatherer, 0.0);
+    }
+    const lighting::RadiancePage& page = maps.iim_pages()[0].current;
+    const glm::vec3 a = page.at(3, 3);
+    const glm::vec3 b = page.at(9, 3);
+    ASSERT_GT(a.x, 0.0f);
+    ASSERT_NEAR(b.x, 4.0f * a.x, 1e-4f * b.x);
+    for (int y = 2; y <= 5; ++y) {
+        EXPECT_EQ(page.at(1, y), a) << "A's first ring, row " << y;
+        EXPECT_EQ(page.at(0, y), a) << "A's second ring, row " << y;
+        EXPECT_EQ(page.at(6, y), a) << "A's first ring towards B, row " << y;
+        EXPECT_EQ(page.at(7, y), b) << "B's first ring, not A's second, row " << y;
+        EXPECT_EQ(page.at(12, y), b) << "B's first ring, row " << y;
+        EXPECT_EQ(page.at(13, y), b) << "B's second ring, row " << y;
+        EXPECT_EQ(page.at(14, y), glm::vec3(0.0f)) << "no third ring, row " << y;
+    }
+    EXPECT_EQ(page.at(3, 0), a);  // rings above the charts too
+    EXPECT_EQ(page.at(9, 7), b);  // and below
+    EXPECT_EQ(page.at(9, 8), glm::vec3(0.0f));
 }
 
 // Every mesh a level places is a photon-world surface and each one added is a geometry change;

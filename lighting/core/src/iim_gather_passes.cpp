@@ -7,6 +7,7 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include "iim_padding.hpp"
 #include "iim_pass_filter.hpp"
 #include "luxel/lighting/core/texel_change_test.hpp"
 #include "map_support.hpp"
@@ -583,31 +584,14 @@ void IimGatherPasses::finish_pass(std::uint32_t surface, double now_seconds) {
                                     : mapped.albedo * e * glm::one_over_pi<float>();
         page.commit(texels[i].x, texels[i].y, value, now_seconds, fades[i]);
     }
-    // Fill the padding so bilinear lookups at the border hold.
-    const int size = page.current.size;
-    for (const std::uint32_t i : filter.targets()) {
-        if (i >= texels.size()) {
-            continue;
-        }
-        const SurfaceTexel& texel = texels[i];
-        for (int dy = -1; dy <= 1; ++dy) {
-            for (int dx = -1; dx <= 1; ++dx) {
-                const int x = texel.x + dx;
-                const int y = texel.y + dy;
-                if (x < 0 || y < 0 || x >= size || y >= size ||
-                    registry_.owner(page_id, x, y) >= 0) {
-                    continue;
-                }
-                page.commit(x, y, page.current.at(texel.x, texel.y), now_seconds, fades[i]);
-            }
-        }
-    }
+    fill_padding(registry_, page_id, page, texels, filter.targets(), fades, now_seconds);
     const glm::ivec4 bounds = filter.bounds();
     if (bounds.z >= bounds.x) {
-        const int left = std::max(bounds.x - 1, 0);
-        const int top = std::max(bounds.y - 1, 0);
-        page.current.mark_changed(
-            {left, top, std::min(bounds.z + 2, size) - left, std::min(bounds.w + 2, size) - top});
+        const int size = page.current.size;
+        const int left = std::max(bounds.x - kPaddingRings, 0);
+        const int top = std::max(bounds.y - kPaddingRings, 0);
+        page.current.mark_changed({left, top, std::min(bounds.z + 1 + kPaddingRings, size) - left,
+                                   std::min(bounds.w + 1 + kPaddingRings, size) - top});
     }
     // The seams after the padding: the stitcher reads what the bilinear lookups read.
     seams_.stitch(surface, registry_.iim_pages(), now_seconds, settings_.blend_seconds);
