@@ -19,7 +19,9 @@ class EdgeAntiAliasing {
 
     /// Draws into targets.frame_target with a full-screen triangle; the caller binds the empty
     /// vertex array and restores state (FrameRenderer's StateGuard).
-    void run(const FrameTargets& targets) const;
+    /// `sky_resolved`: the composite already mixed surfaces and sky by their coverage
+    /// (SkyCoverage), so a pixel next to the sky is not an edge to filter.
+    void run(const FrameTargets& targets, bool sky_resolved) const;
 
   private:
     gl::Program program_;

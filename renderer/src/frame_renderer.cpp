@@ -29,6 +29,7 @@
 #include "pass_timer.hpp"
 #include "scene_draws.hpp"
 #include "shadow_maps.hpp"
+#include "sky_coverage.hpp"
 #include "specular_cube_maps.hpp"
 
 namespace luxel::renderer {
@@ -64,7 +65,8 @@ void clear_colour(GLuint framebuffer, GLint buffer = 0) {
 
 std::string_view name(RenderPass pass) {
     static constexpr std::array<std::string_view, kRenderPassCount> names = {
-        "shadows", "gbuffer", "direct", "indirect", "specular", "composite", "anti_aliasing"};
+        "shadows",  "gbuffer",   "direct",        "indirect",
+        "specular", "composite", "anti_aliasing", "sky_edges"};
     return names[static_cast<std::size_t>(pass)];
 }
 
@@ -97,6 +99,8 @@ struct FrameRenderer::Impl {
     lighting::SkyTexture sky;  ///< the lighting system's skies, behind everything drawn
     SpecularCubeMaps cube_maps;
     std::optional<EdgeAntiAliasing> anti_aliasing;  ///< FrameSettings::anti_aliasing
+    /// FrameSettings::sky_edge_coverage, while the frame has a sky.
+    std::optional<SkyCoverage> sky_edges;
     PassTimer timer;
     FrameTimings timings;
     FrameCounters counters;
@@ -309,6 +313,9 @@ struct FrameRenderer::Impl {
         composite_program.set("u_viewport", glm::vec2(static_cast<float>(targets.width),
                                                       static_cast<float>(targets.height)));
         glBindTextureUnit(9, sky_on ? sky.id() : black.id());
+        // The sky mask, where there is one: kScale^2 sub-samples per pixel (0: none).
+        composite_program.set("u_coverage_scale", sky_edges ? SkyCoverage::kScale : 0);
+        glBindTextureUnit(10, sky_edges ? sky_edges->texture() : black.id());
         glBindTextureUnit(0, targets.albedo.id());
         glBindTextureUnit(2, targets.position.id());
         glBindTextureUnit(4, targets.emission.id());
@@ -447,6 +454,17 @@ struct FrameRenderer::Impl {
             glDisable(GL_CULL_FACE);
             glDisable(GL_SCISSOR_TEST);
         }
+        if (sky_on && settings.sky_edge_coverage) {
+            if (!sky_edges) {
+                sky_edges.emplace(shader_library);
+            }
+            timer.begin(RenderPass::SkyEdges);
+            sky_edges->render(draws, camera.projection * camera.view, targets.width,
+                              targets.height);
+            timer.end(RenderPass::SkyEdges);
+        } else {
+            sky_edges.reset();  // no sky, no mask
+        }
         glBindVertexArray(fullscreen.id());
 
         timer.begin(RenderPass::Composite);
@@ -454,7 +472,7 @@ struct FrameRenderer::Impl {
         timer.end(RenderPass::Composite);
         if (anti_aliasing) {
             timer.begin(RenderPass::AntiAliasing);
-            anti_aliasing->run(targets);
+            anti_aliasing->run(targets, sky_edges.has_value());
             timer.end(RenderPass::AntiAliasing);
         }
         if (!caustic_stage) {

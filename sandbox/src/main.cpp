@@ -158,6 +158,12 @@ int run(int argc, char** argv) {
            "blurred; levels prepared with luxel-prep --padding 2 suit it best)")
         ->check(CLI::IsMember({"bilinear", "bicubic"}))
         ->default_str("bilinear");
+    app.add_option_function<std::string>(
+           "--sky-edges", [&](const std::string& text) { options.app.sky_edges = text == "on"; },
+           "where the level has a sky, mix sky and surfaces at their silhouettes by coverage "
+           "(docs/METHOD.md 8.6)")
+        ->check(CLI::IsMember({"on", "off"}))
+        ->default_str("on");
     Size size;
     app.add_option_function<std::string>(
         "--size",

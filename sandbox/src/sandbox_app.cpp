@@ -82,6 +82,7 @@ SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const Shade
     frame.height = height_;
     frame.anti_aliasing = settings.anti_aliasing;
     frame.bicubic_light_maps = settings.bicubic_light_maps;
+    frame.sky_edge_coverage = settings.sky_edges;
     renderer_ = std::make_unique<renderer::FrameRenderer>(registry_, *lighting_, frame, shaders);
     // The loading screen: the first photon maps, AIMs and IIMs are built at once, so the game
     // starts lit and the per-frame budget only has to follow changes.

@@ -33,6 +33,7 @@ struct AppSettings {
     prep::AutoPrepSettings auto_prep;   ///< --no-auto-prep, --prep-cache
     bool anti_aliasing = true;          ///< --aa: smooth the frame's geometric edges
     bool bicubic_light_maps = false;    ///< --lightmap-filter bicubic
+    bool sky_edges = true;              ///< --sky-edges: sky coverage at silhouettes
 };
 
 /// The game: a level in an ECS registry, the game systems that move it, the lighting system and

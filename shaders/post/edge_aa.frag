@@ -17,6 +17,7 @@
 layout(binding = 0) uniform sampler2D u_frame;     // composed linear radiance, bilinear
 layout(binding = 1) uniform sampler2D u_position;  // world position, w = 1 where covered
 layout(binding = 2) uniform sampler2D u_normal;    // world normal
+uniform int u_sky_resolved;  // 1: silhouettes against the sky were resolved by coverage
 
 layout(location = 0) out vec4 out_radiance;
 
@@ -62,7 +63,8 @@ bool surfaces_differ(vec4 xp, vec3 np, ivec2 q) {
     q = clamp(q, ivec2(0), frame_size - 1);
     vec4 xq = texelFetch(u_position, q, 0);
     if (xp.w != xq.w) {
-        return true;
+        // A surface against the sky: the composite mixed the two by their coverage already.
+        return u_sky_resolved == 0;
     }
     if (xp.w == 0.0) {
         return false;  // sky on both sides

@@ -26,19 +26,13 @@ uniform vec2 u_viewport;
 
 layout(location = 0) out vec4 out_radiance;
 
-void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
-    if (texelFetch(u_position, pixel, 0).w == 0.0) {
-        // Nothing drawn: the sky along the pixel's ray, or no light at all from the void.
-        vec3 l = vec3(0.0);
-        if (u_sky_on != 0) {
-            vec2 ndc = 2.0 * gl_FragCoord.xy / u_viewport - 1.0;
-            vec4 far = u_inverse_view_projection * vec4(ndc, 0.5, 1.0);
-            l = sky_radiance(u_sky, far.xyz / far.w - u_camera);
-        }
-        out_radiance = vec4(l, 1.0);
-        return;
-    }
+// The sky mask (renderer/src/sky_coverage.hpp): u_coverage_scale^2 sub-samples per pixel, 1
+// where a surface covers one; u_coverage_scale 0 when there is none.
+layout(binding = 10) uniform sampler2D u_coverage;
+uniform int u_coverage_scale;
+
+// The surfaces' radiance at a covered pixel.
+vec3 surface_radiance(ivec2 pixel) {
     vec3 l = vec3(0.0);
     if (u_terms.x > 0.0) {
         l += texelFetch(u_direct, pixel, 0).rgb;
@@ -58,6 +52,69 @@ void main() {
     }
     if (u_emission_on > 0.0) {
         l += texelFetch(u_emission, pixel, 0).rgb;
+    }
+    return l;
+}
+
+// The sky along the ray through the pixel centre.
+vec3 sky_through_pixel() {
+    vec2 ndc = 2.0 * gl_FragCoord.xy / u_viewport - 1.0;
+    vec4 far = u_inverse_view_projection * vec4(ndc, 0.5, 1.0);
+    return sky_radiance(u_sky, far.xyz / far.w - u_camera);
+}
+
+// The share of the pixel's sub-samples that show the sky (0 without a mask).
+float sky_share(ivec2 pixel) {
+    if (u_coverage_scale <= 0) {
+        return 0.0;
+    }
+    float covered = 0.0;
+    ivec2 base = pixel * u_coverage_scale;
+    for (int y = 0; y < u_coverage_scale; ++y) {
+        for (int x = 0; x < u_coverage_scale; ++x) {
+            covered += texelFetch(u_coverage, base + ivec2(x, y), 0).r;
+        }
+    }
+    return 1.0 - covered / float(u_coverage_scale * u_coverage_scale);
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    bool surface = texelFetch(u_position, pixel, 0).w != 0.0;
+    float sky_part = u_sky_on != 0 ? sky_share(pixel) : 0.0;
+    if (surface) {
+        vec3 l = surface_radiance(pixel);
+        // A silhouette against the sky: the pixel shows the sky over the share the surfaces
+        // leave (SkyCoverage: one sample at the centre cannot tell how much that is).
+        if (sky_part > 0.0) {
+            l = mix(l, sky_through_pixel(), sky_part);
+        }
+        out_radiance = vec4(l, 1.0);
+        return;
+    }
+    // Nothing drawn at the centre: the sky along the pixel's ray, or no light at all from the
+    // void.
+    vec3 l = u_sky_on != 0 ? sky_through_pixel() : vec3(0.0);
+    float surface_part = u_coverage_scale > 0 ? 1.0 - sky_part : 0.0;
+    if (surface_part > 0.0) {
+        // Surfaces cover part of it: their light as the neighbours whose centres they cover
+        // show it.
+        vec3 sum = vec3(0.0);
+        float count = 0.0;
+        ivec2 size = ivec2(u_viewport);
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                ivec2 q = pixel + ivec2(dx, dy);
+                if ((dx != 0 || dy != 0) && all(greaterThanEqual(q, ivec2(0))) &&
+                    all(lessThan(q, size)) && texelFetch(u_position, q, 0).w != 0.0) {
+                    sum += surface_radiance(q);
+                    count += 1.0;
+                }
+            }
+        }
+        if (count > 0.0) {
+            l = mix(l, sum / count, surface_part);
+        }
     }
     out_radiance = vec4(l, 1.0);
 }

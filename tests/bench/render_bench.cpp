@@ -5,17 +5,21 @@
 //   Frame/moving      the light moves every frame: its cube shadow map is redrawn each frame
 //   Frame/bicubic     static, light maps read through the cubic B-spline (16 texels a pixel
 //                     against bilinear's 4): its indirect_ms over Frame/static's is the cost
+//   Frame/sky         static under a uniform sky (the closed box hides it): the sky-edge mask
+//   Frame/sky-plain   the same without the mask (FrameSettings::sky_edge_coverage false)
 // Counters: milliseconds per frame of each pass (GPU), averaged over the iterations.
 
 #include <benchmark/benchmark.h>
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "luxel/ecs/transform.hpp"
 #include "luxel/renderer/frame_renderer.hpp"
 #include "luxel/scene/gltf.hpp"
+#include "luxel/scene/sky.hpp"
 #include "render_scenes.hpp"
 
 namespace {
@@ -25,13 +29,24 @@ using namespace luxel::lighting;
 
 constexpr int kSize = 512;
 
-void frame(benchmark::State& state, bool moving, bool bicubic = false) {
+struct Variant {
+    bool moving = false;
+    bool bicubic = false;
+    bool sky = false;
+    bool sky_edges = true;
+};
+
+void frame(benchmark::State& state, const Variant& variant) {
+    const bool moving = variant.moving;
     const std::unique_ptr<GlContext> context = test::make_render_context();
     test::RenderWorld world;
     world::instantiate(
         world.registry,
         std::make_shared<scene::Scene>(scene::load_gltf(test::prepared_level("cornell"))),
-        world::InstantiateOptions{.play_animations = false, .sky = std::nullopt});
+        world::InstantiateOptions{
+            .play_animations = false,
+            .sky = variant.sky ? std::optional<scene::SkySpec>(scene::parse_sky("uniform:1,1,1"))
+                               : std::nullopt});
     world.start();
     // Lit and gathered, so every pass has its real input.
     for (int i = 0; i < 20; ++i) {
@@ -50,7 +65,8 @@ void frame(benchmark::State& state, bool moving, bool bicubic = false) {
     settings.width = kSize;
     settings.height = kSize;
     settings.wait_for_timings = true;
-    settings.bicubic_light_maps = bicubic;
+    settings.bicubic_light_maps = variant.bicubic;
+    settings.sky_edge_coverage = variant.sky_edges;
     renderer::FrameRenderer renderer(world.registry, *world.lighting, settings);
     renderer.render(camera, world.time);  // allocations and first shadow maps out of the loop
 
@@ -81,14 +97,20 @@ void frame(benchmark::State& state, bool moving, bool bicubic = false) {
 }
 
 void BM_FrameStatic(benchmark::State& state) {
-    frame(state, false);
+    frame(state, {});
 }
 void BM_FrameMovingLight(benchmark::State& state) {
-    frame(state, true);
+    frame(state, {.moving = true});
 }
 
 void BM_FrameBicubic(benchmark::State& state) {
-    frame(state, false, true);
+    frame(state, {.bicubic = true});
+}
+void BM_FrameSky(benchmark::State& state) {
+    frame(state, {.sky = true});
+}
+void BM_FrameSkyPlain(benchmark::State& state) {
+    frame(state, {.sky = true, .sky_edges = false});
 }
 
 BENCHMARK(BM_FrameStatic)
@@ -103,6 +125,16 @@ BENCHMARK(BM_FrameMovingLight)
     ->MinTime(2.0);
 BENCHMARK(BM_FrameBicubic)
     ->Name("Frame/bicubic")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_FrameSky)
+    ->Name("Frame/sky")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_FrameSkyPlain)
+    ->Name("Frame/sky-plain")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);

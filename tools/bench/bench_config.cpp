@@ -66,6 +66,9 @@ std::string BenchConfig::knobs() const {
     if (lightmap != "bilinear") {
         out << " lightmap=" << lightmap;
     }
+    if (sky_edges != "on") {
+        out << " sky_edges=" << sky_edges;
+    }
     return out.str();
 }
 
@@ -125,6 +128,8 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.aa = value;
             } else if (sweep.knob == "lightmap") {
                 c.lightmap = value;
+            } else if (sweep.knob == "sky_edges") {
+                c.sky_edges = value;
             } else {
                 continue;  // budget: handled above
             }

@@ -62,6 +62,9 @@ struct BenchConfig {
     /// How the frame reads light maps (FrameSettings::bicubic_light_maps): "bilinear" or
     /// "bicubic". Changes only the image.
     std::string lightmap = "bilinear";
+    /// Sky coverage at silhouettes (FrameSettings::sky_edge_coverage): "on" or "off". Changes
+    /// only the image of a level with a sky.
+    std::string sky_edges = "on";
 
     [[nodiscard]] lighting::LightingConfig lighting() const;
     /// "groups=77 per_group=40 ..." for logs and the Markdown table.

@@ -81,7 +81,7 @@ Sweep parse_sweep(const std::string& text) {
                 throw Error(what + ": '" + value +
                             "' is not a caustic kernel (larsen, box, cone, world)");
             }
-        } else if (sweep.knob == "aa") {
+        } else if (sweep.knob == "aa" || sweep.knob == "sky_edges") {
             if (value != "on" && value != "off") {
                 throw Error(what + ": '" + value + "' is not on or off");
             }
@@ -133,7 +133,7 @@ Sweep parse_sweep(const std::string& text) {
                 "probe_basis, keep, "
                 "caustics, backend, "
                 "kernel, "
-                "aa, lightmap)");
+                "aa, lightmap, sky_edges)");
         }
     }
     return sweep;
@@ -234,7 +234,8 @@ void validate(const Options& options) {
         throw Error("--image-spp: need at least one sample per pixel");
     }
     for (const Sweep& sweep : options.sweeps) {
-        if ((sweep.knob == "kernel" || sweep.knob == "aa" || sweep.knob == "lightmap") &&
+        if ((sweep.knob == "kernel" || sweep.knob == "aa" || sweep.knob == "lightmap" ||
+             sweep.knob == "sky_edges") &&
             !options.image.enabled) {
             throw Error("--sweep " + sweep.knob +
                         ": it only changes the image, which --no-image turns off");

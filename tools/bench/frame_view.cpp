@@ -15,6 +15,7 @@ renderer::FrameSettings frame_settings(const lighting::reference::ReferenceCamer
     renderer::FrameSettings settings;
     settings.anti_aliasing = choices.anti_aliasing;
     settings.bicubic_light_maps = choices.bicubic_light_maps;
+    settings.sky_edge_coverage = choices.sky_edge_coverage;
     settings.caustics = lighting::CausticPassSettings{};
     settings.caustics->kernel = choices.kernel;
     settings.width = camera.width;

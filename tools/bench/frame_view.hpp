@@ -48,6 +48,7 @@ struct FrameChoices {
     lighting::CausticKernel kernel = lighting::CausticKernel::Larsen;
     bool anti_aliasing = true;
     bool bicubic_light_maps = false;
+    bool sky_edge_coverage = true;
 };
 
 /// One run's renderer. Needs the context current for its whole life.

@@ -38,6 +38,12 @@ struct FrameSettings {
     /// (render/iim.glsl). Levels prepared with `luxel-prep --padding 2` keep its wider
     /// footprint inside each chart's gutter.
     bool bicubic_light_maps = false;
+    /// Where the frame has a sky: how much of each pixel shows it, from every surface drawn
+    /// again at 4 x 4 sub-samples a pixel without shading, and the sky and the surfaces mixed
+    /// by that fraction at silhouettes against it (docs/METHOD.md §8.6). A bright sky through a
+    /// window otherwise puts most of the frame's error in the window's one-pixel border.
+    /// false: no such pass and no mask.
+    bool sky_edge_coverage = true;
     /// Wait for this frame's GPU timer queries in render() (benchmarks, tests). Otherwise
     /// render() reports the latest frame whose queries are done, without stalling the GPU.
     bool wait_for_timings = false;
@@ -69,9 +75,10 @@ enum class RenderPass : std::uint8_t {
     Indirect,
     Specular,
     Composite,
-    AntiAliasing
+    AntiAliasing,
+    SkyEdges  ///< SkyCoverage's mask, while the frame has a sky
 };
-inline constexpr std::size_t kRenderPassCount = 7;
+inline constexpr std::size_t kRenderPassCount = 8;
 /// "shadows", "gbuffer", ...
 [[nodiscard]] std::string_view name(RenderPass pass);
 
