@@ -101,6 +101,7 @@ struct FrameRenderer::Impl {
     std::optional<EdgeAntiAliasing> anti_aliasing;  ///< FrameSettings::anti_aliasing
     /// FrameSettings::sky_edge_coverage, while the frame has a sky.
     std::optional<SkyCoverage> sky_edges;
+    bool sky_masked = false;  ///< this frame has sky_edges' mask
     PassTimer timer;
     FrameTimings timings;
     FrameCounters counters;
@@ -314,8 +315,8 @@ struct FrameRenderer::Impl {
                                                       static_cast<float>(targets.height)));
         glBindTextureUnit(9, sky_on ? sky.id() : black.id());
         // The sky mask, where there is one: kScale^2 sub-samples per pixel (0: none).
-        composite_program.set("u_coverage_scale", sky_edges ? SkyCoverage::kScale : 0);
-        glBindTextureUnit(10, sky_edges ? sky_edges->texture() : black.id());
+        composite_program.set("u_coverage_scale", sky_masked ? sky_edges->scale() : 0);
+        glBindTextureUnit(10, sky_masked ? sky_edges->texture() : black.id());
         glBindTextureUnit(0, targets.albedo.id());
         glBindTextureUnit(2, targets.position.id());
         glBindTextureUnit(4, targets.emission.id());
@@ -454,13 +455,14 @@ struct FrameRenderer::Impl {
             glDisable(GL_CULL_FACE);
             glDisable(GL_SCISSOR_TEST);
         }
+        sky_masked = false;
         if (sky_on && settings.sky_edge_coverage) {
             if (!sky_edges) {
                 sky_edges.emplace(shader_library);
             }
             timer.begin(RenderPass::SkyEdges);
-            sky_edges->render(draws, camera.projection * camera.view, targets.width,
-                              targets.height);
+            sky_masked = sky_edges->render(draws, camera.projection * camera.view, targets.width,
+                                           targets.height);
             timer.end(RenderPass::SkyEdges);
         } else {
             sky_edges.reset();  // no sky, no mask
@@ -472,7 +474,7 @@ struct FrameRenderer::Impl {
         timer.end(RenderPass::Composite);
         if (anti_aliasing) {
             timer.begin(RenderPass::AntiAliasing);
-            anti_aliasing->run(targets, sky_edges.has_value());
+            anti_aliasing->run(targets, sky_masked);
             timer.end(RenderPass::AntiAliasing);
         }
         if (!caustic_stage) {

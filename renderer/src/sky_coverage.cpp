@@ -1,8 +1,10 @@
 #include "sky_coverage.hpp"
 
+#include <algorithm>
 #include <array>
 
 #include "fill_budget.hpp"
+#include "luxel/runtime/gl_limits.hpp"
 #include "luxel/runtime/shader_library.hpp"
 #include "luxel/runtime/texture_sampling.hpp"
 
@@ -12,10 +14,14 @@ SkyCoverage::SkyCoverage(const ShaderLibrary& shaders)
     : program_(shaders.build({{ShaderStage::Vertex, "render/mesh.vert"},
                               {ShaderStage::Fragment, "render/coverage.frag"}})) {}
 
-void SkyCoverage::render(const DrawList& draws, const glm::mat4& view_projection, int width,
+bool SkyCoverage::render(const DrawList& draws, const glm::mat4& view_projection, int width,
                          int height) {
-    const int w = width * kScale;
-    const int h = height * kScale;
+    scale_ = std::min(kScale, gl::largest_render_target() / std::max({width, height, 1}));
+    if (scale_ < 2) {
+        return false;  // one sample a pixel would add nothing to the frame's own
+    }
+    const int w = width * scale_;
+    const int h = height * scale_;
     if (!mask_ || w != width_ || h != height_) {
         mask_ = gl::Texture::create_2d(GL_R8, w, h);
         gl::set_sampling(mask_.id(), gl::Sampling::Exact);
@@ -50,6 +56,7 @@ void SkyCoverage::render(const DrawList& draws, const glm::mat4& view_projection
         });
     glDisable(GL_CULL_FACE);
     glFrontFace(GL_CCW);
+    return true;
 }
 
 }  // namespace luxel::renderer

@@ -27,13 +27,17 @@ class SkyCoverage {
 
     explicit SkyCoverage(const ShaderLibrary& shaders);
 
-    /// Draws `draws` as seen through `view_projection` into a (kScale width) x (kScale height)
-    /// mask, allocated on first use and again when the size changes. The caller restores GL
-    /// state (FrameRenderer's StateGuard).
-    void render(const DrawList& draws, const glm::mat4& view_projection, int width, int height);
+    /// Draws `draws` as seen through `view_projection` into a (scale width) x (scale height)
+    /// mask, allocated on first use and again when the size changes. The scale is kScale, or
+    /// less where the GL's largest texture or framebuffer would not hold it (a frame wider than
+    /// 4,096 pixels on a 16,384 limit); below 2 there is no mask and it returns false. The
+    /// caller restores GL state (FrameRenderer's StateGuard).
+    bool render(const DrawList& draws, const glm::mat4& view_projection, int width, int height);
 
     /// The mask: R8, 1 where a surface covers the sub-sample.
     [[nodiscard]] GLuint texture() const { return mask_.id(); }
+    /// Sub-samples per pixel along each axis in the last mask.
+    [[nodiscard]] int scale() const { return scale_; }
 
   private:
     gl::Program program_;
@@ -41,6 +45,7 @@ class SkyCoverage {
     gl::Framebuffer target_;
     int width_ = 0;
     int height_ = 0;
+    int scale_ = kScale;
 };
 
 }  // namespace luxel::renderer

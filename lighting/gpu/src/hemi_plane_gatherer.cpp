@@ -17,6 +17,7 @@
 #include "luxel/lighting/gpu/hemi_plane_geometry.hpp"
 #include "luxel/lighting/gpu/sky_texture.hpp"
 #include "luxel/runtime/error.hpp"
+#include "luxel/runtime/gl_limits.hpp"
 #include "luxel/runtime/gl_state_guard.hpp"
 #include "luxel/runtime/program.hpp"
 #include "luxel/runtime/shader_library.hpp"
@@ -160,15 +161,7 @@ int tiles_across(int batch) {
 
 /// The largest batch whose atlas fits the driver's framebuffer and texture limits.
 int fit_batch(int batch, int resolution) {
-    GLint max_texture = 0;
-    GLint max_width = 0;
-    GLint max_height = 0;
-    GLint max_renderbuffer = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_texture);
-    glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &max_width);
-    glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &max_height);
-    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_renderbuffer);
-    const int limit = std::min({max_texture, max_width, max_height, max_renderbuffer});
+    const int limit = gl::largest_render_target();
     const int max_tiles = std::max(limit / resolution, 1);
     return std::min(batch, max_tiles * max_tiles);
 }
