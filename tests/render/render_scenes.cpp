@@ -5,6 +5,7 @@
 #include <stb_image_write.h>
 
 #include "luxel/ecs/transform.hpp"
+#include "luxel/scene/gltf.hpp"
 
 namespace luxel::test {
 namespace {
@@ -98,6 +99,13 @@ ecs::Entity RenderWorld::add_mesh(std::shared_ptr<const scene::Scene> scene,
     registry.emplace<scene::MeshInstance>(entity, std::move(scene), 0);
     registry.emplace<ecs::Transform>(entity, position);
     return entity;
+}
+
+void RenderWorld::load_level(const std::string& name, const std::optional<scene::SkySpec>& sky) {
+    world::InstantiateOptions options;
+    options.sky = sky;
+    world::instantiate(
+        registry, std::make_shared<scene::Scene>(scene::load_gltf(prepared_level(name))), options);
 }
 
 ecs::Entity RenderWorld::add_point_light(const glm::vec3& position, const glm::vec3& power) {

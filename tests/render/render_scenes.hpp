@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,8 @@ struct RenderWorld {
     ecs::Entity add_mesh(std::shared_ptr<const scene::Scene> scene,
                          const glm::vec3& position = glm::vec3(0.0f));
     ecs::Entity add_point_light(const glm::vec3& position, const glm::vec3& power);
+    /// Instantiates the prepared level `name` (prepared_level) under `sky`, or the level's own.
+    void load_level(const std::string& name, const std::optional<scene::SkySpec>& sky = {});
     /// Resolves transforms and creates the LightingSystem (once).
     void start(const lighting::LightingConfig& config = small_lighting_config());
     /// One frame: transforms, then LightingSystem::update(budget_ms, time += dt).

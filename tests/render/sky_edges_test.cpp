@@ -7,11 +7,12 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include <gtest/gtest.h>
 
 #include "luxel/renderer/frame_renderer.hpp"
-#include "luxel/scene/gltf.hpp"
+#include "luxel/scene/sky.hpp"
 #include "luxel/world/scene_instance.hpp"
 #include "render_scenes.hpp"
 
@@ -40,26 +41,36 @@ struct EdgeError {
     int pixels = 0;
 };
 
-EdgeError outline_error(bool coverage, bool anti_aliasing) {
-    auto context = test::make_render_context();
+/// The furnace sphere lit under `sky` (or none), and the view of it from kEye.
+struct FurnaceView {
+    std::unique_ptr<GlContext> context = test::make_render_context();
     test::RenderWorld world;
-    world::InstantiateOptions options;
-    options.sky = scene::parse_sky("uniform:2,2,2");
-    world::instantiate(
-        world.registry,
-        std::make_shared<scene::Scene>(scene::load_gltf(test::prepared_level("furnace"))), options);
-    world.start();
-    world.update(1e9);
-    renderer::FrameSettings settings;
-    settings.width = kWidth;
-    settings.height = kHeight;
-    settings.sky_edge_coverage = coverage;
-    settings.anti_aliasing = anti_aliasing;
-    renderer::FrameRenderer renderer(world.registry, *world.lighting, settings);
-    const renderer::FrameCamera camera =
+    renderer::FrameCamera camera =
         renderer::FrameCamera::look_at(kEye, glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f), 1.2f,
                                        static_cast<float>(kWidth) / kHeight);
-    renderer.render(camera, world.time);
+
+    explicit FurnaceView(const std::optional<scene::SkySpec>& sky) {
+        world.load_level("furnace", sky);
+        world.start();
+        world.update(1e9);
+    }
+
+    [[nodiscard]] static renderer::FrameSettings settings() {
+        renderer::FrameSettings settings;
+        settings.width = kWidth;
+        settings.height = kHeight;
+        return settings;
+    }
+};
+
+EdgeError outline_error(bool coverage, bool anti_aliasing) {
+    FurnaceView view(scene::parse_sky("uniform:2,2,2"));
+    renderer::FrameSettings settings = FurnaceView::settings();
+    settings.sky_edge_coverage = coverage;
+    settings.anti_aliasing = anti_aliasing;
+    renderer::FrameRenderer renderer(view.world.registry, *view.world.lighting, settings);
+    const renderer::FrameCamera& camera = view.camera;
+    renderer.render(camera, view.world.time);
     const Image frame = renderer.read(renderer::FrameImage::Frame);
     const glm::mat4 inverse = glm::inverse(camera.projection * camera.view);
     const glm::vec2 centre(kWidth / 2.0f, kHeight / 2.0f);
@@ -117,22 +128,11 @@ TEST(SkyEdges, AnOutlinePixelShowsTheSkyOverTheShareOfItTheSurfaceLeaves) {
 }
 
 TEST(SkyEdges, NoSkyNoMaskPass) {
-    auto context = test::make_render_context();
-    test::RenderWorld world;
-    world::instantiate(
-        world.registry,
-        std::make_shared<scene::Scene>(scene::load_gltf(test::prepared_level("furnace"))), {});
-    world.start();
-    world.update(1e9);
-    renderer::FrameSettings settings;
-    settings.width = kWidth;
-    settings.height = kHeight;
+    FurnaceView view(std::nullopt);
+    renderer::FrameSettings settings = FurnaceView::settings();
     settings.wait_for_timings = true;
-    renderer::FrameRenderer renderer(world.registry, *world.lighting, settings);
-    const renderer::FrameCamera camera =
-        renderer::FrameCamera::look_at(kEye, glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f), 1.2f,
-                                       static_cast<float>(kWidth) / kHeight);
-    const renderer::FrameTimings& timings = renderer.render(camera, world.time);
+    renderer::FrameRenderer renderer(view.world.registry, *view.world.lighting, settings);
+    const renderer::FrameTimings& timings = renderer.render(view.camera, view.world.time);
     EXPECT_EQ(timings.milliseconds[static_cast<std::size_t>(renderer::RenderPass::SkyEdges)], 0.0);
 }
 

@@ -31,11 +31,7 @@ struct Counts {
 Counts render_background(const std::optional<scene::SkySpec>& sky, const glm::vec3& radiance) {
     auto context = test::make_render_context();
     test::RenderWorld world;
-    world::InstantiateOptions options;
-    options.sky = sky;
-    world::instantiate(
-        world.registry,
-        std::make_shared<scene::Scene>(scene::load_gltf(test::prepared_level("furnace"))), options);
+    world.load_level("furnace", sky);
     world.start();
     world.update(1e9);
     renderer::FrameSettings settings;
