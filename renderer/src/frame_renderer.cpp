@@ -224,11 +224,7 @@ struct FrameRenderer::Impl {
         draw_in_view(
             draws, view_projection, targets.width, targets.height, budget,
             [](const DrawItem&) { return true; },
-            [&](const DrawItem& item) {
-                program.set("u_model", item.model);
-                program.set("u_normal_matrix", item.normal_matrix);
-                glBindVertexArray(item.mesh->vertex_array.id());
-            },
+            [&](const DrawItem& item) { bind_draw_item(program, item); },
             [&](const DrawItem& item, const DrawPrimitive& primitive) {
                 const DrawMaterial& m = primitive.material;
                 cull_as_material(item, m);
@@ -314,7 +310,7 @@ struct FrameRenderer::Impl {
         composite_program.set("u_viewport", glm::vec2(static_cast<float>(targets.width),
                                                       static_cast<float>(targets.height)));
         glBindTextureUnit(9, sky_on ? sky.id() : black.id());
-        // The sky mask, where there is one: kScale^2 sub-samples per pixel (0: none).
+        // The sky mask, where there is one: scale^2 sub-samples per pixel (0: none).
         composite_program.set("u_coverage_scale", sky_masked ? sky_edges->scale() : 0);
         glBindTextureUnit(10, sky_masked ? sky_edges->texture() : black.id());
         glBindTextureUnit(0, targets.albedo.id());

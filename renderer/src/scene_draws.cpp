@@ -132,6 +132,12 @@ void build_draw_list(ecs::Registry& registry, const lighting::LightingSystem& li
     }
 }
 
+void bind_draw_item(const gl::Program& program, const DrawItem& item) {
+    program.set("u_model", item.model);
+    program.set("u_normal_matrix", item.normal_matrix);
+    glBindVertexArray(item.mesh->vertex_array.id());
+}
+
 void cull_as_material(const DrawItem& item, const DrawMaterial& material) {
     if (material.double_sided) {
         glDisable(GL_CULL_FACE);

@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 
 #include "luxel/ecs/registry.hpp"
+#include "luxel/runtime/program.hpp"
 #include "mesh_cache.hpp"
 
 namespace luxel::lighting {
@@ -56,6 +57,10 @@ struct DrawItem {
 /// two rooms) the one facing the camera is drawn, not whichever wins the depth test; a
 /// double-sided one shows both sides. Shadow maps keep both sides (either side casts).
 void cull_as_material(const DrawItem& item, const DrawMaterial& material);
+
+/// Sets `program`'s u_model and u_normal_matrix (render/mesh.vert) to the item's and binds its
+/// mesh: what every pass drawing scene meshes does before an item's primitives.
+void bind_draw_item(const gl::Program& program, const DrawItem& item);
 
 struct DrawList {
     std::vector<DrawItem> items;

@@ -45,11 +45,7 @@ bool SkyCoverage::render(const DrawList& draws, const glm::mat4& view_projection
     FillBudget budget(static_cast<double>(w) * static_cast<double>(h));
     draw_in_view(
         draws, view_projection, w, h, budget, [](const DrawItem&) { return true; },
-        [&](const DrawItem& item) {
-            program_.set("u_model", item.model);
-            program_.set("u_normal_matrix", item.normal_matrix);
-            glBindVertexArray(item.mesh->vertex_array.id());
-        },
+        [&](const DrawItem& item) { bind_draw_item(program_, item); },
         [&](const DrawItem& item, const DrawPrimitive& primitive) {
             cull_as_material(item, primitive.material);
             draw_primitive(*primitive.range);

@@ -84,11 +84,7 @@ void SpecularCubeMaps::render_face(CubeMap& cube_map, int face, const DrawList& 
         draws, view_projection, size_, size_, budget,
         // No mirror sees another (or itself): one bounce of specular.
         [](const DrawItem& item) { return !item.specular; },
-        [&](const DrawItem& item) {
-            program.set("u_model", item.model);
-            program.set("u_normal_matrix", item.normal_matrix);
-            glBindVertexArray(item.mesh->vertex_array.id());
-        },
+        [&](const DrawItem& item) { bind_draw_item(program, item); },
         [&](const DrawItem& item, const DrawPrimitive& primitive) {
             cull_as_material(item, primitive.material);
             program.set("u_albedo", primitive.material.albedo);
@@ -131,9 +127,7 @@ void SpecularCubeMaps::draw_term(const DrawList& draws, const FrameTargets& targ
             continue;
         }
         glBindTextureUnit(0, found->second.cube.id());
-        program.set("u_model", item.model);
-        program.set("u_normal_matrix", item.normal_matrix);
-        glBindVertexArray(item.mesh->vertex_array.id());
+        bind_draw_item(program, item);
         for (std::size_t i = item.first; i < item.first + item.count; ++i) {
             const DrawPrimitive& primitive = draws.primitives[i];
             if (primitive.range->index_count == 0 || primitive.material.specular.r <= 0.0f) {
