@@ -29,6 +29,10 @@
 layout(binding = 4) uniform samplerCubeArray u_cube_shadows;
 layout(binding = 8) uniform sampler2DArray u_map_shadows;
 
+// Unfiltered lookups compare the receiver's texel alone; where add_tap leaves it out (the
+// receiver's plane has ended there), a second pass lets the filter's nine texels decide.
+const int kShadowPasses = 2;
+
 // The constant bias, in texels of the map at the receiver.
 const float kShadowBiasTexels = 0.5;
 // The steepest plane the depth walk follows: cos(theta) >= 1/8 (83 degrees). Past it the plane
@@ -59,22 +63,40 @@ float contact_texels(float cos_theta) {
     return clamp(3.0 / (c * s), 4.0, 24.0);
 }
 
-// The comparisons of one lookup: the filter's weighted sum, the 2 x 2 texels nearest the
-// receiver (bilinear weights), and the nearest occluder in front of the receiver plane (metres
-// along the ray; 1e30: none).
+// The comparisons of one lookup: the filter's weighted sum of lit taps and of the taps that
+// count, the same for the 2 x 2 texels nearest the receiver (bilinear weights), and the nearest
+// occluder in front of the receiver plane (metres along the ray; 1e30: none).
 struct ShadowTaps {
     float filtered;
+    float filtered_weight;
     float near;
+    float near_weight;
     float gap;
 };
+
+const ShadowTaps kNoTaps = ShadowTaps(0.0, 0.0, 0.0, 0.0, 1e30);
 
 // One comparison: `stored` the map's depth in [0, 1] at a texel centre, `plane` the receiver
 // plane's depth in metres along that texel's ray; `w` its filter weight, `w_near` its bilinear
 // weight among the nearest four.
+//
+// A texel whose first surface lies beyond the plane by more than the bias says nothing about
+// the receiver: were the receiver's surface there, the map would hold it. The plane has ended
+// (past a corner, an edge or a hole), and the tap is left out rather than counted lit. Counted
+// lit, such taps lit a band along every corner where the receiver meets its occluder at a
+// grazing light: the plane's depth changes by 1 / tan(theta) texels per texel, so taps a texel
+// across reach that far past the occluder (a south wall the sun meets at 84 degrees, 9.5 texels
+// a texel, showed a lit band 4-8 cm wide along its corner with the window wall: docs/RESULTS.md,
+// "A sky room built in").
 void add_tap(inout ShadowTaps taps, float w, float w_near, float stored, float plane, float bias,
              float far) {
     float occluder = stored * far;
+    if (occluder > plane + bias) {
+        return;
+    }
     bool lit = plane - bias <= occluder;
+    taps.filtered_weight += w;
+    taps.near_weight += w_near;
     taps.filtered += lit ? w : 0.0;
     taps.near += lit ? w_near : 0.0;
     if (!lit) {
@@ -89,10 +111,17 @@ void add_tap(inout ShadowTaps taps, float w, float w_near, float stored, float p
 // occluder's distance), so as the nearest occluder among the taps comes within
 // contact_texels() of the receiver, the result moves from the filter to the four texels
 // nearest the receiver (one texel wide: what is left at a contact is at most half a texel).
+// The taps left out (add_tap) take their weight with them; where none counts, the receiver is
+// lit, as where its map holds nothing.
 float shadow_result(ShadowTaps taps, float texel, float cos_theta) {
+    if (!(taps.filtered_weight > 0.0)) {
+        return 1.0;
+    }
+    float filtered = taps.filtered / taps.filtered_weight;
+    float near = taps.near_weight > 0.0 ? taps.near / taps.near_weight : filtered;
     float contact = contact_texels(cos_theta) * texel;
     float t = clamp(taps.gap / max(contact, 1e-9), 0.0, 1.0);
-    return mix(taps.near, taps.filtered, t);
+    return mix(near, filtered, t);
 }
 
 // The bilinear weights of texels k - 1, k, k + 1 for a receiver `g` texels from the centre of
@@ -135,10 +164,7 @@ float map_shadow(Light light, vec3 p, vec3 n, bool filtered) {
     float layer = light.intensity_shadow.w;
     vec2 position = uv * size - 0.5;  // texel centres at integers
     vec2 base = floor(position + 0.5);  // the texel the receiver is in
-    vec3 wx = filter_weights(position.x - base.x, filtered);
-    vec3 wy = filter_weights(position.y - base.y, filtered);
-    vec3 nx = near_weights(position.x - base.x, filtered);
-    vec3 ny = near_weights(position.y - base.y, filtered);
+    vec2 g = position - base;
     // The rays through texel `base` and the next texels in x and y. Clip space is a projective
     // image of the world, so X.xyz - origin X.w (a spot's ray direction, unnormalised) and X.xyz
     // (a point on the sun's ray) are affine in the texel: three matrix products give every
@@ -159,19 +185,29 @@ float map_shadow(Light light, vec3 p, vec3 n, bool filtered) {
         dx = dot(rx, direction) + dot(n, rx) / max(-dot(n, direction), kShadowMinCos);
         dy = dot(ry, direction) + dot(n, ry) / max(-dot(n, direction), kShadowMinCos);
     }
-    ShadowTaps taps = ShadowTaps(0.0, 0.0, 1e30);
-    for (int j = 0; j < 3; ++j) {
-        for (int i = 0; i < 3; ++i) {
-            float w = wx[i] * wy[j];
-            if (!filtered && w == 0.0) {
-                continue;
+    ShadowTaps taps = kNoTaps;
+    for (int pass = 0; pass < kShadowPasses; ++pass) {
+        bool wide = filtered || pass == 1;
+        if (pass == 1 && (filtered || taps.filtered_weight > 0.0)) {
+            break;
+        }
+        vec3 wx = filter_weights(g.x, wide);
+        vec3 wy = filter_weights(g.y, wide);
+        vec3 nx = near_weights(g.x, wide);
+        vec3 ny = near_weights(g.y, wide);
+        for (int j = 0; j < 3; ++j) {
+            for (int i = 0; i < 3; ++i) {
+                float w = wx[i] * wy[j];
+                if (!wide && w == 0.0) {
+                    continue;
+                }
+                vec2 offset = vec2(i - 1, j - 1);
+                float depth = ortho ? d0 + offset.x * dx + offset.y * dy
+                                    : ray_plane_distance(r0 + offset.x * rx + offset.y * ry, n,
+                                                         towards_light);
+                float stored = textureLod(u_map_shadows, vec3(c0 + offset / size, layer), 0.0).r;
+                add_tap(taps, w, nx[i] * ny[j], stored, depth, bias, far);
             }
-            vec2 offset = vec2(i - 1, j - 1);
-            float depth = ortho ? d0 + offset.x * dx + offset.y * dy
-                                : ray_plane_distance(r0 + offset.x * rx + offset.y * ry, n,
-                                                     towards_light);
-            float stored = textureLod(u_map_shadows, vec3(c0 + offset / size, layer), 0.0).r;
-            add_tap(taps, w, nx[i] * ny[j], stored, depth, bias, far);
         }
     }
     vec3 to_light = ortho ? -direction : normalize(origin - p);
@@ -230,31 +266,38 @@ float cube_shadow(Light light, vec3 p, vec3 n, bool filtered) {
     float layer = light.intensity_shadow.w;
     vec2 position = (face_coordinates(face, v) * 0.5 + 0.5) * size - 0.5;  // texel centres at integers
     vec2 base = floor(position + 0.5);  // the texel the receiver is in
-    vec3 wx = filter_weights(position.x - base.x, filtered);
-    vec3 wy = filter_weights(position.y - base.y, filtered);
-    vec3 nx = near_weights(position.x - base.x, filtered);
-    vec3 ny = near_weights(position.y - base.y, filtered);
+    vec2 g = position - base;
     float texel = light.params.z * distance;
     float bias = kShadowBiasTexels * texel;
     vec2 c0 = ((base + 0.5) / size) * 2.0 - 1.0;
     float texel_step = 2.0 / size;
     vec3 dir0 = face.major + face.u * c0.x + face.v * c0.y;
     float towards_light = dot(n, -v);
-    ShadowTaps taps = ShadowTaps(0.0, 0.0, 1e30);
-    for (int j = 0; j < 3; ++j) {
-        for (int i = 0; i < 3; ++i) {
-            float w = wx[i] * wy[j];
-            if (!filtered && w == 0.0) {
-                continue;
+    ShadowTaps taps = kNoTaps;
+    for (int pass = 0; pass < kShadowPasses; ++pass) {
+        bool wide = filtered || pass == 1;
+        if (pass == 1 && (filtered || taps.filtered_weight > 0.0)) {
+            break;
+        }
+        vec3 wx = filter_weights(g.x, wide);
+        vec3 wy = filter_weights(g.y, wide);
+        vec3 nx = near_weights(g.x, wide);
+        vec3 ny = near_weights(g.y, wide);
+        for (int j = 0; j < 3; ++j) {
+            for (int i = 0; i < 3; ++i) {
+                float w = wx[i] * wy[j];
+                if (!wide && w == 0.0) {
+                    continue;
+                }
+                vec2 offset = vec2(i - 1, j - 1) * texel_step;
+                vec3 dir = dir0 + face.u * offset.x + face.v * offset.y;
+                if (any(greaterThan(abs(c0 + offset), vec2(1.0)))) {
+                    dir = cube_texel_centre(dir, size);  // past the face's edge: the next face's
+                }
+                float depth = ray_plane_distance(dir, n, towards_light);
+                float stored = textureLod(u_cube_shadows, vec4(dir, layer), 0.0).r;
+                add_tap(taps, w, nx[i] * ny[j], stored, depth, bias, far);
             }
-            vec2 offset = vec2(i - 1, j - 1) * texel_step;
-            vec3 dir = dir0 + face.u * offset.x + face.v * offset.y;
-            if (any(greaterThan(abs(c0 + offset), vec2(1.0)))) {
-                dir = cube_texel_centre(dir, size);  // past the face's edge: the next face's
-            }
-            float depth = ray_plane_distance(dir, n, towards_light);
-            float stored = textureLod(u_cube_shadows, vec4(dir, layer), 0.0).r;
-            add_tap(taps, w, nx[i] * ny[j], stored, depth, bias, far);
         }
     }
     return shadow_result(taps, texel, dot(n, -v / distance));
