@@ -12,8 +12,9 @@
 namespace luxel::sandbox {
 
 const std::vector<std::string>& level_names() {
-    static const std::vector<std::string> names = {
-        "sandbox", "cornell", "cornell-13k", "cornell-133k", "two-rooms", "caustics", "furnace"};
+    static const std::vector<std::string> names = {"sandbox",      "cornell",   "cornell-13k",
+                                                   "cornell-133k", "two-rooms", "caustics",
+                                                   "sky-room",     "furnace"};
     return names;
 }
 

@@ -107,7 +107,7 @@ void fail(PageCheck& check, const std::string& message) {
 
 std::vector<std::string> built_in_level_names() {
     return {"cornell",  "cornell-13k", "cornell-133k", "two-rooms",
-            "caustics", "sandbox",     "furnace"};
+            "caustics", "sandbox",     "sky-room",     "furnace"};
 }
 
 std::vector<std::string> blender_level_names() {

@@ -61,7 +61,7 @@ struct Loaded {
 
 TEST(BuiltInLevels, CommittedFilesAreWhatTheGeneratorBuilds) {
     const auto recipes = levels::built_in_levels();
-    ASSERT_EQ(recipes.size(), 7u);
+    ASSERT_EQ(recipes.size(), 8u);
     for (const auto& recipe : recipes) {
         const auto committed = read_bytes(kLevels / (recipe.name + ".glb"));
         ASSERT_FALSE(committed.empty()) << recipe.name << ".glb is missing";
@@ -221,6 +221,58 @@ TEST(BuiltInLevels, SandboxHasAFigureThatWalksThroughBothRooms) {
     }
 }
 
+/// The mean of the first primitive's vertices of mesh node `name`, in world space.
+glm::vec3 node_centre(const Loaded& level, const std::string& name) {
+    const std::vector<glm::mat4> world = level.scene->world_matrices();
+    for (std::size_t i = 0; i < level.scene->nodes.size(); ++i) {
+        const scene::Node& node = level.scene->nodes[i];
+        if (node.name == name && node.mesh >= 0) {
+            const scene::Primitive& p =
+                level.scene->meshes.at(static_cast<std::size_t>(node.mesh)).primitives.at(0);
+            glm::vec3 sum(0.0f);
+            for (const glm::vec3& v : p.positions) {
+                sum += v;
+            }
+            return glm::vec3(world[i] *
+                             glm::vec4(sum / static_cast<float>(p.positions.size()), 1.0f));
+        }
+    }
+    ADD_FAILURE() << "no mesh node " << name;
+    return glm::vec3(0.0f);
+}
+
+/// Whether a triangle of mesh node `wall`, which lies in a plane square to world axis `across`
+/// (0: x, 2: z), covers `point` seen along that axis.
+bool wall_covers(const Loaded& level, const std::string& wall, const glm::vec3& point, int across) {
+    const std::vector<glm::mat4> world = level.scene->world_matrices();
+    const int a = across == 0 ? 2 : 0;  // the two axes of the wall's plane
+    const int b = 1;
+    for (std::size_t i = 0; i < level.scene->nodes.size(); ++i) {
+        const scene::Node& node = level.scene->nodes[i];
+        if (node.name != wall || node.mesh < 0) {
+            continue;
+        }
+        const scene::Primitive& p =
+            level.scene->meshes.at(static_cast<std::size_t>(node.mesh)).primitives.at(0);
+        for (std::size_t t = 0; t + 2 < p.indices.size(); t += 3) {
+            const glm::vec3 u(world[i] * glm::vec4(p.positions[p.indices[t]], 1.0f));
+            const glm::vec3 v(world[i] * glm::vec4(p.positions[p.indices[t + 1]], 1.0f));
+            const glm::vec3 w(world[i] * glm::vec4(p.positions[p.indices[t + 2]], 1.0f));
+            auto side = [&](const glm::vec3& from, const glm::vec3& to) {
+                return (to[a] - from[a]) * (point[b] - from[b]) -
+                       (to[b] - from[b]) * (point[a] - from[a]);
+            };
+            const float s0 = side(u, v);
+            const float s1 = side(v, w);
+            const float s2 = side(w, u);
+            if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) {
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
 TEST(BuiltInLevels, SandboxHasDaylightThroughAWindowInEachRoom) {
     Loaded level("sandbox");
     // The sun, a daylight sky that turns with it, and a ground below the horizon.
@@ -236,59 +288,46 @@ TEST(BuiltInLevels, SandboxHasDaylightThroughAWindowInEachRoom) {
                   .g,
               0.0f);
     EXPECT_EQ(count<lighting::SkyPortal>(level.registry), 2u);
-    // Each portal fills a hole of its room's north wall: no triangle of the wall covers its
-    // centre, and the wall's triangles do reach round it (the hole is in that wall).
-    const std::vector<glm::mat4> world = level.scene->world_matrices();
-    auto centre_of = [&](const std::string& name) {
-        for (std::size_t i = 0; i < level.scene->nodes.size(); ++i) {
-            const scene::Node& node = level.scene->nodes[i];
-            if (node.name == name && node.mesh >= 0) {
-                const scene::Primitive& p =
-                    level.scene->meshes.at(static_cast<std::size_t>(node.mesh)).primitives.at(0);
-                glm::vec3 sum(0.0f);
-                for (const glm::vec3& v : p.positions) {
-                    sum += v;
-                }
-                return glm::vec3(world[i] *
-                                 glm::vec4(sum / static_cast<float>(p.positions.size()), 1.0f));
-            }
-        }
-        ADD_FAILURE() << "no mesh node " << name;
-        return glm::vec3(0.0f);
-    };
-    auto covered = [&](const std::string& wall, const glm::vec3& point) {
-        for (std::size_t i = 0; i < level.scene->nodes.size(); ++i) {
-            const scene::Node& node = level.scene->nodes[i];
-            if (node.name != wall || node.mesh < 0) {
-                continue;
-            }
-            const scene::Primitive& p =
-                level.scene->meshes.at(static_cast<std::size_t>(node.mesh)).primitives.at(0);
-            for (std::size_t t = 0; t + 2 < p.indices.size(); t += 3) {
-                // The walls lie in z = const: a 2D point-in-triangle test in x, y.
-                const glm::vec3 a(world[i] * glm::vec4(p.positions[p.indices[t]], 1.0f));
-                const glm::vec3 b(world[i] * glm::vec4(p.positions[p.indices[t + 1]], 1.0f));
-                const glm::vec3 c(world[i] * glm::vec4(p.positions[p.indices[t + 2]], 1.0f));
-                auto side = [&](const glm::vec3& u, const glm::vec3& v) {
-                    return (v.x - u.x) * (point.y - u.y) - (v.y - u.y) * (point.x - u.x);
-                };
-                const float s0 = side(a, b);
-                const float s1 = side(b, c);
-                const float s2 = side(c, a);
-                if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) {
-                    return true;
-                }
-            }
-        }
-        return false;
-    };
+    // Each portal fills a hole of its room's north wall (z = -2): no triangle of the wall covers
+    // its centre, and the wall's triangles do reach round it (the hole is in that wall).
     for (const std::string room : {"west ", "east "}) {
-        const glm::vec3 centre = centre_of(room + "window");
+        const glm::vec3 centre = node_centre(level, room + "window");
         EXPECT_NEAR(centre.z, -2.0f, 1e-5f) << room;
-        EXPECT_FALSE(covered(room + "north wall", centre)) << room;
-        EXPECT_TRUE(covered(room + "north wall", centre + glm::vec3(0.0f, 1.0f, 0.0f))) << room;
+        EXPECT_FALSE(wall_covers(level, room + "north wall", centre, 2)) << room;
+        EXPECT_TRUE(
+            wall_covers(level, room + "north wall", centre + glm::vec3(0.0f, 1.0f, 0.0f), 2))
+            << room;
         EXPECT_TRUE(level.registry.has<lighting::SkyPortal>(level[room + "window"])) << room;
     }
+}
+
+TEST(BuiltInLevels, SkyRoomIsLitThroughItsOneWindowBySkyAndSun) {
+    Loaded level("sky-room");
+    // Outside: a uniform sky with a ground below the horizon, and the sun; inside, no light.
+    ASSERT_NE(level.instance.sky, ecs::null_entity);
+    EXPECT_EQ(level.scene->sky.kind, scene::SkySpec::Kind::Uniform);
+    EXPECT_GT(level.scene->sky.ground.r, 0.0f);
+    EXPECT_EQ(count<lighting::DirectionalLight>(level.registry), 1u);
+    EXPECT_EQ(count<lighting::PointLight>(level.registry), 0u);
+    EXPECT_EQ(count<lighting::SpotLight>(level.registry), 0u);
+    // One portal, filling the hole of the east wall (x = 2.5).
+    EXPECT_EQ(count<lighting::SkyPortal>(level.registry), 1u);
+    const glm::vec3 window = node_centre(level, "window");
+    EXPECT_NEAR(window.x, 2.5f, 1e-5f);
+    EXPECT_TRUE(level.registry.has<lighting::SkyPortal>(level["window"]));
+    EXPECT_FALSE(wall_covers(level, "east wall", window, 0));
+    EXPECT_TRUE(wall_covers(level, "east wall", window + glm::vec3(0.0f, 1.0f, 0.0f), 0));
+    // The sun shines in through the window onto the floor, inside the room.
+    const ecs::Entity sun = level["sun"];
+    const glm::vec3 travel =
+        glm::normalize(glm::mat3_cast(level.registry.get<ecs::Transform>(sun).rotation) *
+                       glm::vec3(0.0f, 0.0f, -1.0f));
+    EXPECT_LT(travel.x, 0.0f) << "the sun shines in, towards -x";
+    ASSERT_LT(travel.y, 0.0f);
+    const glm::vec3 on_floor = window + travel * (-window.y / travel.y);
+    EXPECT_GT(on_floor.x, -2.5f);
+    EXPECT_LT(on_floor.x, 2.5f);
+    EXPECT_LT(std::abs(on_floor.z), 2.0f);
 }
 
 TEST(BuiltInLevels, FurnaceIsAClosedEmissiveSphere) {

@@ -478,6 +478,63 @@ scene::Scene make_sandbox() {
     return level.finish();
 }
 
+scene::Scene make_sky_room() {
+    LevelBuilder level("sky-room");
+    // A closed 5 x 4 m room, 2.8 m high (x in [-2.5, 2.5], z in [-2, 2]), lit only from outside
+    // through a 1.6 x 1.2 m window in its east wall: a uniform blue sky with a ground below the
+    // horizon, and a low sun whose beam crosses a block on the floor. Every face is one-sided,
+    // facing into the room, so light reaches the inside through the window alone (issue 20's
+    // built-in sky room; tests/levels/blender/sky-window.py is Blender's).
+    constexpr float half_width = 2.5f;
+    constexpr float depth = 2.0f;
+    constexpr float height = 2.8f;
+    const int plaster = level.add_diffuse("plaster", glm::vec3(0.75f, 0.74f, 0.70f));
+    const int sage = level.add_diffuse("sage plaster", glm::vec3(0.50f, 0.64f, 0.48f));
+    const int floor_wood = level.add_diffuse("wood floor", glm::vec3(0.52f, 0.36f, 0.22f));
+    const int block_paint = level.add_diffuse("block", glm::vec3(0.70f, 0.30f, 0.22f));
+    level.add_mesh_node(
+        "floor",
+        make_quad({-half_width, 0, depth}, {2 * half_width, 0, 0}, {0, 0, -2 * depth}, 10, 8),
+        floor_wood);
+    level.add_mesh_node(
+        "ceiling",
+        make_quad({-half_width, height, -depth}, {2 * half_width, 0, 0}, {0, 0, 2 * depth}, 10, 8),
+        plaster);
+    level.add_mesh_node(
+        "north wall",
+        make_quad({-half_width, 0, -depth}, {2 * half_width, 0, 0}, {0, height, 0}, 10, 6),
+        plaster);
+    level.add_mesh_node(
+        "south wall",
+        make_quad({half_width, 0, depth}, {-2 * half_width, 0, 0}, {0, height, 0}, 10, 6), plaster);
+    level.add_mesh_node(
+        "west wall", make_quad({-half_width, 0, depth}, {0, 0, -2 * depth}, {0, height, 0}, 8, 6),
+        sage);
+    // The east wall faces -x; its window spans z in [-0.8, 0.8], y in [0.9, 2.1].
+    const glm::vec3 east_corner(half_width, 0, -depth);
+    const glm::vec3 along(0, 0, 2 * depth);
+    const glm::vec3 up(0, height, 0);
+    const glm::vec2 hole_low(1.2f, 0.9f);
+    const glm::vec2 hole_high(2.8f, 2.1f);
+    level.add_mesh_node("east wall", window_wall(east_corner, along, up, hole_low, hole_high),
+                        plaster);
+    add_window_portal(level, "window", plaster, east_corner, along, up, hole_low, hole_high);
+    level.add_mesh_node("block", make_box({0.8f, 0.75f, 0.8f}), block_paint, -1,
+                        {0.3f, 0.375f, -0.5f});
+    // The sun, 28 degrees up in the east: its patch falls on the floor 0.8-3.9 m from the
+    // window, across the block.
+    scene::Light sun = scene::Light::directional_from_irradiance(glm::vec3(3.0f, 2.9f, 2.6f));
+    sun.name = "sun";
+    level.add_light(sun, {6.0f, 3.5f, 0.0f}, aim({-1.0f, -0.55f, 0.12f}));
+    scene::SkySpec sky;
+    sky.kind = scene::SkySpec::Kind::Uniform;
+    sky.radiance = glm::vec3(0.25f, 0.33f, 0.48f);
+    sky.ground = glm::vec3(0.2f);
+    level.sky() = sky;
+    level.add_camera("camera", {-2.2f, 1.5f, 1.5f}, {2.5f, 1.3f, -0.3f}, glm::radians(60.0f));
+    return level.finish();
+}
+
 scene::Scene make_furnace(float albedo, float emitted_radiance) {
     LevelBuilder level("furnace");
     scene::Material inside;
@@ -512,6 +569,8 @@ std::vector<LevelRecipe> built_in_levels() {
          "daylight sky outside, door, glass sculpture, bouncing ball, swinging lamp, switched "
          "light",
          [] { return make_sandbox(); }},
+        {"sky-room", "a closed room lit only through one window, by a uniform sky and a low sun",
+         [] { return make_sky_room(); }},
         {"furnace", "closed sphere, uniform albedo 0.5 and emission 1 W/(m^2 sr)",
          [] { return make_furnace(); }},
     };

@@ -27,6 +27,9 @@ struct LevelRecipe {
 /// glass sculpture, a bouncing ball (moved by a game system from extras.luxel.bounce), a
 /// swinging lamp, a switched light, and a skinned figure walking through both rooms.
 [[nodiscard]] scene::Scene make_sandbox();
+/// A closed room lit only through one window (a portal in it) by a uniform sky and a low sun
+/// (issue 20's built-in sky room).
+[[nodiscard]] scene::Scene make_sky_room();
 /// A closed sphere seen from inside, uniform albedo and emission (stability checks: the exact
 /// radiance inside is L = Le / (1 - albedo)).
 [[nodiscard]] scene::Scene make_furnace(float albedo = 0.5f, float emitted_radiance = 1.0f);
