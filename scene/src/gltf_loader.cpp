@@ -15,6 +15,7 @@
 #include "gltf_internal.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/log.hpp"
+#include "luxel/scene/sky.hpp"
 
 namespace luxel::scene {
 namespace gltf_detail {
@@ -113,6 +114,29 @@ struct ExternalFiles {
         return real;  // what gets opened: the path that was checked, with no link left in it
     }
 };
+
+/// The real path of a sky map a level names in its extras (relative to its folder), admitted
+/// by the same rules as its buffers and images and within the file-size limit; an Error naming
+/// the field and the reason otherwise. The map itself is read later (world::make_sky_radiance,
+/// which checks its header before any pixel memory).
+std::filesystem::path admit_sky_map(ExternalFiles& files, const std::filesystem::path& written,
+                                    const std::string& display_name) {
+    const std::string field =
+        display_name + ": extras.luxel.sky.file '" + written.generic_string() + "'";
+    const std::filesystem::path admitted = files.admit((files.base_dir / written).string());
+    if (admitted.empty()) {
+        throw Error(field + ": " + files.refusals.back());
+    }
+    std::error_code error;
+    const std::uint64_t size = std::filesystem::file_size(admitted, error);
+    if (error || size > files.options->max_file_size) {
+        throw Error(field + ": " +
+                    (error ? "cannot read: " + error.message()
+                           : std::to_string(size) + " bytes, more than the limit of " +
+                                 std::to_string(files.options->max_file_size)));
+    }
+    return admitted;
+}
 
 bool file_exists(const std::string& path, void* user) {
     return !static_cast<ExternalFiles*>(user)->admit(path).empty();
@@ -394,6 +418,10 @@ Scene load(std::span<const std::uint8_t> bytes, const std::string& display_name,
         gltf_detail::import_skins(context);
     } catch (const std::bad_alloc&) {
         fail("out of memory while reading the scene");
+    }
+    if (scene.sky.kind == SkySpec::Kind::Map) {
+        scene.sky.map = admit_sky_map(files, scene.sky.map, display_name);
+        scene.report.external_files.push_back(scene.sky.map);
     }
     try {
         scene.validate();

@@ -135,7 +135,7 @@ SkySpec read_sky_extras(const nlohmann::json& sky) {
     SkySpec out;
     const auto kind = sky.find("kind");
     if (kind == sky.end() || !kind->is_string()) {
-        throw Error(where + ".kind must be \"uniform\" or \"daylight\"");
+        throw Error(where + ".kind must be \"uniform\", \"daylight\" or \"map\"");
     }
     auto number = [&](const char* key, float fallback) {
         const auto found = sky.find(key);
@@ -166,12 +166,32 @@ SkySpec read_sky_extras(const nlohmann::json& sky) {
         out.kind = SkySpec::Kind::Daylight;
         out.irradiance = number("irradiance", out.irradiance);
         out.turbidity = number("turbidity", out.turbidity);
+    } else if (*kind == "map") {
+        // The file is named relative to the level's folder; the loader resolves it there and
+        // refuses one outside (scene/src/gltf_loader.cpp, as for buffers and images).
+        out.kind = SkySpec::Kind::Map;
+        const auto file = sky.find("file");
+        if (file == sky.end() || !file->is_string() || file->get<std::string>().empty()) {
+            throw Error(where +
+                        ".file must name the environment map, an .exr file in the level's folder");
+        }
+        out.map = std::filesystem::path(file->get<std::string>());
+        if (out.map.extension() != ".exr") {
+            throw Error(where + ".file '" + file->get<std::string>() +
+                        "' is not an OpenEXR (.exr) file");
+        }
     } else {
-        throw Error(where + ".kind must be \"uniform\" or \"daylight\" (got " + kind->dump() + ")");
+        throw Error(where + ".kind must be \"uniform\", \"daylight\" or \"map\" (got " +
+                    kind->dump() + ")");
     }
     out.scale = number("scale", out.scale);
     if (const auto ground = sky.find("ground"); ground != sky.end()) {
         const std::string field = where + ".ground";
+        if (out.kind == SkySpec::Kind::Map) {
+            throw Error(field +
+                        " is for uniform and daylight skies; a map keeps its own pixels "
+                        "below the horizon");
+        }
         if (ground->is_number()) {
             out.ground = glm::vec3(albedo(ground->get<double>(), field));
         } else if (ground->is_array() && ground->size() == 3 &&
@@ -191,8 +211,17 @@ nlohmann::json sky_extras(const SkySpec& sky) {
     nlohmann::json out;
     switch (sky.kind) {
         case SkySpec::Kind::None:
-        case SkySpec::Kind::Map:
             return nullptr;
+        case SkySpec::Kind::Map:
+            // A level names its map relative to its own folder; a map from the command line or
+            // one resolved at load (an absolute path) is the writer's to place (luxel-prep
+            // copies it beside the level it writes).
+            if (sky.map.empty() || sky.map.is_absolute()) {
+                return nullptr;
+            }
+            out["kind"] = "map";
+            out["file"] = sky.map.generic_string();
+            break;
         case SkySpec::Kind::Uniform:
             out["kind"] = "uniform";
             out["radiance"] = {sky.radiance.r, sky.radiance.g, sky.radiance.b};

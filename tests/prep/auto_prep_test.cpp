@@ -17,6 +17,7 @@
 #include "luxel/prep/auto_prep.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
+#include "luxel/runtime/image.hpp"
 #include "luxel/world/scene_instance.hpp"
 #include "temp_dir.hpp"
 #include "ticking_clock.hpp"
@@ -103,6 +104,28 @@ TEST(AutoPrep, AnUnpreparedLevelIsPreparedAtLoadAndCachedByItsContent) {
     (void)level.load(printed);
     EXPECT_NE(printed.find("prepared for light maps in"), std::string::npos) << printed;
     EXPECT_EQ(level.cached_files(), 2u);
+}
+
+// The sky map a level names beside it stays the level's through the cache: the cache's copy
+// of the prepared level names no file (it lives in another folder), and the level's own sky is
+// taken on the way out of the cache as on the way in.
+TEST(AutoPrep, ALevelsSkyMapIsKeptWhenItsPreparationComesFromTheCache) {
+    Unprepared level;
+    luxel::write_exr(level.dir / "noon.exr", Image(8, 4, glm::vec4(0.5f, 0.6f, 0.9f, 1.0f)));
+    scene::Scene with_map = luxel::testing::unprepared(luxel::testing::prepared_cornell());
+    with_map.sky.kind = scene::SkySpec::Kind::Map;
+    with_map.sky.map = "noon.exr";
+    scene::save_gltf(with_map, level.file);
+    const std::filesystem::path map = std::filesystem::canonical(level.dir / "noon.exr");
+    std::string printed;
+    const auto first = level.load(printed);
+    EXPECT_NE(printed.find("prepared for light maps in"), std::string::npos) << printed;
+    EXPECT_EQ(first->sky.kind, scene::SkySpec::Kind::Map);
+    EXPECT_EQ(first->sky.map, map);
+    const auto cached = level.load(printed);
+    EXPECT_NE(printed.find("light-map layout from the cache"), std::string::npos) << printed;
+    EXPECT_EQ(cached->sky.kind, scene::SkySpec::Kind::Map);
+    EXPECT_EQ(cached->sky.map, map);
 }
 
 TEST(AutoPrep, RefusedItIsAnErrorThatGivesTheCommand) {

@@ -68,6 +68,38 @@ TEST(PrepCli, PreparesALevelAndWritesTheReportAndPagePictures) {
     }
 }
 
+// A level's sky map (named beside it, in its extras) goes with the prepared level: copied
+// beside the output as <stem>.sky.exr when the output is in another folder, named where it is
+// when the output's folder holds it already.
+TEST(PrepCli, ALevelsSkyMapGoesWithThePreparedLevel) {
+    luxel::testing::TempDir dir("luxel-prep-sky");
+    std::filesystem::create_directories(dir / "source" / "skies");
+    std::filesystem::create_directories(dir / "prepared");
+    write_exr(dir / "source" / "skies" / "noon.exr",
+              Image(8, 4, glm::vec4(1.0f, 0.5f, 0.25f, 1.0f)));
+    scene::Scene level = scene::load_gltf(luxel::testing::level_file("cornell"));
+    level.sky.kind = scene::SkySpec::Kind::Map;
+    level.sky.map = "skies/noon.exr";
+    scene::save_gltf(level, dir / "source" / "room.glb");
+
+    const CommandResult moved = luxel_prep(quoted(dir / "source" / "room.glb") + " -o " +
+                                           quoted(dir / "prepared" / "room.glb"));
+    ASSERT_EQ(moved.exit_code, 0) << moved.output;
+    const std::filesystem::path copy = dir / "prepared" / "room.sky.exr";
+    EXPECT_NE(moved.output.find("sky map: " + copy.string()), std::string::npos) << moved.output;
+    EXPECT_EQ(read_bytes(copy), read_bytes(dir / "source" / "skies" / "noon.exr"));
+    const scene::Scene prepared = scene::load_gltf(dir / "prepared" / "room.glb");
+    EXPECT_EQ(prepared.sky.kind, scene::SkySpec::Kind::Map);
+    EXPECT_EQ(prepared.sky.map, std::filesystem::canonical(copy));
+
+    const CommandResult beside = luxel_prep(quoted(dir / "source" / "room.glb") + " -o " +
+                                            quoted(dir / "source" / "room-prepared.glb"));
+    ASSERT_EQ(beside.exit_code, 0) << beside.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "source" / "room-prepared.sky.exr"));
+    EXPECT_EQ(scene::load_gltf(dir / "source" / "room-prepared.glb").sky.map,
+              std::filesystem::canonical(dir / "source" / "skies" / "noon.exr"));
+}
+
 TEST(PrepCli, OutputDoesNotDependOnThreads) {
     luxel::testing::TempDir dir("luxel-prep-cli");
     for (const std::string threads : {"1", "2"}) {

@@ -17,6 +17,7 @@
 
 #include "luxel/prep/page_images.hpp"
 #include "luxel/prep/prep.hpp"
+#include "luxel/prep/sky_map.hpp"
 #include "luxel/runtime/cli.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
@@ -148,6 +149,14 @@ int run(int argc, char** argv) {
     report.output = output.string();
     report.stage_ms.insert(report.stage_ms.begin(), {"load", load_ms});
 
+    std::filesystem::path sky_map;
+    if (result.scene.sky.kind == luxel::scene::SkySpec::Kind::Map &&
+        result.scene.sky.map.is_absolute()) {
+        // The level's map, resolved at load in its folder: named again relative to the output.
+        result.scene.sky.map = luxel::prep::place_sky_map(result.scene.sky.map, output);
+        sky_map = output.parent_path() / result.scene.sky.map;
+    }
+
     stopwatch.restart();
     luxel::scene::save_gltf(result.scene, output);
     report.add_stage("save", stopwatch.elapsed_ms());
@@ -171,6 +180,9 @@ int run(int argc, char** argv) {
     }
     for (const auto& image : images) {
         std::cout << "  page picture: " << image.string() << "\n";
+    }
+    if (!sky_map.empty()) {
+        std::cout << "  sky map: " << sky_map.string() << "\n";
     }
     return 0;
 }

@@ -71,6 +71,9 @@ std::shared_ptr<scene::Scene> from_cache(const std::filesystem::path& cached,
             return nullptr;
         }
         prepared->source = level.source;
+        // The level's sky is the level's: a map it names (resolved in its own folder) is not
+        // written into the cache's copy.
+        prepared->sky = level.sky;
         log::info(level.in_file("light-map layout from the cache: " + cached.string()));
         return prepared;
     } catch (const Error& e) {

@@ -26,8 +26,10 @@ struct SkySpec {
     /// direct light is the level's DirectionalLight's), and the atmosphere's turbidity.
     float irradiance = 1.0f;
     float turbidity = 3.0f;
-    std::filesystem::path map;  ///< map: the file (from the command line)
-    float scale = 1.0f;         ///< every kind: multiplies the radiance
+    /// Map: the OpenEXR file. From --sky, as given; from a level's extras, named relative to
+    /// the level's folder and, once loaded, its real path there (the loader refuses one outside).
+    std::filesystem::path map;
+    float scale = 1.0f;  ///< every kind: multiplies the radiance
     /// Uniform and daylight: the albedo of a flat ground below the horizon, lit by the sky (and,
     /// for daylight, its sun), for a level with no ground of its own outside its windows. 0
     /// (the default): below the horizon is black, and a level's own ground bounces the light.
@@ -44,13 +46,15 @@ struct SkySpec {
 [[nodiscard]] SkySpec parse_sky(std::string_view text);
 
 /// Reads extras.luxel.sky of a glTF scene: {"kind": "uniform", "radiance": [R, G, B]},
-/// {"kind": "daylight", "irradiance": E, "turbidity": T}, optional "scale" and "ground" (an
-/// albedo: a number or [R, G, B], each at most 1). Throws
-/// luxel::Error naming the field for a wrong type, an unknown kind or a value that is negative
-/// or not finite. A level names no files for its sky (an environment map comes from --sky).
+/// {"kind": "daylight", "irradiance": E, "turbidity": T}, {"kind": "map", "file": "F.exr"};
+/// optional "scale", and for uniform and daylight "ground" (an albedo: a number or [R, G, B],
+/// each at most 1). A map's file is returned as written: the loader resolves it in the level's
+/// folder. Throws luxel::Error naming the field for a wrong type, an unknown kind, a value that
+/// is negative or not finite, or a map that is not an .exr file.
 [[nodiscard]] SkySpec read_sky_extras(const nlohmann::json& sky);
 
-/// extras.luxel.sky for a level file: null for None and Map (a level names no sky file).
+/// extras.luxel.sky for a level file: null for None, and for a Map whose file is absolute (from
+/// --sky, or resolved at load): a level names its map relative to its own folder only.
 [[nodiscard]] nlohmann::json sky_extras(const SkySpec& sky);
 
 /// What --sky and the level's extras write: "uniform:R,G,B", "daylight:E,T", the map's path.
