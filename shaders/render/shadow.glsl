@@ -139,6 +139,26 @@ vec3 filter_weights(float g, bool filtered) {
     return filtered ? vec3(0.5 - g, 1.0, 0.5 + g) * 0.5 : vec3(0.0, 1.0, 0.0);
 }
 
+// The weights of one pass over the 3 x 3 texels around a receiver `g` texels from the centre of
+// its own: filtered, the filter's nine; unfiltered, the receiver's texel alone, and then the
+// nine only where add_tap left that texel out (kShadowPasses). False: no further pass.
+struct TapWeights {
+    bool wide;
+    vec3 x;
+    vec3 y;
+    vec3 near_x;
+    vec3 near_y;
+};
+
+bool tap_pass(int pass, bool filtered, ShadowTaps taps, vec2 g, out TapWeights weights) {
+    weights.wide = filtered || pass == 1;
+    weights.x = filter_weights(g.x, weights.wide);
+    weights.y = filter_weights(g.y, weights.wide);
+    weights.near_x = near_weights(g.x, weights.wide);
+    weights.near_y = near_weights(g.y, weights.wide);
+    return pass == 0 || (pass < kShadowPasses && !filtered && !(taps.filtered_weight > 0.0));
+}
+
 // A 2D map's ray through `centre` (map uv), as a point of the world on it: w = 0 gives a point
 // in clip space between the near and far planes.
 vec4 map_ray_point(Light light, vec2 centre) {
@@ -186,19 +206,12 @@ float map_shadow(Light light, vec3 p, vec3 n, bool filtered) {
         dy = dot(ry, direction) + dot(n, ry) / max(-dot(n, direction), kShadowMinCos);
     }
     ShadowTaps taps = kNoTaps;
-    for (int pass = 0; pass < kShadowPasses; ++pass) {
-        bool wide = filtered || pass == 1;
-        if (pass == 1 && (filtered || taps.filtered_weight > 0.0)) {
-            break;
-        }
-        vec3 wx = filter_weights(g.x, wide);
-        vec3 wy = filter_weights(g.y, wide);
-        vec3 nx = near_weights(g.x, wide);
-        vec3 ny = near_weights(g.y, wide);
+    TapWeights weights;
+    for (int pass = 0; tap_pass(pass, filtered, taps, g, weights); ++pass) {
         for (int j = 0; j < 3; ++j) {
             for (int i = 0; i < 3; ++i) {
-                float w = wx[i] * wy[j];
-                if (!wide && w == 0.0) {
+                float w = weights.x[i] * weights.y[j];
+                if (!weights.wide && w == 0.0) {
                     continue;
                 }
                 vec2 offset = vec2(i - 1, j - 1);
@@ -206,7 +219,7 @@ float map_shadow(Light light, vec3 p, vec3 n, bool filtered) {
                                     : ray_plane_distance(r0 + offset.x * rx + offset.y * ry, n,
                                                          towards_light);
                 float stored = textureLod(u_map_shadows, vec3(c0 + offset / size, layer), 0.0).r;
-                add_tap(taps, w, nx[i] * ny[j], stored, depth, bias, far);
+                add_tap(taps, w, weights.near_x[i] * weights.near_y[j], stored, depth, bias, far);
             }
         }
     }
@@ -274,19 +287,12 @@ float cube_shadow(Light light, vec3 p, vec3 n, bool filtered) {
     vec3 dir0 = face.major + face.u * c0.x + face.v * c0.y;
     float towards_light = dot(n, -v);
     ShadowTaps taps = kNoTaps;
-    for (int pass = 0; pass < kShadowPasses; ++pass) {
-        bool wide = filtered || pass == 1;
-        if (pass == 1 && (filtered || taps.filtered_weight > 0.0)) {
-            break;
-        }
-        vec3 wx = filter_weights(g.x, wide);
-        vec3 wy = filter_weights(g.y, wide);
-        vec3 nx = near_weights(g.x, wide);
-        vec3 ny = near_weights(g.y, wide);
+    TapWeights weights;
+    for (int pass = 0; tap_pass(pass, filtered, taps, g, weights); ++pass) {
         for (int j = 0; j < 3; ++j) {
             for (int i = 0; i < 3; ++i) {
-                float w = wx[i] * wy[j];
-                if (!wide && w == 0.0) {
+                float w = weights.x[i] * weights.y[j];
+                if (!weights.wide && w == 0.0) {
                     continue;
                 }
                 vec2 offset = vec2(i - 1, j - 1) * texel_step;
@@ -296,7 +302,7 @@ float cube_shadow(Light light, vec3 p, vec3 n, bool filtered) {
                 }
                 float depth = ray_plane_distance(dir, n, towards_light);
                 float stored = textureLod(u_cube_shadows, vec4(dir, layer), 0.0).r;
-                add_tap(taps, w, nx[i] * ny[j], stored, depth, bias, far);
+                add_tap(taps, w, weights.near_x[i] * weights.near_y[j], stored, depth, bias, far);
             }
         }
     }

@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "luxel/runtime/error.hpp"
+#include "error_of.hpp"
 #include "luxel/runtime/image.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/scene/sky.hpp"
@@ -22,18 +22,9 @@
 
 namespace {
 
-using luxel::Error;
 using luxel::scene::SkySpec;
 
-template <typename Call>
-std::string error_of(Call call) {
-    try {
-        call();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
+using luxel::testing::error_of;
 
 /// A small equirectangular map of noise (noise: so that it does not compress, and its size
 /// on disk is about its pixels').

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "luxel/runtime/error.hpp"
+#include "error_of.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/scene/sky.hpp"
 #include "temp_dir.hpp"
@@ -16,21 +16,11 @@
 
 namespace {
 
-using luxel::Error;
 using luxel::scene::parse_sky;
 using luxel::scene::read_sky_extras;
 using luxel::scene::SkySpec;
 
-/// The message of the Error `call` throws ("" when it throws none).
-template <typename Call>
-std::string error_of(Call call) {
-    try {
-        call();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
+using luxel::testing::error_of;
 
 TEST(SkySpec, CommandLineValues) {
     EXPECT_EQ(parse_sky("none").kind, SkySpec::Kind::None);
