@@ -44,15 +44,15 @@ void write_map(const std::filesystem::path& file, int width, int height) {
 void save_room_with_map(const std::filesystem::path& level, const std::string& file) {
     luxel::scene::Scene room = luxel::testing::box_room();
     room.sky.kind = SkySpec::Kind::Map;
-    room.sky.map = "placeholder.exr";
+    room.sky.map = "renamed-below.exr";
     room.sky.scale = 0.5f;
     const std::vector<std::uint8_t> bytes =
         luxel::scene::save_gltf_to_memory(room, luxel::scene::GltfContainer::EmbeddedText);
     std::string text(bytes.begin(), bytes.end());
-    const std::string placeholder = "\"placeholder.exr\"";
-    const std::size_t at = text.find(placeholder);
+    const std::string written = "\"renamed-below.exr\"";
+    const std::size_t at = text.find(written);
     ASSERT_NE(at, std::string::npos);
-    text.replace(at, placeholder.size(), nlohmann::json(file).dump());
+    text.replace(at, written.size(), nlohmann::json(file).dump());
     std::ofstream(level, std::ios::binary) << text;
 }
 
