@@ -35,6 +35,7 @@ lighting::LightingConfig BenchConfig::lighting() const {
     config.photons.selective.exact_invalidation = exact != 0;
     config.maps.contact_texels = contact != 0;
     config.maps.stitch_seams = stitch != 0;
+    config.maps.aim_keeps_power = aim_power != 0;
     if (probes == 0) {
         config.probes.max_probes = 0;
     }
@@ -53,6 +54,9 @@ std::string BenchConfig::knobs() const {
         << caustic_slices << " backend=" << backend << " kernel=" << kernel << " aa=" << aa;
     if (stitch != 1) {
         out << " stitch=" << stitch;  // appended only when off: earlier runs' keys stay valid
+    }
+    if (aim_power != 1) {
+        out << " aim_power=" << aim_power;
     }
     if (probes != 1) {
         out << " probes=" << probes;
@@ -106,6 +110,8 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.local = whole(value);
             } else if (sweep.knob == "exact") {
                 c.exact = whole(value);
+            } else if (sweep.knob == "aim_power") {
+                c.aim_power = whole(value);
             } else if (sweep.knob == "contact") {
                 c.contact = whole(value);
             } else if (sweep.knob == "stitch") {

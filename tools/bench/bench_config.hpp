@@ -32,6 +32,9 @@ struct BenchConfig {
     /// The IIM's light-map seams stitched after each pass (IlluminationSettings::stitch_seams;
     /// 1: on, default).
     std::uint32_t stitch = 1;
+    /// A full AIM rebuild keeps its photons' power (IlluminationSettings::aim_keeps_power; 1:
+    /// on, default).
+    std::uint32_t aim_power = 1;
     /// Irradiance probes for receivers without a light map (1: on, default; 0: none placed,
     /// IrradianceProbeSettings::max_probes = 0).
     std::uint32_t probes = 1;

@@ -100,7 +100,7 @@ Sweep parse_sweep(const std::string& text) {
                 throw Error(what + ": '" + value + "' is not a whole number of passes in 1..1024");
             }
         } else if (sweep.knob == "local" || sweep.knob == "exact" || sweep.knob == "contact" ||
-                   sweep.knob == "stitch" || sweep.knob == "probes") {
+                   sweep.knob == "stitch" || sweep.knob == "probes" || sweep.knob == "aim_power") {
             if (value != "0" && value != "1") {
                 throw Error(what + ": '" + value + "' is not 0 (off) or 1 (on)");
             }
@@ -129,7 +129,7 @@ Sweep parse_sweep(const std::string& text) {
             throw Error(
                 "--sweep " + sweep.knob +
                 ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, filter, "
-                "refine, local, change_blend, exact, contact, stitch, probes, probe_spacing, "
+                "refine, local, change_blend, exact, contact, stitch, aim_power, probes, probe_spacing, "
                 "probe_basis, keep, "
                 "caustics, backend, "
                 "kernel, "

@@ -37,6 +37,7 @@ RealTimeMaps read_real_time(const lighting::LightingSystem& lighting, const Refe
     RealTimeMaps out;
     out.indirect.assign(scene.texel_count(), glm::dvec3(0.0));
     out.caustic.assign(scene.texel_count(), glm::dvec3(0.0));
+    out.aim.assign(scene.texel_count(), glm::dvec3(0.0));
     for (const auto& surface : scene.surfaces()) {
         const lighting::MapSurface& map = maps.surfaces()[surface.surface];
         const std::int32_t page = maps.aim().surface_page[surface.surface];
@@ -44,17 +45,19 @@ RealTimeMaps read_real_time(const lighting::LightingSystem& lighting, const Refe
             continue;
         }
         const lighting::IimPage& iim = maps.iim_pages()[static_cast<std::size_t>(page)];
-        glm::dvec3 scale(1.0);
-        if (map.content == lighting::IimContent::Radiance) {
-            for (int c = 0; c < 3; ++c) {
-                const double albedo = map.albedo[c];
-                scale[c] = albedo > 0.0 ? glm::pi<double>() / albedo : 0.0;
-            }
+        const lighting::RadiancePage& aim = maps.aim().pages[static_cast<std::size_t>(page)];
+        glm::dvec3 to_irradiance(0.0);
+        for (int c = 0; c < 3; ++c) {
+            const double albedo = map.albedo[c];
+            to_irradiance[c] = albedo > 0.0 ? glm::pi<double>() / albedo : 0.0;
         }
+        const glm::dvec3 scale =
+            map.content == lighting::IimContent::Radiance ? to_irradiance : glm::dvec3(1.0);
         for (std::size_t i = 0; i < surface.texels.size(); ++i) {
             const auto& texel = surface.texels[i];
             const glm::vec3 shown = iim.shown(texel.x, texel.y, now_seconds);
             out.indirect[surface.first_texel + i] = glm::dvec3(shown) * scale;
+            out.aim[surface.first_texel + i] = glm::dvec3(aim.at(texel.x, texel.y)) * to_irradiance;
         }
     }
     for (const lighting::CausticPair& pair : lighting.photons().caustics()) {
@@ -122,7 +125,8 @@ void write_maps_json(const std::filesystem::path& path, const ReferenceScene& sc
                               {"ref_indirect", rgb(reference.indirect()[t])},
                               {"caustic", rgb(maps.caustic[t])},
                               {"ref_caustic", rgb(reference.caustic()[t])},
-                              {"ref_direct", rgb(reference.value[0][t])}});
+                              {"ref_direct", rgb(reference.value[0][t])},
+                              {"aim", rgb(maps.aim[t])}});
         }
     }
     std::filesystem::create_directories(path.parent_path());

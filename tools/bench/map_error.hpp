@@ -24,6 +24,11 @@ struct RealTimeMaps {
     /// Caustic photons binned into the texel under each (power / texel area): the reference's
     /// own binning, so both are texel-area means.
     std::vector<glm::dvec3> caustic;
+    /// The AIM at each texel as irradiance (its pages hold albedo * E / pi, divided back): what
+    /// the photons say reaches the texel, direct and caustic light included, to compare with
+    /// the reference's direct + indirect + caustic (--dump-maps; the gathers read the AIM, so a
+    /// bias here is a bias in every IIM that sees the surface).
+    std::vector<glm::dvec3> aim;
     std::size_t caustic_photons = 0;
     std::size_t caustic_unbinned = 0;  ///< on a surface without a light map, or lost
 };
@@ -54,7 +59,7 @@ inline constexpr int kRegionTexels = 8;
                                    const std::vector<std::uint32_t>& regions);
 
 /// Per texel: surface, x, y, area, and real-time and reference indirect and caustic (and the
-/// reference's direct), for looking at where an error comes from (--dump-maps).
+/// reference's direct, and the real-time AIM), for looking at where an error comes from (--dump-maps).
 void write_maps_json(const std::filesystem::path& path,
                      const lighting::reference::ReferenceScene& scene, const RealTimeMaps& maps,
                      const ReferenceMaps& reference);

@@ -14,6 +14,19 @@ namespace luxel::lighting {
 
 using namespace map_support;
 
+namespace {
+
+/// Whether the texel's centre lies on its surface (not a border texel placed at the nearest
+/// point of the surface): such centres sample the surface uniformly.
+bool on_surface_centre(const SurfaceTexel& texel) {
+    constexpr float kTolerance = 1e-3f;  // page texels; the point is interpolated in floats
+    const glm::vec2 centre(static_cast<float>(texel.x) + 0.5f, static_cast<float>(texel.y) + 0.5f);
+    return std::abs(texel.page_point.x - centre.x) <= kTolerance &&
+           std::abs(texel.page_point.y - centre.y) <= kTolerance;
+}
+
+}  // namespace
+
 /// A rebuild in progress: the surface's kd-tree (the only one in memory) and where it got to.
 struct AimRebuilder::RebuildState {
     std::uint32_t surface = 0;
@@ -23,6 +36,12 @@ struct AimRebuilder::RebuildState {
     std::vector<std::uint32_t> subset;
     std::uint64_t first_serial = 0;  ///< a local rebuild's LocalMarks::first_serial
     std::size_t cursor = 0;
+    /// A full rebuild's power bookkeeping (keep_power): the tree's photons' power, and the
+    /// estimates (irradiance, channels summed, before any scale) at the texels whose centre
+    /// lies on the surface, which sample it uniformly (conformal charts, one scale).
+    double photon_power = 0.0;
+    double interior_irradiance = 0.0;
+    std::size_t interior_texels = 0;
     [[nodiscard]] bool local() const { return !subset.empty(); }
     [[nodiscard]] std::uint32_t index(std::size_t k) const {
         return local() ? subset[k] : static_cast<std::uint32_t>(k);
@@ -256,31 +275,43 @@ std::size_t AimRebuilder::rebuild(std::uint32_t surface, std::size_t max_texels,
     // the slice's texels are placed in parallel when a JobSystem is given (the warm-up's AIM
     // rebuilds, serial, were a twentieth of it beside the parallel gathers).
     std::vector<std::uint8_t> enclosed_here(end - first, 0);
-    // The reflected radiance at a point of the surface near texel `index` (its centre, or an
-    // edge texel's open point).
+    // The irradiance at a point of the surface near texel `index` (its centre, or an edge
+    // texel's open point), unscaled, and the reflected radiance the page holds for it.
     const auto estimate = [&](const glm::vec3& position, const glm::vec3& normal,
                               std::uint32_t index) {
-        glm::vec3 radiance(0.0f);
+        glm::dvec3 irradiance(0.0);
         const DensitySample found = rebuild.density->sample(position, normal, density);
         if (found.radius > 0.0 && metres_per_texel > 0.0) {
             const double on_surface = mapped.footprint.fraction(
                 index, found.radius / metres_per_texel, settings_.density.kernel);
             const double area = glm::pi<double>() * found.radius * found.radius * on_surface;
-            radiance =
-                glm::vec3(glm::dvec3(mapped.albedo) * found.power / (area * glm::pi<double>()));
+            if (area > 0.0) {
+                irradiance = found.power / area;
+            }
         }
-        return sanitized(radiance);
+        return irradiance;
     };
+    const double scale = power_scale(surface) / glm::pi<double>();
+    const auto radiance = [&](const glm::dvec3& irradiance) {
+        return sanitized(glm::vec3(glm::dvec3(mapped.albedo) * irradiance * scale));
+    };
+    std::vector<double> interior_here(end - first, -1.0);
     const auto place = [&](std::size_t k) {
         const std::size_t i = first + k;
         const SurfaceTexel& texel = mapped.texels.texels[rebuild.index(i)];
         if (ray_length > 0.0f && enclosed(rebuild.texels[i], ray_length)) {
             page.at(texel.x, texel.y) = glm::vec3(0.0f);
             enclosed_here[k] = 1;
+            interior_here[k] = on_surface_centre(texel) ? 0.0 : -1.0;
             return;
         }
-        page.at(texel.x, texel.y) =
+        const glm::dvec3 irradiance =
             estimate(rebuild.texels[i].position, rebuild.texels[i].normal, rebuild.index(i));
+        page.at(texel.x, texel.y) = radiance(irradiance);
+        if (on_surface_centre(texel)) {
+            const double sum = irradiance.x + irradiance.y + irradiance.z;
+            interior_here[k] = std::isfinite(sum) ? sum : 0.0;
+        }
     };
     if (jobs != nullptr && end - first > 1) {
         jobs->parallel_for(0, end - first, place);
@@ -293,6 +324,10 @@ std::size_t AimRebuilder::rebuild(std::uint32_t surface, std::size_t max_texels,
     for (std::size_t i = first; i < end; ++i) {
         const SurfaceTexel& texel = mapped.texels.texels[rebuild.index(i)];
         enclosed_texels_ += enclosed_here[i - first];
+        if (interior_here[i - first] >= 0.0) {
+            rebuild.interior_irradiance += interior_here[i - first];
+            ++rebuild.interior_texels;
+        }
         placed[i - first] = rebuild.index(i);
         x0 = std::min(x0, texel.x);
         y0 = std::min(y0, texel.y);
@@ -316,9 +351,13 @@ std::size_t AimRebuilder::rebuild(std::uint32_t surface, std::size_t max_texels,
                 if (index < cover.size() && cover[index] == TexelCover::Edge) {
                     const SurfaceTexel& texel = mapped.texels.texels[index];
                     const glm::vec3 point(mapped.to_world * glm::vec4(points[index], 1.0f));
-                    page.at(texel.x, texel.y) = estimate(point, rebuild.texels[i].normal, index);
+                    page.at(texel.x, texel.y) =
+                        radiance(estimate(point, rebuild.texels[i].normal, index));
                 }
             }
+        }
+        if (settings_.aim_keeps_power && !rebuild.local()) {
+            keep_power(rebuild, page);
         }
         dilate(surface, page);
         // The padding ring around the whole surface was written too.
@@ -372,6 +411,11 @@ void AimRebuilder::start(std::uint32_t surface) {
     if (full) {
         full_turn_ = false;
         rebuild_->texels = registry_.world_texels(surface);
+        glm::dvec3 power(0.0);
+        for (const StoredHit& hit : map.surface(surface).hits) {
+            power += glm::dvec3(hit.power);
+        }
+        rebuild_->photon_power = power.x + power.y + power.z;
         // Photons that change from now on need another rebuild; this one sees the tree's
         // snapshot.
         deltas_.consume_full(map, surface);
@@ -383,6 +427,46 @@ void AimRebuilder::start(std::uint32_t surface) {
     rebuild_->subset = std::move(marks.texels);
     rebuild_->first_serial = marks.first_serial;
     rebuild_->texels = registry_.world_texels(surface, rebuild_->subset);
+}
+
+void AimRebuilder::keep_power(const RebuildState& rebuild, RadiancePage& page) {
+    const MapSurface& mapped = registry_.surface(rebuild.surface);
+    // The surface's world area: the object-space area times the transform's scale squared
+    // (world over object metres per texel).
+    const double object_metres = mapped.texels.metres_per_texel;
+    const double world_area =
+        object_metres > 0.0 ? mapped.texels.area * (mapped.world_metres_per_texel / object_metres) *
+                                  (mapped.world_metres_per_texel / object_metres)
+                            : 0.0;
+    const double integral =
+        rebuild.interior_texels > 0
+            ? world_area * rebuild.interior_irradiance / static_cast<double>(rebuild.interior_texels)
+            : 0.0;
+    // Too few texels to sample the surface, or too few photons to say anything: the estimate
+    // as it is. The scale is bounded: the nearest-N bias is a few per cent (RESULTS.md), so a
+    // larger mismatch means the texels do not see where the photons are (a surface the light
+    // map covers in part), which no scale mends.
+    constexpr std::size_t kFewestTexels = 16;
+    constexpr double kLargest = 1.25;
+    double wanted = 1.0;
+    if (rebuild.interior_texels >= kFewestTexels && integral > 0.0 && rebuild.photon_power > 0.0 &&
+        std::isfinite(integral) && std::isfinite(rebuild.photon_power)) {
+        wanted = std::clamp(rebuild.photon_power / integral, 1.0 / kLargest, kLargest);
+    }
+    if (power_scales_.size() <= rebuild.surface) {
+        power_scales_.resize(rebuild.surface + 1, 1.0);
+    }
+    // The texels were placed with the old scale (this rebuild's slices and any local rebuild
+    // since); all of them take the new one.
+    const double old_scale = power_scales_[rebuild.surface];
+    power_scales_[rebuild.surface] = wanted;
+    const float change = static_cast<float>(wanted / old_scale);
+    if (change == 1.0f) {
+        return;
+    }
+    for (const SurfaceTexel& texel : mapped.texels.texels) {
+        page.at(texel.x, texel.y) *= change;
+    }
 }
 
 void AimRebuilder::find_edges(const RebuildState& rebuild, float ray_length, JobSystem* jobs) {

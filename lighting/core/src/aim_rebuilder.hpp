@@ -103,6 +103,13 @@ class AimRebuilder {
     void dilate(std::uint32_t surface, RadiancePage& page) const;
     /// A rebuild's last slice: its enclosed texels under an object's edge (ContactTexels).
     void find_edges(const RebuildState& rebuild, float ray_length, JobSystem* jobs);
+    /// A full rebuild's last slice (aim_keeps_power): the surface's scale from its photons'
+    /// power over the integral of its estimates, applied to the texels placed under the old one.
+    void keep_power(const RebuildState& rebuild, RadiancePage& page);
+    /// The scale a surface's estimates are placed with (1 until a full rebuild sets it).
+    [[nodiscard]] double power_scale(std::uint32_t s) const {
+        return s < power_scales_.size() ? power_scales_[s] : 1.0;
+    }
 
     MapRegistry& registry_;
     const PhotonWorld& world_;
@@ -114,6 +121,7 @@ class AimRebuilder {
     /// paused, and a full one pauses only when none is paused already).
     std::unique_ptr<RebuildState> paused_;
     std::vector<LocalMarks> marks_;  ///< by surface
+    std::vector<double> power_scales_;  ///< by surface, see power_scale()
     std::uint64_t change_serial_ = 0;
     bool marked_in_last_sync_ = false;
     std::uint64_t syncs_ = 0;

@@ -19,6 +19,14 @@ struct IlluminationSettings {
     /// A surface's AIM is rebuilt when delta_f exceeds this fraction of the energy stored on
     /// it (relative, so the threshold means the same for a 1 mW and a 1 MW light).
     double aim_threshold = 0.05;
+    /// A full AIM rebuild scales the surface's estimates so that their integral over the
+    /// surface equals the power of the photons it estimates from (docs/METHOD.md §5.6). A
+    /// nearest-N estimate reads high on the shoulders of a peak (its disc, sized by the peak's
+    /// photons, is lopsided towards it) and low on the peak; the gathers integrate the AIM
+    /// over whole surfaces, so what they see is its total power: cornell's ceiling, lit by a
+    /// light 10 cm below it, read 2.5% over its photons and every IIM that sees it inherited
+    /// it. Off: the paper's estimate, for measuring the difference.
+    bool aim_keeps_power = true;
     /// A surface's texels are gathered again when delta_i exceeds this fraction of its stored
     /// energy.
     double iim_threshold = 0.05;
