@@ -212,10 +212,11 @@ TEST(AimPower, APeakedFieldKeepsItsPhotonsPower) {
     for (const double height : {0.1, 0.3}) {
         const PowerResult paper = peaked_field_power(false, height);
         const PowerResult kept = peaked_field_power(true, height);
-        std::printf("[ figures  ] light %.1f m above: AIM integral / photon power %.4f (the "
-                    "paper's estimate %.4f); the shoulder over the field %.4f (%.4f)\n",
-                    height, kept.integral_over_power, paper.integral_over_power, kept.shoulder,
-                    paper.shoulder);
+        std::printf(
+            "[ figures  ] light %.1f m above: AIM integral / photon power %.4f (the "
+            "paper's estimate %.4f); the shoulder over the field %.4f (%.4f)\n",
+            height, kept.integral_over_power, paper.integral_over_power, kept.shoulder,
+            paper.shoulder);
         EXPECT_NEAR(kept.integral_over_power, 1.0, 0.005) << height;
         if (height < 0.2) {
             // The case must show the bias it is about, or it proves nothing; and the shoulder,

@@ -59,7 +59,8 @@ inline constexpr int kRegionTexels = 8;
                                    const std::vector<std::uint32_t>& regions);
 
 /// Per texel: surface, x, y, area, and real-time and reference indirect and caustic (and the
-/// reference's direct, and the real-time AIM), for looking at where an error comes from (--dump-maps).
+/// reference's direct, and the real-time AIM), for looking at where an error comes from
+/// (--dump-maps).
 void write_maps_json(const std::filesystem::path& path,
                      const lighting::reference::ReferenceScene& scene, const RealTimeMaps& maps,
                      const ReferenceMaps& reference);

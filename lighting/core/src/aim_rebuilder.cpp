@@ -438,10 +438,10 @@ void AimRebuilder::keep_power(const RebuildState& rebuild, RadiancePage& page) {
         object_metres > 0.0 ? mapped.texels.area * (mapped.world_metres_per_texel / object_metres) *
                                   (mapped.world_metres_per_texel / object_metres)
                             : 0.0;
-    const double integral =
-        rebuild.interior_texels > 0
-            ? world_area * rebuild.interior_irradiance / static_cast<double>(rebuild.interior_texels)
-            : 0.0;
+    const double integral = rebuild.interior_texels > 0
+                                ? world_area * rebuild.interior_irradiance /
+                                      static_cast<double>(rebuild.interior_texels)
+                                : 0.0;
     // Too few texels to sample the surface, or too few photons to say anything: the estimate
     // as it is. The scale is bounded: the nearest-N bias is a few per cent (RESULTS.md), so a
     // larger mismatch means the texels do not see where the photons are (a surface the light
