@@ -36,6 +36,7 @@ lighting::LightingConfig BenchConfig::lighting() const {
     config.maps.contact_texels = contact != 0;
     config.maps.stitch_seams = stitch != 0;
     config.maps.aim_keeps_power = aim_power != 0;
+    config.maps.order_local_passes = local_order != 0;
     if (probes == 0) {
         config.probes.max_probes = 0;
     }
@@ -54,6 +55,9 @@ std::string BenchConfig::knobs() const {
         << caustic_slices << " backend=" << backend << " kernel=" << kernel << " aa=" << aa;
     if (stitch != 1) {
         out << " stitch=" << stitch;  // appended only when off: earlier runs' keys stay valid
+    }
+    if (local_order != 1) {
+        out << " local_order=" << local_order;
     }
     if (aim_power != 1) {
         out << " aim_power=" << aim_power;
@@ -110,6 +114,8 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.local = whole(value);
             } else if (sweep.knob == "exact") {
                 c.exact = whole(value);
+            } else if (sweep.knob == "local_order") {
+                c.local_order = whole(value);
             } else if (sweep.knob == "aim_power") {
                 c.aim_power = whole(value);
             } else if (sweep.knob == "contact") {

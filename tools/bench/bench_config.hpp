@@ -35,6 +35,9 @@ struct BenchConfig {
     /// A full AIM rebuild keeps its photons' power (IlluminationSettings::aim_keeps_power; 1:
     /// on, default).
     std::uint32_t aim_power = 1;
+    /// Local passes ordered by what a change most likely made wrong
+    /// (IlluminationSettings::order_local_passes; 1: on, default).
+    std::uint32_t local_order = 1;
     /// Irradiance probes for receivers without a light map (1: on, default; 0: none placed,
     /// IrradianceProbeSettings::max_probes = 0).
     std::uint32_t probes = 1;

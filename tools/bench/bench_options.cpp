@@ -100,7 +100,8 @@ Sweep parse_sweep(const std::string& text) {
                 throw Error(what + ": '" + value + "' is not a whole number of passes in 1..1024");
             }
         } else if (sweep.knob == "local" || sweep.knob == "exact" || sweep.knob == "contact" ||
-                   sweep.knob == "stitch" || sweep.knob == "probes" || sweep.knob == "aim_power") {
+                   sweep.knob == "stitch" || sweep.knob == "probes" || sweep.knob == "aim_power" ||
+                   sweep.knob == "local_order") {
             if (value != "0" && value != "1") {
                 throw Error(what + ": '" + value + "' is not 0 (off) or 1 (on)");
             }
@@ -126,14 +127,15 @@ Sweep parse_sweep(const std::string& text) {
                             "' is not a number of standard deviations in 0..100");
             }
         } else {
-            throw Error(
-                "--sweep " + sweep.knob +
-                ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, filter, "
-                "refine, local, change_blend, exact, contact, stitch, aim_power, probes, probe_spacing, "
-                "probe_basis, keep, "
-                "caustics, backend, "
-                "kernel, "
-                "aa, lightmap, sky_edges)");
+            throw Error("--sweep " + sweep.knob +
+                        ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, filter, "
+                        "refine, local, change_blend, exact, contact, stitch, aim_power, "
+                        "local_order, probes, "
+                        "probe_spacing, "
+                        "probe_basis, keep, "
+                        "caustics, backend, "
+                        "kernel, "
+                        "aa, lightmap, sky_edges)");
         }
     }
     return sweep;

@@ -93,16 +93,17 @@ int run(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--out", options.out, "output directory (references cached in OUT/cache)")
         ->capture_default_str();
-    app.add_option("--sweep", sweeps,
-                   "KNOB=V1,V2,... (budget, photons GxM, aim_n, rays, texels_per_unit, filter, "
-                   "refine, local 0|1, change_blend SECONDS, exact 0|1, contact 0|1, stitch 0|1, "
-                   "aim_power 0|1, probes 0|1, probe_spacing METRES, probe_basis oct|sh2, "
-                   "keep SIGMAS, "
-                   "caustics NxK, "
-                   "backend cpu|gpu|gpu-turn|gpu-plane, kernel "
-                   "larsen|box|cone|world, aa on|off, lightmap bilinear|bicubic, sky_edges "
-                   "on|off); repeatable, "
-                   "each varies one knob from the paper's configuration");
+    app.add_option(
+        "--sweep", sweeps,
+        "KNOB=V1,V2,... (budget, photons GxM, aim_n, rays, texels_per_unit, filter, "
+        "refine, local 0|1, change_blend SECONDS, exact 0|1, contact 0|1, stitch 0|1, "
+        "aim_power 0|1, local_order 0|1, probes 0|1, probe_spacing METRES, probe_basis oct|sh2, "
+        "keep SIGMAS, "
+        "caustics NxK, "
+        "backend cpu|gpu|gpu-turn|gpu-plane, kernel "
+        "larsen|box|cone|world, aa on|off, lightmap bilinear|bicubic, sky_edges "
+        "on|off); repeatable, "
+        "each varies one knob from the paper's configuration");
     app.add_option("--image", image_size,
                    "WIDTHxHEIGHT of the frames compared for the image error (default 160x120): "
                    "the real-time frame and a reference frame of the level's first camera");

@@ -118,6 +118,24 @@ class IimGatherPasses {
     std::optional<ViewHint> view_;
     std::vector<AxisBox> local_boxes_;  ///< by surface: its texels' box in its own space
     std::vector<std::uint8_t> seen_;    ///< by surface, from view_ at the last sync()
+    /// Per surface, what the local passes waiting know of their texels (docs/METHOD.md §6.8):
+    /// the object moved itself (every texel shows the old place's light), and per changed
+    /// texel its reach, how close it lies to a change's box (1 inside it, 0 at the edge of
+    /// the region the change marks; 1 for a moved object's own texels); texels reached by more
+    /// than kNearReach are gathered in a local pass of their own before the rest.
+    struct LocalReach {
+        bool moved = false;
+        /// The object turned by more than kTurnedDegrees since its last pass: its texels face
+        /// other things now. A slide leaves what they face much as it was (cornell's cube),
+        /// and its surfaces go with the texels close to a change.
+        bool turned = false;
+        glm::mat3 axes{1.0f};      ///< the surface's world axes (unit) at its last pass
+        std::vector<float> reach;  ///< by texel; 0 when not marked
+        std::size_t near = 0;      ///< marked texels whose reach is over kNearReach
+    };
+    std::vector<LocalReach> reach_;
+    /// Notes the reach of `change` on the texels it marked.
+    void note_reach(const MapRegistry::NearbyChange& change);
     /// By surface: texels next to changes, to be marked again once the local AIM rebuilds of
     /// the changes up to `serial` (AimRebuilder::change_serial, the oldest of them) are done.
     /// One set per surface, so a level whose objects move every frame while the AIM units get

@@ -192,7 +192,7 @@ void MapRegistry::find_nearby_changes() {
         // (300,000 nodes, none light-mapped, took minutes): only surfaces with texels count.
         for (const std::uint32_t s : mapped_surfaces_) {
             if (surface_boxes_[s].meets(region) && live(s)) {
-                nearby_changes_.push_back({s, region, texels_inside(s, region)});
+                nearby_changes_.push_back({s, region, change, texels_inside(s, region)});
             }
         }
     }

@@ -66,6 +66,8 @@ class MapRegistry {
     struct NearbyChange {
         std::uint32_t surface = 0;
         GeometryChange region;
+        /// The change's own box (where the object was, or is), before growing.
+        GeometryChange box;
         /// The surface's texels inside `region` (indices into its texels), found once for the
         /// local gather passes and the local AIM rebuilds that both mark them.
         std::vector<std::uint32_t> texels;

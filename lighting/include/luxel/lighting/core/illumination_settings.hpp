@@ -65,6 +65,11 @@ struct IlluminationSettings {
     /// there passes iim_threshold, which a small object's may never do. Off: the paper's
     /// behaviour, for measuring the difference.
     bool local_passes = true;
+    /// Local passes waiting are ordered (a turned object's own surfaces, then texels close to
+    /// the change, then a slid object's own, then the rest) and a surface's close texels gather
+    /// in a pass of their own before its farther ones (docs/METHOD.md §6.8). Off: every local
+    /// pass waiting ranks alike, one per surface, for measuring the difference.
+    bool order_local_passes = true;
     /// Texels whose centre lies under an object resting on the surface but within a texel of
     /// the open surface (an object's edge crossing them) are gathered at the nearest open point
     /// beside the object, and deeper enclosed texels are left out of the IIM filter
