@@ -176,22 +176,24 @@ void IimGatherPasses::note_reach(const MapRegistry::NearbyChange& change) {
     }
     reach_.resize(states_.size());
     LocalReach& local = reach_.at(change.surface);
-    const std::size_t total = registry_.surface(change.surface).texels.texels.size();
+    const MapSurface& mapped = registry_.surface(change.surface);
+    const std::size_t total = mapped.texels.texels.size();
     local.reach.resize(total, 0.0f);
     const bool moved = registry_.moved_in_last_sync(change.surface);
     local.moved = local.moved || moved;
-    const glm::mat3 axes = axes_of(registry_.surface(change.surface).to_world);
-    local.turned = local.turned || (moved && turned_degrees(local.axes, axes) > kTurnedDegrees);
-    std::vector<GatherTexel> placed;
-    if (!moved) {
-        placed = registry_.world_texels(change.surface, change.texels);
-    }
-    for (std::size_t k = 0; k < change.texels.size(); ++k) {
-        const std::uint32_t i = change.texels[k];
+    local.turned = local.turned ||
+                   (moved && turned_degrees(local.axes, axes_of(mapped.to_world)) > kTurnedDegrees);
+    // Runs for every change next to a surface, each frame an object moves: positions only,
+    // placed here (MapRegistry::world_texels would also turn every normal).
+    for (const std::uint32_t i : change.texels) {
         if (i >= total) {
             continue;
         }
-        const float reach = moved ? 1.0f : reach_of(placed[k].position, change.box);
+        const float reach =
+            moved ? 1.0f
+                  : reach_of(glm::vec3(mapped.to_world *
+                                       glm::vec4(mapped.texels.texels[i].position, 1.0f)),
+                             change.box);
         const bool was_near = local.reach[i] > kNearReach;
         local.reach[i] = std::max(local.reach[i], reach);
         if (!was_near && local.reach[i] > kNearReach) {
