@@ -174,8 +174,7 @@ void IimGatherPasses::note_reach(const MapRegistry::NearbyChange& change) {
     if (change.texels.empty()) {
         return;
     }
-    reach_.resize(states_.size());
-    LocalReach& local = reach_.at(change.surface);
+    LocalReach& local = reach_.at(change.surface);  // one per state, added with it in sync()
     const MapSurface& mapped = registry_.surface(change.surface);
     const std::size_t total = mapped.texels.texels.size();
     local.reach.resize(total, 0.0f);
