@@ -162,8 +162,7 @@ struct FrameRenderer::Impl {
             static_cast<std::size_t>(instance->mesh) >= instance->source->meshes.size()) {
             return {};
         }
-        return meshes.get(*instance, frame)
-            .bounds.transformed(entity_world_matrix(registry, entity));
+        return meshes.bounds(*instance, frame).transformed(entity_world_matrix(registry, entity));
     }
 
     /// A caster appeared, moved or went: shadow maps that reach where it was or is are stale.
@@ -356,7 +355,8 @@ struct FrameRenderer::Impl {
         const lighting::FeaturePlan& plan = lighting.plan();
         const bool specular_pass = plan.specular() && settings.specular_faces_per_frame > 0;
 
-        build_draw_list(registry, lighting, meshes, frame, specular_pass, draws);
+        build_draw_list(registry, lighting, meshes, frame, specular_pass, settings.gpu_skinning,
+                        draws);
         track_changes();
         const std::vector<FrameLight> lights =
             plan.direct() || plan.shadows() ? collect_lights(registry) : std::vector<FrameLight>{};
@@ -480,6 +480,8 @@ struct FrameRenderer::Impl {
         timer.collect(timings, settings.wait_for_timings);
         meshes.evict(frame);
         counters.meshes_cached = meshes.size();
+        counters.mesh_uploads = meshes.uploads();
+        counters.joint_matrices = draws.joints.size();
         if (seamless == GL_FALSE) {
             glDisable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
         }

@@ -18,6 +18,58 @@ struct Vertex {
 };
 static_assert(sizeof(Vertex) == 40);
 
+struct SkinVertex {
+    glm::u16vec4 joints;
+    glm::vec4 weights;
+};
+static_assert(sizeof(SkinVertex) == 24);
+
+/// Whether the vertex stage can skin `mesh`: some primitive has joints and weights.
+bool has_skin(const scene::Mesh& mesh) {
+    return std::any_of(mesh.primitives.begin(), mesh.primitives.end(),
+                       [](const scene::Primitive& p) {
+                           return !p.joints.empty() && p.joints.size() == p.positions.size() &&
+                                  p.weights.size() == p.positions.size();
+                       });
+}
+
+Bounds bounds_of(const scene::Mesh& mesh) {
+    Bounds bounds;
+    for (const scene::Primitive& primitive : mesh.primitives) {
+        for (const glm::vec3& p : primitive.positions) {
+            bounds.add(p);
+        }
+    }
+    return bounds;
+}
+
+/// The second vertex buffer of a mesh skinned on the GPU, bound at binding 1.
+void upload_skin(const scene::Mesh& mesh, GpuMesh& gpu) {
+    std::vector<SkinVertex> skin;
+    for (const scene::Primitive& primitive : mesh.primitives) {
+        const std::size_t count = primitive.positions.size();
+        const bool skinned = primitive.joints.size() == count && primitive.weights.size() == count;
+        // Scene::validate refuses a skinned mesh with a primitive without joints; zeros would
+        // only keep the buffer's vertices in step (such a vertex collapses and draws nothing).
+        for (std::size_t i = 0; i < count; ++i) {
+            skin.push_back(skinned ? SkinVertex{primitive.joints[i], primitive.weights[i]}
+                                   : SkinVertex{glm::u16vec4(0), glm::vec4(0.0f)});
+        }
+    }
+    gpu.skin = gl::Buffer::create(std::max<std::size_t>(skin.size(), 1) * sizeof(SkinVertex),
+                                  skin.empty() ? nullptr : skin.data(), 0);
+    gpu.skinned = true;
+    const GLuint vao = gpu.vertex_array.id();
+    glVertexArrayVertexBuffer(vao, 1, gpu.skin.id(), 0, sizeof(SkinVertex));
+    glEnableVertexArrayAttrib(vao, 4);
+    glVertexArrayAttribIFormat(vao, 4, 4, GL_UNSIGNED_SHORT, offsetof(SkinVertex, joints));
+    glVertexArrayAttribBinding(vao, 4, 1);
+    glEnableVertexArrayAttrib(vao, 5);
+    glVertexArrayAttribFormat(vao, 5, 4, GL_FLOAT, GL_FALSE, offsetof(SkinVertex, weights));
+    glVertexArrayAttribBinding(vao, 5, 1);
+    gl::check_error("MeshCache skin upload");
+}
+
 /// The texture a primitive samples for a material's image slot (`image_of` picks it), or null:
 /// none without a textured material or without TEXCOORD_0 to sample it with.
 template <class ImageOf>
@@ -98,11 +150,11 @@ GpuMesh upload(const std::shared_ptr<const scene::Scene>& source, const scene::M
                                 normals ? primitive.normals[i] : glm::vec3(0.0f),
                                 uv0 ? primitive.texcoords0[i] : glm::vec2(0.0f),
                                 uv1 ? primitive.texcoords1[i] : glm::vec2(0.0f)});
-            gpu.bounds.add(primitive.positions[i]);
         }
         indices.insert(indices.end(), primitive.indices.begin(), primitive.indices.end());
         gpu.primitives.push_back(range);
     }
+    gpu.bounds = bounds_of(mesh);
     set_layers(mesh, gpu);
     // Buffers need at least one byte; an empty mesh draws nothing.
     gpu.vertices = gl::Buffer::create(std::max<std::size_t>(vertices.size(), 1) * sizeof(Vertex),
@@ -161,17 +213,45 @@ bool Bounds::touches_sphere(const glm::vec3& centre, float radius) const {
     return glm::dot(d, d) <= radius * radius;
 }
 
-const GpuMesh& MeshCache::get(const scene::MeshInstance& instance, std::uint64_t frame) {
-    const scene::Mesh* key = &instance.geometry();
+const GpuMesh& MeshCache::get(const scene::MeshInstance& instance, std::uint64_t frame,
+                              bool skin_on_gpu) {
+    const scene::Mesh* bind =
+        skin_on_gpu && instance.joint_matrices
+            ? &instance.source->meshes.at(static_cast<std::size_t>(instance.mesh))
+            : nullptr;
+    if (bind != nullptr && !has_skin(*bind)) {
+        bind = nullptr;  // joint matrices without joints to apply them to: draw the pose
+    }
+    const scene::Mesh* key = bind != nullptr ? bind : &instance.geometry();
     auto found = meshes_.find(key);
     if (found == meshes_.end()) {
-        GpuMesh gpu = upload(instance.source, instance.geometry(), textures_);
-        gpu.posed = instance.posed;
+        GpuMesh gpu = upload(instance.source, *key, textures_);
+        gpu.posed = bind != nullptr ? nullptr : instance.posed;
         found = meshes_.emplace(key, std::move(gpu)).first;
         ++uploads_;
     }
+    // Also when an unskinned node drew the same mesh first (glTF lets a node without a skin
+    // instance a mesh with joints).
+    if (bind != nullptr && !found->second.skinned) {
+        upload_skin(*bind, found->second);
+    }
     found->second.last_used = frame;
     return found->second;
+}
+
+const Bounds& MeshCache::bounds(const scene::MeshInstance& instance, std::uint64_t frame) {
+    if (!instance.posed) {
+        return get(instance, frame, false).bounds;
+    }
+    auto found = pose_bounds_.find(instance.posed.get());
+    if (found == pose_bounds_.end()) {
+        found = pose_bounds_
+                    .emplace(instance.posed.get(),
+                             PoseBounds{instance.posed, bounds_of(*instance.posed), frame})
+                    .first;
+    }
+    found->second.last_used = frame;
+    return found->second.bounds;
 }
 
 void MeshCache::evict(std::uint64_t frame) {
@@ -181,6 +261,7 @@ void MeshCache::evict(std::uint64_t frame) {
         const std::uint64_t keep = entry.second.posed ? 0 : kEvictAfterFrames;
         return entry.second.last_used + keep < frame;
     });
+    std::erase_if(pose_bounds_, [&](const auto& entry) { return entry.second.last_used < frame; });
     textures_.evict();
 }
 

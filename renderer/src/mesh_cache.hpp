@@ -61,12 +61,15 @@ void draw_primitive(const GpuPrimitive& range);
 
 /// A scene mesh on the GPU: one interleaved vertex buffer and one index buffer for all its
 /// primitives. Vertex layout: location 0 position, 1 normal, 2 texcoord0, 3 light-map UV
-/// (texcoord1); absent attributes are zero.
+/// (texcoord1); absent attributes are zero. A mesh skinned in the vertex stage has a second
+/// buffer: location 4 JOINTS_0 (unsigned), 5 WEIGHTS_0.
 struct GpuMesh {
     /// The scene and, for a posed mesh, the pose: kept alive so the key's address stays unique.
     std::shared_ptr<const scene::Scene> source;
     std::shared_ptr<const scene::Mesh> posed;
     gl::Buffer vertices;
+    gl::Buffer skin;  ///< joints and weights; empty unless `skinned`
+    bool skinned = false;
     gl::Buffer indices;
     gl::VertexArray vertex_array;
     std::vector<GpuPrimitive> primitives;
@@ -74,16 +77,23 @@ struct GpuMesh {
     std::uint64_t last_used = 0;
 };
 
-/// GPU buffers per mesh (MeshInstance::geometry(), by address): many entities instancing one
-/// mesh share one upload. Meshes are immutable (a const Scene's, or a skinned mesh's pose,
-/// which a new pose replaces rather than edits), so an entry never needs re-uploading; entries
-/// unused for `kEvictAfterFrames` frames are freed (a pose as soon as a frame draws without
-/// it), and with them the base-colour textures (MaterialTextures, one per (scene, image)) that
-/// no remaining mesh uses.
+/// GPU buffers per mesh (by address: MeshInstance::geometry(), or a skinned pose's bind mesh):
+/// many entities instancing one mesh share one upload. Meshes are immutable (a const Scene's, or a
+/// skinned mesh's pose, which a new pose replaces rather than edits), so an entry never needs
+/// re-uploading; entries unused for `kEvictAfterFrames` frames are freed (a pose as soon as a frame
+/// draws without it), and with them the base-colour textures (MaterialTextures, one per (scene,
+/// image)) that no remaining mesh uses.
 class MeshCache {
   public:
-    /// The mesh of `instance`, uploaded on first use, marked used in `frame`.
-    const GpuMesh& get(const scene::MeshInstance& instance, std::uint64_t frame);
+    /// The mesh of `instance`, uploaded on first use, marked used in `frame`. With
+    /// `skin_on_gpu`, a skinned pose (MeshInstance::joint_matrices) gets its scene's bind mesh
+    /// with joints and weights, uploaded once for every pose (GpuMesh::skinned); otherwise the
+    /// pose itself, uploaded anew each time it changes.
+    const GpuMesh& get(const scene::MeshInstance& instance, std::uint64_t frame, bool skin_on_gpu);
+    /// The object-space box of what `instance` draws now. A pose's is its own, not its bind
+    /// mesh's (which says nothing of where a walking figure's arms are): computed once per
+    /// pose, without uploading it, and forgotten as soon as a frame does not use it.
+    const Bounds& bounds(const scene::MeshInstance& instance, std::uint64_t frame);
     /// Frees meshes no entity has drawn for a while, and textures no mesh uses any more.
     void evict(std::uint64_t frame);
     /// The 1x1 white texture untextured primitives sample.
@@ -94,7 +104,13 @@ class MeshCache {
 
   private:
     static constexpr std::uint64_t kEvictAfterFrames = 120;
+    struct PoseBounds {
+        std::shared_ptr<const scene::Mesh> posed;  ///< keeps the key's address unique
+        Bounds bounds;
+        std::uint64_t last_used = 0;
+    };
     std::map<const scene::Mesh*, GpuMesh> meshes_;
+    std::map<const scene::Mesh*, PoseBounds> pose_bounds_;
     MaterialTextures textures_;
     std::uint64_t uploads_ = 0;
 };

@@ -60,10 +60,12 @@ glm::vec4 glass_transmittance(const scene::Material& m, bool closed, const glm::
 }  // namespace
 
 void build_draw_list(ecs::Registry& registry, const lighting::LightingSystem& lighting,
-                     MeshCache& meshes, std::uint64_t frame, bool specular_pass, DrawList& out) {
+                     MeshCache& meshes, std::uint64_t frame, bool specular_pass, bool skin_on_gpu,
+                     DrawList& out) {
     out.items.clear();
     out.primitives.clear();
     out.bounds = Bounds{};
+    out.joints.clear();
 
     // (entity, primitive) -> surface id, for the light-map lookups.
     std::map<std::pair<ecs::Entity, int>, std::size_t> surface_of;
@@ -82,11 +84,16 @@ void build_draw_list(ecs::Registry& registry, const lighting::LightingSystem& li
         }
         DrawItem item;
         item.entity = entity;
-        item.mesh = &meshes.get(instance, frame);
+        item.mesh = &meshes.get(instance, frame, skin_on_gpu);
         item.model = entity_world_matrix(registry, entity);
         item.normal_matrix = glm::transpose(glm::inverse(glm::mat3(item.model)));
         item.mirrored = glm::determinant(glm::mat3(item.model)) < 0.0f;
-        item.bounds = item.mesh->bounds.transformed(item.model);
+        const bool skinned = item.mesh->skinned && instance.joint_matrices && instance.posed;
+        if (skinned) {
+            item.first_joint = out.joints.add(*instance.joint_matrices);
+            item.joint_count = static_cast<std::int32_t>(instance.joint_matrices->size());
+        }
+        item.bounds = meshes.bounds(instance, frame).transformed(item.model);
         item.first = out.primitives.size();
         float emission_scale = 1.0f;
         if (const auto* area = registry.try_get<lighting::AreaLight>(entity)) {
@@ -130,11 +137,24 @@ void build_draw_list(ecs::Registry& registry, const lighting::LightingSystem& li
         out.bounds.add(item.bounds);
         out.items.push_back(item);
     }
+    // The buffer is known only once every skinned item has added its matrices (it may grow).
+    out.joints.upload();
+    for (DrawItem& item : out.items) {
+        if (item.first_joint >= 0) {
+            item.joint_buffer = out.joints.buffer();
+        }
+    }
 }
 
 void bind_draw_item(const gl::Program& program, const DrawItem& item) {
     program.set("u_model", item.model);
     program.set("u_normal_matrix", item.normal_matrix);
+    program.set("u_first_joint", item.first_joint);
+    program.set("u_joint_count", item.joint_count);
+    if (item.first_joint >= 0) {
+        // Bound per item: other passes (the caustics, the gather) use storage bindings too.
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kJointMatricesBinding, item.joint_buffer);
+    }
     glBindVertexArray(item.mesh->vertex_array.id());
 }
 

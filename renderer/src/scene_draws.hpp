@@ -5,6 +5,7 @@
 
 #include <glm/glm.hpp>
 
+#include "joint_palette.hpp"
 #include "luxel/ecs/registry.hpp"
 #include "luxel/runtime/program.hpp"
 #include "mesh_cache.hpp"
@@ -50,6 +51,11 @@ struct DrawItem {
     std::size_t count = 0;
     bool specular = false;  ///< any primitive has a specular material
     bool mirrored = false;  ///< the model matrix flips winding (negative determinant)
+    /// A mesh skinned in the vertex stage (GpuMesh::skinned): its joint matrices in
+    /// DrawList::joints, from `first_joint`, `joint_count` of them. -1: not skinned.
+    std::int32_t first_joint = -1;
+    std::int32_t joint_count = 0;
+    GLuint joint_buffer = 0;
 };
 
 /// glTF's doubleSided for the passes that see surfaces (G-buffer, probes): a single-sided
@@ -58,14 +64,16 @@ struct DrawItem {
 /// double-sided one shows both sides. Shadow maps keep both sides (either side casts).
 void cull_as_material(const DrawItem& item, const DrawMaterial& material);
 
-/// Sets `program`'s u_model and u_normal_matrix (render/mesh.vert) to the item's and binds its
-/// mesh: what every pass drawing scene meshes does before an item's primitives.
+/// Sets `program`'s u_model and u_normal_matrix (render/mesh.vert) to the item's, and its joint
+/// matrices for a skinned mesh (render/skinning.glsl), and binds its mesh: what every pass
+/// drawing scene meshes does before an item's primitives.
 void bind_draw_item(const gl::Program& program, const DrawItem& item);
 
 struct DrawList {
     std::vector<DrawItem> items;
     std::vector<DrawPrimitive> primitives;
-    Bounds bounds;  ///< of everything
+    Bounds bounds;        ///< of everything
+    JointPalette joints;  ///< the skinned items' joint matrices, uploaded with the list
 };
 
 /// Builds this frame's draw list from every MeshInstance entity: its mesh from the cache, its
@@ -75,8 +83,10 @@ struct DrawList {
 ///
 /// `specular_pass` says whether specular materials are shaded by the specular pass (then their
 /// diffuse albedo and light map are zero: their look is the reflection); without it they are
-/// drawn as diffuse surfaces of their base colour.
+/// drawn as diffuse surfaces of their base colour. `skin_on_gpu`: skinned meshes are drawn
+/// from their bind mesh and this frame's joint matrices (FrameSettings::gpu_skinning).
 void build_draw_list(ecs::Registry& registry, const lighting::LightingSystem& lighting,
-                     MeshCache& meshes, std::uint64_t frame, bool specular_pass, DrawList& out);
+                     MeshCache& meshes, std::uint64_t frame, bool specular_pass, bool skin_on_gpu,
+                     DrawList& out);
 
 }  // namespace luxel::renderer

@@ -86,10 +86,7 @@ FillBudget draw_casters(const DrawList& draws, const gl::Program& program, const
             // Out of the light's reach: casts nothing it can see.
             return map.kind == ShadowKind::Ortho || item.bounds.touches_sphere(map.origin, map.far);
         },
-        [&](const DrawItem& item) {
-            program.set("u_model", item.model);
-            glBindVertexArray(item.mesh->vertex_array.id());
-        },
+        [&](const DrawItem& item) { bind_draw_item(program, item); },
         [](const DrawItem&, const DrawPrimitive& primitive) { draw_primitive(*primitive.range); });
     return budget;
 }

@@ -7,7 +7,13 @@
 //                     against bilinear's 4): its indirect_ms over Frame/static's is the cost
 //   Frame/sky         static under a uniform sky (the closed box hides it): the sky-edge mask
 //   Frame/sky-plain   the same without the mask (FrameSettings::sky_edge_coverage false)
-// Counters: milliseconds per frame of each pass (GPU), averaged over the iterations.
+//   Frame/skinned-gpu Blender's skinned figure level (tests/levels/blender/skinned-figure.py),
+//                     the figure posed anew before every frame (outside the timing), skinned
+//                     in the vertex stage: the G-buffer, shadow maps and probes skin it
+//   Frame/skinned-cpu the same, each pose's vertices skinned on the CPU and uploaded
+//                     (FrameSettings::gpu_skinning false): the baseline of the row above
+// Counters: milliseconds per frame of each pass (GPU), averaged over the iterations; for the
+// skinned rows also the bytes a frame sends for the figure (vertices or joint matrices).
 
 #include <benchmark/benchmark.h>
 
@@ -20,6 +26,8 @@
 #include "luxel/renderer/frame_renderer.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/scene/sky.hpp"
+#include "luxel/world/animation_system.hpp"
+#include "luxel/world/skinning.hpp"
 #include "render_scenes.hpp"
 
 namespace {
@@ -34,7 +42,21 @@ struct Variant {
     bool bicubic = false;
     bool sky = false;
     bool sky_edges = true;
+    bool skinned = false;  ///< the skinned figure level, posed every frame
+    bool gpu_skinning = true;
 };
+
+/// Vertices of every skinned mesh's bind pose in the registry.
+std::size_t figure_vertices(ecs::Registry& registry) {
+    std::size_t vertices = 0;
+    registry.view<world::SkinnedMesh>().each([&](const world::SkinnedMesh& skinned) {
+        for (const scene::Primitive& primitive :
+             skinned.source->meshes.at(static_cast<std::size_t>(skinned.mesh)).primitives) {
+            vertices += primitive.positions.size();
+        }
+    });
+    return vertices;
+}
 
 void frame(benchmark::State& state, const Variant& variant) {
     const bool moving = variant.moving;
@@ -42,9 +64,10 @@ void frame(benchmark::State& state, const Variant& variant) {
     test::RenderWorld world;
     world::instantiate(
         world.registry,
-        std::make_shared<scene::Scene>(scene::load_gltf(test::prepared_level("cornell"))),
+        std::make_shared<scene::Scene>(
+            scene::load_gltf(test::prepared_level(variant.skinned ? "skinned-figure" : "cornell"))),
         world::InstantiateOptions{
-            .play_animations = false,
+            .play_animations = variant.skinned,
             .sky = variant.sky ? std::optional<scene::SkySpec>(scene::parse_sky("uniform:1,1,1"))
                                : std::nullopt});
     world.start();
@@ -67,13 +90,22 @@ void frame(benchmark::State& state, const Variant& variant) {
     settings.wait_for_timings = true;
     settings.bicubic_light_maps = variant.bicubic;
     settings.sky_edge_coverage = variant.sky_edges;
+    settings.gpu_skinning = variant.gpu_skinning;
     renderer::FrameRenderer renderer(world.registry, *world.lighting, settings);
     renderer.render(camera, world.time);  // allocations and first shadow maps out of the loop
 
     std::array<double, renderer::kRenderPassCount> sums{};
     double total = 0.0;
     float offset = 0.01f;
+    std::uint64_t first_uploads = renderer.counters().mesh_uploads;
     for (auto _ : state) {
+        if (variant.skinned) {
+            state.PauseTiming();
+            world::update_animations(world.registry, 1.0 / 60.0);
+            world.transforms.update();
+            world::update_skins(world.registry);
+            state.ResumeTiming();
+        }
         if (moving) {
             world.registry.patch<ecs::Transform>(
                 light, [&](ecs::Transform& t) { t.translation.x += offset; });
@@ -93,7 +125,26 @@ void frame(benchmark::State& state, const Variant& variant) {
     state.counters["gpu_total_ms"] = benchmark::Counter(total, benchmark::Counter::kAvgIterations);
     state.counters["shadow_maps_drawn"] =
         static_cast<double>(renderer.counters().shadow_maps_drawn);
+    if (variant.skinned) {
+        // What the bus carries for the figure each frame: its pose's vertices (40 bytes each,
+        // counted from the uploads) or its joint matrices (64 bytes each).
+        const double vertex_bytes = 40.0 * static_cast<double>(figure_vertices(world.registry));
+        const double uploads =
+            static_cast<double>(renderer.counters().mesh_uploads - first_uploads);
+        const double joint_bytes = 64.0 * static_cast<double>(renderer.counters().joint_matrices);
+        state.counters["figure_bytes_per_frame"] = benchmark::Counter(
+            variant.gpu_skinning ? joint_bytes * static_cast<double>(state.iterations())
+                                 : vertex_bytes * uploads,
+            benchmark::Counter::kAvgIterations);
+    }
     state.SetLabel(context->info().renderer);
+}
+
+void BM_FrameSkinnedGpu(benchmark::State& state) {
+    frame(state, {.skinned = true});
+}
+void BM_FrameSkinnedCpu(benchmark::State& state) {
+    frame(state, {.skinned = true, .gpu_skinning = false});
 }
 
 void BM_FrameStatic(benchmark::State& state) {
@@ -135,6 +186,16 @@ BENCHMARK(BM_FrameSky)
     ->MinTime(2.0);
 BENCHMARK(BM_FrameSkyPlain)
     ->Name("Frame/sky-plain")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_FrameSkinnedGpu)
+    ->Name("Frame/skinned-gpu")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_FrameSkinnedCpu)
+    ->Name("Frame/skinned-cpu")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);

@@ -149,7 +149,8 @@ ecs::Entity add_skinned_mesh(ecs::Registry& registry,
     const scene::Mesh& bind = source->meshes.at(static_cast<std::size_t>(node.mesh));
     registry.emplace<scene::MeshInstance>(
         entity, source, node.mesh,
-        std::make_shared<const scene::Mesh>(scene::posed_mesh(bind, skinned.posed_with)));
+        std::make_shared<const scene::Mesh>(scene::posed_mesh(bind, skinned.posed_with)),
+        std::make_shared<const std::vector<glm::mat4>>(skinned.posed_with));
     registry.emplace<SkinnedMesh>(entity, std::move(skinned));
     if (is_emissive(*source, bind)) {
         registry.emplace<lighting::AreaLight>(entity);

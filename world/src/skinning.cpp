@@ -36,9 +36,10 @@ std::size_t update_skins(ecs::Registry& registry) {
         SkinnedMesh& skinned = registry.get<SkinnedMesh>(entity);
         const scene::Mesh& bind = skinned.source->meshes.at(static_cast<std::size_t>(skinned.mesh));
         auto posed = std::make_shared<const scene::Mesh>(scene::posed_mesh(bind, matrices));
+        auto joints = std::make_shared<const std::vector<glm::mat4>>(matrices);
         skinned.posed_with = std::move(matrices);
         registry.replace<scene::MeshInstance>(entity, skinned.source, skinned.mesh,
-                                              std::move(posed));
+                                              std::move(posed), std::move(joints));
     }
     return moved.size();
 }

@@ -44,6 +44,10 @@ struct FrameSettings {
     /// window otherwise puts most of the frame's error in the window's one-pixel border.
     /// false: no such pass and no mask.
     bool sky_edge_coverage = true;
+    /// Skinned meshes skinned in the vertex stage (render/skinning.glsl, docs/METHOD.md §8.7):
+    /// their bind mesh uploaded once, each frame's joint matrices in one storage buffer. false:
+    /// the CPU's pose (MeshInstance::posed) is uploaded each time it changes, 40 bytes a vertex.
+    bool gpu_skinning = true;
     /// Wait for this frame's GPU timer queries in render() (benchmarks, tests). Otherwise
     /// render() reports the latest frame whose queries are done, without stalling the GPU.
     bool wait_for_timings = false;
@@ -102,6 +106,8 @@ struct FrameCounters {
     std::size_t lights = 0;                ///< enabled punctual lights this frame
     std::size_t draws = 0;                 ///< primitives drawn into the G-buffer this frame
     std::size_t meshes_cached = 0;         ///< (scene, mesh) pairs with GPU buffers
+    std::uint64_t mesh_uploads = 0;        ///< meshes uploaded, since construction
+    std::size_t joint_matrices = 0;        ///< skinned in the vertex stage this frame
     std::uint64_t page_uploads = 0;        ///< IIM page rectangles uploaded, since construction
     std::uint64_t texels_uploaded = 0;     ///< IIM texels uploaded, since construction
     std::uint64_t probe_uploads = 0;       ///< irradiance probe uploads, since construction

@@ -3,6 +3,9 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "luxel/scene/scene.hpp"
 
@@ -16,8 +19,12 @@ namespace luxel::scene {
 struct MeshInstance {
     MeshInstance() = default;
     MeshInstance(std::shared_ptr<const Scene> scene, int index,
-                 std::shared_ptr<const Mesh> pose = nullptr)
-        : source(std::move(scene)), mesh(index), posed(std::move(pose)) {}
+                 std::shared_ptr<const Mesh> pose = nullptr,
+                 std::shared_ptr<const std::vector<glm::mat4>> joints = nullptr)
+        : source(std::move(scene)),
+          mesh(index),
+          posed(std::move(pose)),
+          joint_matrices(std::move(joints)) {}
 
     std::shared_ptr<const Scene> source;
     int mesh = -1;
@@ -25,6 +32,11 @@ struct MeshInstance {
     /// pose (world::update_skins replaces the component with each new pose, so observers see
     /// a changed mesh). Null: the scene's mesh as loaded.
     std::shared_ptr<const Mesh> posed;
+    /// When `posed` is the scene's mesh skinned (scene::posed_mesh): the joint matrices it was
+    /// posed with, one per joint of the skin. A renderer skins the scene's own mesh with them
+    /// in its vertex stage, so a new pose uploads these matrices rather than every vertex;
+    /// the CPU's `posed` is what the ray scene traces. Null for every other mesh.
+    std::shared_ptr<const std::vector<glm::mat4>> joint_matrices;
 
     [[nodiscard]] const Mesh& geometry() const {
         return posed ? *posed : source->meshes.at(static_cast<std::size_t>(mesh));

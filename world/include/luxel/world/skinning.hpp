@@ -14,12 +14,11 @@ namespace luxel::world {
 /// space (the entity has an identity Transform and no parent: glTF places a skinned mesh by its
 /// joints alone). The joints are ordinary entities, moved by animations or by the game.
 ///
-/// The pose is skinned on the CPU (scene::posed_mesh), and a new pose replaces the
-/// MeshInstance: the renderer uploads it, and the ray scene moves the object's vertices in
+/// A new pose replaces the MeshInstance with the mesh skinned on the CPU (scene::posed_mesh)
+/// and the joint matrices it was skinned with: the ray scene moves the object's vertices in
 /// place and refits its BVH (PhotonGeometry::deform), the photon paths through its old and new
-/// bounds retraced. 0.47 ms a pose for 10,000 vertices on two cores (docs/PERFORMANCE.md);
-/// skinning in the GPU's vertex stage, so the renderer need not upload every pose, is still to
-/// build.
+/// bounds retraced (0.47 ms a pose for 10,000 vertices on two cores, docs/PERFORMANCE.md); the
+/// renderer skins the bind mesh it uploaded once with the joint matrices in its vertex stage.
 struct SkinnedMesh {
     std::shared_ptr<const scene::Scene> source;
     int skin = -1;
