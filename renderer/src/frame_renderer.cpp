@@ -140,8 +140,7 @@ struct FrameRenderer::Impl {
                                            {ShaderStage::Fragment, "render/composite.frag"}})),
           targets(s.width, s.height, s.anti_aliasing),
           shadows(s.cube_shadow_size, s.map_shadow_size),
-          cube_maps(shaders, s.specular_cube_size, s.specular_faces_per_frame,
-                    s.two_surface_refraction),
+          cube_maps(shaders, s.specular_cube_size, s.specular_faces_per_frame),
           shader_library(shaders),
           mesh_changes(r.observe<scene::MeshInstance>(ecs::ObserverStart::WithExisting)),
           moves(r.observe<ecs::WorldTransform>()) {

@@ -47,26 +47,14 @@ DrawMaterial material_of(const scene::Scene& source, int index, float emission_s
 /// thickness (an open sheet has no inside: the photons never meet its back face from within).
 /// The thickness is KHR_materials_volume's rasteriser model, the mesh's units times the
 /// object's scale: one length for every pixel (a sphere's rim as thick as its centre), where
-/// the photons and the reference measure each path. The specular pass measures each pixel's
-/// path through closed glass too where it finds the exit (GlassExits): for that, the tint and
-/// the absorption per metre apart.
-void set_glass_transmittance(const scene::Material& m, bool closed, const glm::mat4& model,
-                             DrawMaterial& out) {
+/// the photons and the reference measure each path.
+glm::vec4 glass_transmittance(const scene::Material& m, bool closed, const glm::mat4& model) {
     const glm::vec3 tint = glm::clamp(glm::vec3(m.base_color), 0.0f, 1.0f);
     if (!closed) {
-        out.transmittance = {tint, 1.0f};
-        return;
+        return {tint, 1.0f};
     }
     const float scale = std::cbrt(std::abs(glm::determinant(glm::mat3(model))));
-    out.transmittance = {tint * tint * scene::volume_transmittance(m, m.thickness * scale), 2.0f};
-    out.glass_tint = tint * tint;
-    if (scene::absorbs_inside(m)) {
-        // ln of what one metre of path keeps: beer_lambert's own law, so a black colour
-        // (ln 0) passes nothing and an infinite distance everything; bounded for the shader.
-        const glm::vec3 per_metre = scene::volume_transmittance(m, 1.0f);
-        out.absorption =
-            glm::max(glm::log(glm::max(per_metre, glm::vec3(1e-30f))), glm::vec3(-1e4f));
-    }
+    return {tint * tint * scene::volume_transmittance(m, m.thickness * scale), 2.0f};
 }
 
 }  // namespace
@@ -117,9 +105,9 @@ void build_draw_list(ecs::Registry& registry, const lighting::LightingSystem& li
             draw.material =
                 material_of(*instance.source, draw.range->material, emission_scale, specular_pass);
             if (draw.material.specular.a > 0.0f) {
-                set_glass_transmittance(
+                draw.material.transmittance = glass_transmittance(
                     instance.source->materials.at(static_cast<std::size_t>(draw.range->material)),
-                    draw.range->closed, item.model, draw.material);
+                    draw.range->closed, item.model);
             }
             // Specular materials draw no diffuse albedo (it is zero), so they need no texture.
             draw.material.base_color_texture =

@@ -30,12 +30,6 @@ struct DrawMaterial {
     /// Glass: rgb what a view ray through it keeps besides Fresnel (the tint per surface
     /// crossed, the inside's absorption), a: the surfaces it crosses (1 or 2). Zero otherwise.
     glm::vec4 transmittance{0.0f};
-    /// Closed glass whose exit the specular pass finds (GlassExits): the tint of the two
-    /// surfaces crossed, and the volume's absorption as ln(transmittance) per metre of path
-    /// (0: none; at most -1e4, a black attenuation colour), applied over the path's own length
-    /// instead of `transmittance`'s thickness.
-    glm::vec3 glass_tint{0.0f};
-    glm::vec3 absorption{0.0f};
     glm::vec2 lightmap{-1.0f, 0.0f};  ///< IIM page layer (-1: none), 1 = holds irradiance
     float ior = 1.5f;
     bool double_sided = false;

@@ -16,8 +16,7 @@
 #include "material_textures.hpp"
 
 namespace luxel::renderer {
-SpecularCubeMaps::SpecularCubeMaps(const ShaderLibrary& shaders, int size, int faces_per_frame,
-                                   bool two_surface)
+SpecularCubeMaps::SpecularCubeMaps(const ShaderLibrary& shaders, int size, int faces_per_frame)
     : face_program_(shaders.build(
           {{ShaderStage::Vertex, "render/mesh.vert"},
            {ShaderStage::Fragment, "render/cube_map_face.frag"}},
@@ -26,8 +25,6 @@ SpecularCubeMaps::SpecularCubeMaps(const ShaderLibrary& shaders, int size, int f
                                   {ShaderStage::Fragment, "render/cube_map_sky.frag"}})),
       specular_program_(shaders.build({{ShaderStage::Vertex, "render/mesh.vert"},
                                        {ShaderStage::Fragment, "render/specular.frag"}})),
-      exits_(shaders),
-      two_surface_(two_surface),
       size_(std::max(size, 1)),
       faces_per_frame_(std::max(faces_per_frame, 0)) {}
 
@@ -111,8 +108,6 @@ void SpecularCubeMaps::render_face(CubeMap& cube_map, int face, const DrawList& 
 
 void SpecularCubeMaps::draw_term(const DrawList& draws, const FrameTargets& targets,
                                  const FrameCamera& camera) {
-    // The far side of closed glass first (its own target; nothing without closed glass).
-    const bool exits = two_surface_ && exits_.render(draws, camera, targets.width, targets.height);
     const GLuint fbo = targets.specular_target.id();
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
     glViewport(0, 0, targets.width, targets.height);
@@ -126,8 +121,6 @@ void SpecularCubeMaps::draw_term(const DrawList& draws, const FrameTargets& targ
     program.use();
     program.set("u_view_projection", camera.projection * camera.view);
     program.set("u_camera", camera.position);
-    glBindTextureUnit(1, exits ? exits_.position_texture() : 0);
-    glBindTextureUnit(2, exits ? exits_.normal_texture() : 0);
     for (const DrawItem& item : draws.items) {
         const auto found = cube_maps_.find(item.entity);
         if (!item.specular || found == cube_maps_.end()) {
@@ -135,7 +128,6 @@ void SpecularCubeMaps::draw_term(const DrawList& draws, const FrameTargets& targ
         }
         glBindTextureUnit(0, found->second.cube.id());
         bind_draw_item(program, item);
-        program.set("u_reach", glm::length(item.bounds.hi - item.bounds.lo));
         for (std::size_t i = item.first; i < item.first + item.count; ++i) {
             const DrawPrimitive& primitive = draws.primitives[i];
             if (primitive.range->index_count == 0 || primitive.material.specular.r <= 0.0f) {
@@ -144,9 +136,6 @@ void SpecularCubeMaps::draw_term(const DrawList& draws, const FrameTargets& targ
             program.set("u_specular", primitive.material.specular);
             program.set("u_ior", primitive.material.ior);
             program.set("u_transmittance", primitive.material.transmittance);
-            program.set("u_trace_exit", exits && GlassExits::traced(primitive) ? 1 : 0);
-            program.set("u_glass_tint", primitive.material.glass_tint);
-            program.set("u_absorption", primitive.material.absorption);
             draw_primitive(*primitive.range);
         }
     }

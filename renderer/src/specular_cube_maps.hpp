@@ -6,7 +6,6 @@
 
 #include "frame_lights.hpp"
 #include "frame_targets.hpp"
-#include "glass_exits.hpp"
 #include "light_batches.hpp"
 #include "luxel/lighting/gpu/lightmap_textures.hpp"
 #include "luxel/renderer/frame_camera.hpp"
@@ -36,9 +35,7 @@ namespace luxel::renderer {
 /// Schlick-Fresnel-weighted reflection, plus refraction for glass (shaders/render/specular.frag).
 class SpecularCubeMaps {
   public:
-    /// `two_surface`: closed glass refracts twice, at the exit the frame finds for each pixel
-    /// (GlassExits, FrameSettings::two_surface_refraction); false: once, at the entry.
-    SpecularCubeMaps(const ShaderLibrary& shaders, int size, int faces_per_frame, bool two_surface);
+    SpecularCubeMaps(const ShaderLibrary& shaders, int size, int faces_per_frame);
 
     /// Something in the scene changed near `bounds`: every cube_map refreshes its faces.
     void invalidate(const Bounds& bounds);
@@ -76,8 +73,6 @@ class SpecularCubeMaps {
     gl::Program sky_program_;  ///< the sky behind a face (render/cube_map_sky.frag)
     gl::VertexArray sky_triangle_ = gl::VertexArray::create();  ///< no attributes
     gl::Program specular_program_;
-    GlassExits exits_;
-    bool two_surface_;
     int size_;
     int faces_per_frame_;
     std::map<ecs::Entity, CubeMap> cube_maps_;

@@ -164,13 +164,6 @@ int run(int argc, char** argv) {
            "(docs/METHOD.md 8.6)")
         ->check(CLI::IsMember({"on", "off"}))
         ->default_str("on");
-    app.add_option_function<std::string>(
-           "--refraction",
-           [&](const std::string& text) { options.app.two_surface_refraction = text == "two"; },
-           "closed glass bends the view ray at its entry and at the exit found per pixel "
-           "(two), or at its entry only (one; docs/METHOD.md 8.3)")
-        ->check(CLI::IsMember({"two", "one"}))
-        ->default_str("two");
     Size size;
     app.add_option_function<std::string>(
         "--size",

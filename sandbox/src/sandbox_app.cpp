@@ -83,7 +83,6 @@ SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const Shade
     frame.anti_aliasing = settings.anti_aliasing;
     frame.bicubic_light_maps = settings.bicubic_light_maps;
     frame.sky_edge_coverage = settings.sky_edges;
-    frame.two_surface_refraction = settings.two_surface_refraction;
     renderer_ = std::make_unique<renderer::FrameRenderer>(registry_, *lighting_, frame, shaders);
     // The loading screen: the first photon maps, AIMs and IIMs are built at once, so the game
     // starts lit and the per-frame budget only has to follow changes.

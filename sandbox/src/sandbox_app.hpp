@@ -28,13 +28,12 @@ struct AppSettings {
     int threads = 0;
     /// Wall-time limit of the lighting warm-up at load (0: none, start dark).
     double warm_up_ms = 20'000.0;
-    scene::LoadOptions load_limits;      ///< --limit
-    std::optional<scene::SkySpec> sky;   ///< --sky: instead of the level's
-    prep::AutoPrepSettings auto_prep;    ///< --no-auto-prep, --prep-cache
-    bool anti_aliasing = true;           ///< --aa: smooth the frame's geometric edges
-    bool bicubic_light_maps = false;     ///< --lightmap-filter bicubic
-    bool sky_edges = true;               ///< --sky-edges: sky coverage at silhouettes
-    bool two_surface_refraction = true;  ///< --refraction two: closed glass bends rays twice
+    scene::LoadOptions load_limits;     ///< --limit
+    std::optional<scene::SkySpec> sky;  ///< --sky: instead of the level's
+    prep::AutoPrepSettings auto_prep;   ///< --no-auto-prep, --prep-cache
+    bool anti_aliasing = true;          ///< --aa: smooth the frame's geometric edges
+    bool bicubic_light_maps = false;    ///< --lightmap-filter bicubic
+    bool sky_edges = true;              ///< --sky-edges: sky coverage at silhouettes
 };
 
 /// The game: a level in an ECS registry, the game systems that move it, the lighting system and

@@ -77,9 +77,6 @@ std::string BenchConfig::knobs() const {
     if (sky_edges != "on") {
         out << " sky_edges=" << sky_edges;
     }
-    if (refraction != "two") {
-        out << " refraction=" << refraction;
-    }
     return out.str();
 }
 
@@ -145,8 +142,6 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.lightmap = value;
             } else if (sweep.knob == "sky_edges") {
                 c.sky_edges = value;
-            } else if (sweep.knob == "refraction") {
-                c.refraction = value;
             } else {
                 continue;  // budget: handled above
             }

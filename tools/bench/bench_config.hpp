@@ -71,7 +71,6 @@ struct BenchConfig {
     /// Sky coverage at silhouettes (FrameSettings::sky_edge_coverage): "on" or "off". Changes
     /// only the image of a level with a sky.
     std::string sky_edges = "on";
-    std::string refraction = "two";  ///< FrameSettings::two_surface_refraction: two, one
 
     [[nodiscard]] lighting::LightingConfig lighting() const;
     /// "groups=77 per_group=40 ..." for logs and the Markdown table.

@@ -85,10 +85,6 @@ Sweep parse_sweep(const std::string& text) {
             if (value != "on" && value != "off") {
                 throw Error(what + ": '" + value + "' is not on or off");
             }
-        } else if (sweep.knob == "refraction") {
-            if (value != "two" && value != "one") {
-                throw Error(what + ": '" + value + "' is not two or one");
-            }
         } else if (sweep.knob == "lightmap") {
             if (value != "bilinear" && value != "bicubic") {
                 throw Error(what + ": '" + value + "' is not bilinear or bicubic");
@@ -139,7 +135,7 @@ Sweep parse_sweep(const std::string& text) {
                         "probe_basis, keep, "
                         "caustics, backend, "
                         "kernel, "
-                        "aa, lightmap, sky_edges, refraction)");
+                        "aa, lightmap, sky_edges)");
         }
     }
     return sweep;
@@ -241,7 +237,7 @@ void validate(const Options& options) {
     }
     for (const Sweep& sweep : options.sweeps) {
         if ((sweep.knob == "kernel" || sweep.knob == "aa" || sweep.knob == "lightmap" ||
-             sweep.knob == "sky_edges" || sweep.knob == "refraction") &&
+             sweep.knob == "sky_edges") &&
             !options.image.enabled) {
             throw Error("--sweep " + sweep.knob +
                         ": it only changes the image, which --no-image turns off");

@@ -193,8 +193,7 @@ ConfigRun::ConfigRun(const LevelRunContext& context, const BenchConfig& config)
             camera_ = ref::default_camera(options_.image.width, options_.image.height);
         }
         const FrameChoices choices{parse_kernel(config.kernel), config.aa == "on",
-                                   config.lightmap == "bicubic", config.sky_edges == "on",
-                                   config.refraction == "two"};
+                                   config.lightmap == "bicubic", config.sky_edges == "on"};
         view_ =
             std::make_unique<FrameView>(registry_, *lighting_, *camera_, choices, *context.shaders);
     }

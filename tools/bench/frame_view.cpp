@@ -16,7 +16,6 @@ renderer::FrameSettings frame_settings(const lighting::reference::ReferenceCamer
     settings.anti_aliasing = choices.anti_aliasing;
     settings.bicubic_light_maps = choices.bicubic_light_maps;
     settings.sky_edge_coverage = choices.sky_edge_coverage;
-    settings.two_surface_refraction = choices.two_surface_refraction;
     settings.caustics = lighting::CausticPassSettings{};
     settings.caustics->kernel = choices.kernel;
     settings.width = camera.width;

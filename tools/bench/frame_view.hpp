@@ -43,14 +43,12 @@ struct FrameShot {
     std::vector<std::uint8_t> unmapped;
 };
 
-/// The knobs of a run that change only its frame (BenchConfig::kernel, aa, lightmap,
-/// sky_edges, refraction).
+/// The knobs of a run that change only its frame (BenchConfig::kernel, aa, lightmap).
 struct FrameChoices {
     lighting::CausticKernel kernel = lighting::CausticKernel::Larsen;
     bool anti_aliasing = true;
     bool bicubic_light_maps = false;
     bool sky_edge_coverage = true;
-    bool two_surface_refraction = true;
 };
 
 /// One run's renderer. Needs the context current for its whole life.

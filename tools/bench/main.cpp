@@ -102,7 +102,7 @@ int run(int argc, char** argv) {
         "caustics NxK, "
         "backend cpu|gpu|gpu-turn|gpu-plane, kernel "
         "larsen|box|cone|world, aa on|off, lightmap bilinear|bicubic, sky_edges "
-        "on|off, refraction two|one); repeatable, "
+        "on|off); repeatable, "
         "each varies one knob from the paper's configuration");
     app.add_option("--image", image_size,
                    "WIDTHxHEIGHT of the frames compared for the image error (default 160x120): "

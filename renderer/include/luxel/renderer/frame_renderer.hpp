@@ -55,11 +55,6 @@ struct FrameSettings {
     /// re-rendered `specular_faces_per_frame` faces per frame.
     int specular_cube_size = 128;
     int specular_faces_per_frame = 1;
-    /// Closed glass refracts the view ray twice: at its entry and where the ray leaves the
-    /// solid, found per pixel against the solid's far side drawn for the frame (docs/METHOD.md
-    /// §8.3; two extra frame-sized targets while the frame has closed glass). false: bent once
-    /// at the entry and the probe read from the centre (a thin object).
-    bool two_surface_refraction = true;
     /// The caustic render pass the renderer creates while the FeaturePlan has caustic data (and
     /// frees when it has none), run on each frame's own depth between the G-buffer and the
     /// composite. nullopt: the renderer makes no caustics itself (set_caustics or
