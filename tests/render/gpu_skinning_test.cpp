@@ -66,6 +66,21 @@ renderer::FrameSettings settings_with(bool gpu_skinning) {
     return settings;
 }
 
+/// One renderer skinning in the vertex stage and one uploading the CPU's pose, over one world.
+struct BothRenderers {
+    renderer::FrameRenderer gpu;
+    renderer::FrameRenderer cpu;
+
+    explicit BothRenderers(test::RenderWorld& world)
+        : gpu(world.registry, *world.lighting, settings_with(true)),
+          cpu(world.registry, *world.lighting, settings_with(false)) {}
+
+    void render(const renderer::FrameCamera& camera, double time) {
+        gpu.render(camera, time);
+        cpu.render(camera, time);
+    }
+};
+
 double relrmse(const Image& frame, const Image& reference) {
     double diff = 0.0;
     double norm = 0.0;
@@ -97,11 +112,10 @@ int moved_pixels(const std::vector<glm::vec4>& a, const std::vector<glm::vec4>& 
 TEST(GpuSkinning, DrawsTheFrameTheCpusPoseDraws) {
     const auto context = test::make_render_context();
     Figure figure;
-    renderer::FrameRenderer gpu(figure.world.registry, *figure.world.lighting, settings_with(true));
-    renderer::FrameRenderer cpu(figure.world.registry, *figure.world.lighting,
-                                settings_with(false));
-    gpu.render(level_camera(), figure.world.time);
-    cpu.render(level_camera(), figure.world.time);
+    BothRenderers both(figure.world);
+    renderer::FrameRenderer& gpu = both.gpu;
+    renderer::FrameRenderer& cpu = both.cpu;
+    both.render(level_camera(), figure.world.time);
     std::size_t joints = 0;
     figure.world.registry.view<world::SkinnedMesh>().each(
         [&](const world::SkinnedMesh& skinned) { joints += skinned.joints.size(); });
@@ -140,19 +154,17 @@ TEST(GpuSkinning, DrawsTheFrameTheCpusPoseDraws) {
 TEST(GpuSkinning, AWalkUploadsTheFiguresVerticesOnce) {
     const auto context = test::make_render_context();
     Figure figure;
-    renderer::FrameRenderer gpu(figure.world.registry, *figure.world.lighting, settings_with(true));
-    renderer::FrameRenderer cpu(figure.world.registry, *figure.world.lighting,
-                                settings_with(false));
-    gpu.render(level_camera(), figure.world.time);
-    cpu.render(level_camera(), figure.world.time);
+    BothRenderers both(figure.world);
+    renderer::FrameRenderer& gpu = both.gpu;
+    renderer::FrameRenderer& cpu = both.cpu;
+    both.render(level_camera(), figure.world.time);
     const std::uint64_t gpu_first = gpu.counters().mesh_uploads;
     const std::uint64_t cpu_first = cpu.counters().mesh_uploads;
     constexpr int kSteps = 6;
     for (int step = 1; step <= kSteps; ++step) {
         figure.pose(0.7 + 0.1 * step);
         figure.world.update(1.0, 0.0);
-        gpu.render(level_camera(), figure.world.time);
-        cpu.render(level_camera(), figure.world.time);
+        both.render(level_camera(), figure.world.time);
     }
     EXPECT_EQ(gpu.counters().mesh_uploads, gpu_first) << "each pose: joint matrices only";
     EXPECT_EQ(cpu.counters().mesh_uploads, cpu_first + kSteps) << "each pose: its vertices";
@@ -205,8 +217,9 @@ TEST(GpuSkinning, AMeshAnUnskinnedNodeDrewFirstIsStillSkinned) {
     const auto camera =
         renderer::FrameCamera::look_at({0.6f, 1.1f, 4.0f}, {0.6f, 1.1f, 0.0f}, {0.0f, 1.0f, 0.0f},
                                        0.9f, static_cast<float>(kWidth) / kHeight);
-    renderer::FrameRenderer gpu(world.registry, *world.lighting, settings_with(true));
-    renderer::FrameRenderer cpu(world.registry, *world.lighting, settings_with(false));
+    BothRenderers both(world);
+    renderer::FrameRenderer& gpu = both.gpu;
+    renderer::FrameRenderer& cpu = both.cpu;
     // The unskinned node's entity alone first: the mesh reaches the GPU without its skin.
     const scene::MeshInstance pose = world.registry.get<scene::MeshInstance>(figure);
     world.registry.remove<scene::MeshInstance>(figure);
