@@ -11,6 +11,7 @@
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/skinning.hpp"
 #include "luxel/world/sky.hpp"
+#include "luxel/world/vertex_wave.hpp"
 
 namespace luxel::sandbox {
 namespace {
@@ -71,6 +72,7 @@ SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const Shade
     // its light until the budget caught up (issue 28).
     world::update_animations(registry_, 0.0);
     world::update_light_switches(registry_, 0.0);
+    world::update_waves(registry_, 0.0);
     world::update_sky(registry_);
     update_bounces(registry_, 0.0);
     transforms_.update();
@@ -112,6 +114,7 @@ SandboxApp::FrameResult SandboxApp::frame(double time, double dt,
     if (!frozen) {
         world::update_animations(registry_, dt);
         world::update_light_switches(registry_, dt);
+        world::update_waves(registry_, dt);  // water moves its vertices
         update_bounces(registry_, time);
         world::update_sky(registry_);  // a daylight sky turns with its sun
     }

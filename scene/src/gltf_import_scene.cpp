@@ -276,6 +276,40 @@ std::optional<bool> flag(const ImportContext& context, const nlohmann::json& lux
                  found->dump());
 }
 
+/// The ranges of extras.luxel.wave (world/vertex_wave.hpp) beyond its types: a wave the vertex
+/// system could not draw is a mistake in the file, named here rather than shown as a flat or
+/// torn surface. Called after the types are checked.
+void check_wave(const ImportContext& context, const nlohmann::json& wave,
+                const std::string& where) {
+    const std::string name = where + ": extras.luxel.wave";
+    const auto number = [&](const char* key, double fallback) {
+        const auto found = wave.find(key);
+        return found != wave.end() ? found->get<double>() : fallback;
+    };
+    // Defaults as WaveParameters': 2 cm, 0.5 m.
+    const double wavelength = number("wavelength", 0.5);
+    const double amplitude = number("amplitude", 0.02);
+    if (!(wavelength > 0.0) || wavelength > 1e4) {
+        context.fail(name + ".wavelength must be more than 0 and at most 10 km, got " +
+                     std::to_string(wavelength));
+    }
+    // Higher than its length the surface folds over itself: not water.
+    if (!(amplitude >= 0.0) || amplitude > wavelength) {
+        context.fail(name + ".amplitude must be from 0 to the wavelength (" +
+                     std::to_string(wavelength) + " m), got " + std::to_string(amplitude));
+    }
+    if (const auto direction = wave.find("direction"); direction != wave.end()) {
+        if (!direction->is_array() || direction->size() != 2 || !(*direction)[0].is_number() ||
+            !(*direction)[1].is_number() || !std::isfinite((*direction)[0].get<double>()) ||
+            !std::isfinite((*direction)[1].get<double>())) {
+            context.fail(name + ".direction must be two numbers [x, z]");
+        }
+        if (std::hypot((*direction)[0].get<double>(), (*direction)[1].get<double>()) < 1e-6) {
+            context.fail(name + ".direction must not be [0, 0]: the wave needs a way to travel");
+        }
+    }
+}
+
 void check_extras_types(const ImportContext& context, const nlohmann::json& luxel,
                         const std::string& where) {
     struct Shape {
@@ -304,12 +338,8 @@ void check_extras_types(const ImportContext& context, const nlohmann::json& luxe
             }
         }
     }
-    if (const auto wave = luxel.find("wave"); wave != luxel.end() && wave->contains("direction")) {
-        const nlohmann::json& direction = wave->at("direction");
-        if (!direction.is_array() || direction.size() != 2 || !direction[0].is_number() ||
-            !direction[1].is_number()) {
-            context.fail(where + ": extras.luxel.wave.direction must be two numbers [x, z]");
-        }
+    if (const auto wave = luxel.find("wave"); wave != luxel.end()) {
+        check_wave(context, *wave, where);
     }
     for (const char* key : {"portal", "furnace"}) {
         (void)flag(context, luxel, key, where);

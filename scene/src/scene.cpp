@@ -415,7 +415,10 @@ bool Scene::is_dynamic(int node) const {
     if (!in_range(node, nodes.size())) {
         return false;
     }
-    if (nodes[static_cast<std::size_t>(node)].skin >= 0) {
+    // A skin or a wave (extras.luxel.wave) deforms the mesh every frame, whatever the flag says.
+    if (nodes[static_cast<std::size_t>(node)].skin >= 0 ||
+        (nodes[static_cast<std::size_t>(node)].mesh >= 0 &&
+         nodes[static_cast<std::size_t>(node)].flags.raw.contains("wave"))) {
         return true;
     }
     if (nodes[static_cast<std::size_t>(node)].flags.dynamic) {

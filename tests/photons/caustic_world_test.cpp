@@ -1,7 +1,11 @@
 // Caustics fed by the ECS: lists per (generator, light), what invalidates them, the slice
 // schedule under movement, no cost without generators, and thread-count independence.
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -11,6 +15,7 @@
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/scene_instance.hpp"
+#include "luxel/world/vertex_wave.hpp"
 
 namespace {
 
@@ -180,6 +185,101 @@ TEST(CausticWorld, TheGeneratorComponentSetsTheOptics) {
         sphere, [](lighting::CausticGenerator& g) { g.transmission = 0.0f; });
     level.photons->sync();
     EXPECT_EQ(optics_at_sphere().scattering, lighting::Scattering::Mirror);
+}
+
+/// Where the sun's light through the water lands on the pool floor (y = -0.4 m, x in [-1, 1],
+/// z in [0.5, 2.5]), folded onto one wavelength: the share of its caustic photons' power at
+/// each phase of u = d . (x, z) / wavelength, in 20 bins. A travelling wave's caustic is a
+/// travelling pattern of bright lines; folding it onto the wave's phase gathers every line's
+/// photons into one profile, so photon noise hardly shows.
+std::vector<double> pool_floor_profile(const CausticLevel& level, ecs::Entity water,
+                                       ecs::Entity sun, const world::WaveParameters& wave) {
+    constexpr int kBins = 20;
+    std::vector<double> bins(kBins, 0.0);
+    double total = 0.0;
+    for (const lighting::CausticPair& pair : level.photons->caustics()) {
+        if (pair.generator != water || pair.light != sun) {
+            continue;
+        }
+        for (std::uint32_t k = 0; k < pair.photons.slice_count(); ++k) {
+            for (const lighting::CausticPhoton& photon : pair.photons.slice(k)) {
+                // The pool's floor, away from its walls' shadows and reflections.
+                if (std::abs(photon.position.y + 0.4f) > 0.01f ||
+                    std::abs(photon.position.x) > 0.8f ||
+                    std::abs(photon.position.z - 1.5f) > 0.8f) {
+                    continue;
+                }
+                const double u =
+                    (wave.direction.x * photon.position.x + wave.direction.y * photon.position.z) /
+                    wave.wavelength;
+                const double phase = u - std::floor(u);
+                const int bin = std::min(static_cast<int>(phase * kBins), kBins - 1);
+                const double power = photon.power.x + photon.power.y + photon.power.z;
+                bins[static_cast<std::size_t>(bin)] += power;
+                total += power;
+            }
+        }
+    }
+    for (double& bin : bins) {
+        bin = total > 0.0 ? bin / total : 0.0;
+    }
+    return bins;
+}
+
+/// Half the L1 distance between two profiles of shares, the second turned by `shift` bins:
+/// 0 the same, 1 nowhere alike.
+double profile_change(const std::vector<double>& a, const std::vector<double>& b, int shift = 0) {
+    const auto n = static_cast<int>(a.size());
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i) {
+        sum += std::abs(a[static_cast<std::size_t>(i)] -
+                        b[static_cast<std::size_t>(((i - shift) % n + n) % n)]);
+    }
+    return 0.5 * sum;
+}
+
+TEST(CausticWorld, TheCausticThroughMovingWaterFollowsTheWave) {
+    CausticLevel level("caustics", 2, 20'000);
+    const ecs::Entity water = level.instance.find("water surface");
+    const ecs::Entity sun = level.instance.find("sun");
+    ASSERT_NE(water, ecs::null_entity);
+    ASSERT_NE(sun, ecs::null_entity);
+    ASSERT_TRUE(level.registry.has<world::VertexWave>(water));
+    const world::WaveParameters wave = level.registry.get<world::VertexWave>(water).wave;
+    const double period = wave.wavelength / wave.speed;
+    std::uint64_t frame = 0;
+    // The wave steps by `dt`, then the lists are retraced in full (K slices, K frames).
+    const auto profile_after = [&](double dt) {
+        if (dt > 0.0) {
+            EXPECT_EQ(world::update_waves(level.registry, dt), 1u);
+        }
+        for (int k = 0; k < 8; ++k) {
+            level.frame(frame++);
+        }
+        EXPECT_FALSE(level.photons->caustics_pending());
+        return pool_floor_profile(level, water, sun, wave);
+    };
+    const std::vector<double> start = profile_after(0.0);
+    // The crests focus the sun into bright lines: the profile is far from flat.
+    const double brightest = *std::max_element(start.begin(), start.end());
+    const double darkest = *std::min_element(start.begin(), start.end());
+    // A quarter period later the crests have moved a quarter wavelength along the wave, and
+    // the lines with them: five of the twenty bins.
+    const std::vector<double> quarter = profile_after(period / 4.0);
+    // Back at the start of the next period: the same shape, the same caustic.
+    const std::vector<double> again = profile_after(3.0 * period / 4.0);
+    const double moved = profile_change(quarter, start);
+    const double followed = profile_change(quarter, start, 5);
+    const double returned = profile_change(again, start);
+    std::printf(
+        "pool floor caustic over one wavelength: brightest/darkest bin %.2f; a quarter "
+        "period later %.3f of its power moved, %.3f against the start moved a quarter "
+        "wavelength; %.4f after a whole period\n",
+        brightest / darkest, moved, followed, returned);
+    EXPECT_GT(brightest, 1.5 * darkest);
+    EXPECT_GT(moved, 3.0 * followed);
+    EXPECT_LT(followed, 0.05);
+    EXPECT_LT(returned, 0.01);
 }
 
 TEST(CausticWorld, OneAndTwoThreadsStoreIdenticalCausticPhotons) {

@@ -18,6 +18,7 @@
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/skinning.hpp"
 #include "luxel/world/sky.hpp"
+#include "luxel/world/vertex_wave.hpp"
 
 namespace luxel::bench {
 namespace {
@@ -104,6 +105,7 @@ world::SceneInstance posed_instance(ecs::Registry& registry,
     world::SceneInstance instance = world::instantiate(registry, source, instantiate_options);
     world::update_animations(registry, time);
     world::update_light_switches(registry, time);
+    world::update_waves(registry, time);
     world::update_sky(registry);
     return instance;
 }
@@ -430,6 +432,7 @@ void ConfigRun::animated_phase() {
     for (std::uint32_t f = 1; f <= options_.animate; ++f) {
         world::update_animations(registry_, options_.dt);
         world::update_light_switches(registry_, options_.dt);
+        world::update_waves(registry_, options_.dt);
         world::update_sky(registry_);
         frame(config.budget_ms);
         if (f % options_.checkpoint != 0 && f != options_.animate) {

@@ -16,6 +16,7 @@
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/skinning.hpp"
 #include "luxel/world/sky.hpp"
+#include "luxel/world/vertex_wave.hpp"
 
 namespace luxel::ref {
 
@@ -77,6 +78,7 @@ std::unique_ptr<LoadedLevel> load_level(const std::filesystem::path& file, doubl
     // Every animation and light switch at `time` (a zero step still poses time 0).
     world::update_animations(level->registry, time);
     world::update_light_switches(level->registry, time);
+    world::update_waves(level->registry, time);
     world::update_sky(level->registry);
     ecs::TransformSystem transforms(level->registry);
     transforms.update();

@@ -14,6 +14,7 @@
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/skinning.hpp"
 #include "luxel/world/sky.hpp"
+#include "luxel/world/vertex_wave.hpp"
 
 namespace luxel::world {
 namespace {
@@ -83,8 +84,17 @@ bool is_emissive(const scene::Scene& source, const scene::Mesh& mesh) {
 
 void add_mesh(ecs::Registry& registry, ecs::Entity entity,
               const std::shared_ptr<const scene::Scene>& source, const scene::Node& node) {
-    registry.emplace<scene::MeshInstance>(entity, source, node.mesh);
     const scene::Mesh& mesh = source->meshes.at(static_cast<std::size_t>(node.mesh));
+    if (const std::optional<WaveParameters> wave = read_wave(node.flags.raw)) {
+        // Shaped at time 0 from the start, so the first frame and the warm-up see the wave's
+        // starting shape, and the ray scene makes it an object whose later shapes refit in place.
+        registry.emplace<scene::MeshInstance>(
+            entity, source, node.mesh,
+            std::make_shared<const scene::Mesh>(waved_mesh(mesh, *wave, 0.0)));
+        registry.emplace<VertexWave>(entity, VertexWave{source, node.mesh, *wave, 0.0, true, 0.0});
+    } else {
+        registry.emplace<scene::MeshInstance>(entity, source, node.mesh);
+    }
     const scene::Material* specular = nullptr;
     for (const auto& primitive : mesh.primitives) {
         if (primitive.material < 0) {

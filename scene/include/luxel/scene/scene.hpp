@@ -166,7 +166,8 @@ struct Scene {
     /// True when the node has an explicit dynamic flag set, or (without one) when an animation
     /// targets it or one of its ancestors, or an ancestor is flagged dynamic (whatever moves
     /// an ancestor moves the node). A node with a skin is always dynamic: its mesh deforms
-    /// with its joints, so it gets no light map whatever its flag says.
+    /// with its joints, so it gets no light map whatever its flag says. So is a mesh node with
+    /// extras.luxel.wave: its vertices move every frame (world/vertex_wave.hpp).
     [[nodiscard]] bool is_dynamic(int node) const;
     [[nodiscard]] std::size_t triangle_count() const;
     /// Checks every index and size invariant stated in this header; throws luxel::Error

@@ -38,7 +38,9 @@ struct InstantiateOptions {
 /// - a glTF light: PointLight / SpotLight / DirectionalLight in watts (light.hpp converts),
 ///   enabled unless extras.luxel.enabled is false; a `switch` object adds a LightSwitch;
 /// - a camera: CameraComponent;
-/// - Dynamic when scene.is_dynamic(node);
+/// - a mesh with extras.luxel.wave: VertexWave, and its MeshInstance shaped by the wave at
+///   time 0 (world/vertex_wave.hpp; update_waves moves it);
+/// - Dynamic when scene.is_dynamic(node) (a waved mesh is);
 /// - a mesh with a skin: not on the node's entity but on an entity of its own, with an identity
 ///   Transform and no parent (glTF places a skinned mesh by its joints alone): SkinnedMesh,
 ///   MeshInstance in the rest pose, Dynamic, Name and SceneNode as the node's; AreaLight when
