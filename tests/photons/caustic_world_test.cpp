@@ -28,8 +28,11 @@ struct CausticLevel {
     std::unique_ptr<lighting::PhotonWorld> photons;
     JobSystem jobs;
 
+    /// `refinement_photons` 0 (the default here): no progressive generations, so the slice
+    /// schedule alone is seen.
     explicit CausticLevel(const std::string& name, int threads = 2,
-                          std::uint32_t photons_per_pair = 2'000)
+                          std::uint32_t photons_per_pair = 2'000,
+                          std::uint32_t refinement_photons = 0)
         : jobs(threads) {
         world::InstantiateOptions options;
         options.play_animations = false;
@@ -41,6 +44,7 @@ struct CausticLevel {
         transforms.update();
         lighting::PhotonWorldSettings settings;
         settings.caustics.photons_per_pair = photons_per_pair;
+        settings.caustics.refinement_photons = refinement_photons;
         photons = std::make_unique<lighting::PhotonWorld>(registry, settings);
         photons->sync();
     }
@@ -280,6 +284,114 @@ TEST(CausticWorld, TheCausticThroughMovingWaterFollowsTheWave) {
     EXPECT_GT(moved, 3.0 * followed);
     EXPECT_LT(followed, 0.05);
     EXPECT_LT(returned, 0.01);
+}
+
+/// The glass sphere's caustic on cornell's floor (y within its 1.5 cm bumps of 0, x and z in [-1,
+/// 1]): irradiance in 24 x 24 cells, watts per square metre per channel summed.
+std::vector<double> floor_irradiance(const lighting::CausticPhotonList& list) {
+    constexpr int kCells = 24;
+    constexpr double kCellArea = (2.0 / kCells) * (2.0 / kCells);
+    std::vector<double> cells(kCells * kCells, 0.0);
+    for (std::uint32_t k = 0; k < list.slice_count(); ++k) {
+        for (const lighting::CausticPhoton& photon : list.slice(k)) {
+            if (std::abs(photon.position.y) > 0.03f || std::abs(photon.position.x) >= 1.0f ||
+                std::abs(photon.position.z) >= 1.0f) {
+                continue;
+            }
+            const auto x = static_cast<int>((photon.position.x + 1.0f) / 2.0f * kCells);
+            const auto z = static_cast<int>((photon.position.z + 1.0f) / 2.0f * kCells);
+            cells[static_cast<std::size_t>(z * kCells + x)] +=
+                (photon.power.x + photon.power.y + photon.power.z) / kCellArea;
+        }
+    }
+    return cells;
+}
+
+/// relRMSE of `estimate` against `reference` over the cells the reference lights.
+double relative_rmse(const std::vector<double>& estimate, const std::vector<double>& reference) {
+    double error = 0.0;
+    double norm = 0.0;
+    for (std::size_t i = 0; i < reference.size(); ++i) {
+        error += (estimate[i] - reference[i]) * (estimate[i] - reference[i]);
+        norm += reference[i] * reference[i];
+    }
+    return norm > 0.0 ? std::sqrt(error / norm) : 0.0;
+}
+
+TEST(CausticWorld, AStillCausticRefinesGenerationByGenerationAndItsNoiseFalls) {
+    // 2,000 photons a generation, refinement room for 7 more generations.
+    CausticLevel level("cornell", 2, 2'000, 14'000);
+    ASSERT_EQ(level.photons->caustics().size(), 1u);
+    const lighting::CausticPhotonList& list = level.only_list();
+    EXPECT_EQ(list.generation_limit(), 8u);
+    std::uint64_t frame = 0;
+    for (; frame < 8; ++frame) {
+        const auto stats = level.frame(frame);
+        EXPECT_EQ(stats.slices_retraced, 1u);
+        EXPECT_EQ(stats.slices_refined, 0u);
+    }
+    ASSERT_FALSE(list.needs_retrace());
+    EXPECT_EQ(list.generations(), 1u);
+    const std::vector<double> first = floor_irradiance(list);
+    const glm::dvec3 first_power = list.stored_power();
+    // Still: one refinement slice a frame; a generation counts once its K slices are in.
+    for (; frame < 8 + 7 * 8; ++frame) {
+        const auto stats = level.frame(frame);
+        EXPECT_EQ(stats.slices_retraced, 0u);
+        EXPECT_EQ(stats.slices_refined, 1u);
+        EXPECT_EQ(list.generations(), 1u + (frame - 8 + 1) / 8) << "frame " << frame;
+    }
+    EXPECT_EQ(list.generations(), 8u);
+    EXPECT_EQ(list.slice_count(), 64u);
+    EXPECT_EQ(level.frame(frame++).trace.photons, 0u) << "at its limit the list rests";
+    // The eight generations carry the pair's power once, not eight times.
+    const glm::dvec3 refined_power = list.stored_power();
+    EXPECT_NEAR(refined_power.x / first_power.x, 1.0, 0.05);
+    // Against 64,000 photons: the same Halton sequence, so both estimates are subsets of the
+    // reference's points; the error of n of its N photons is the noise of n times
+    // sqrt(1 - n / N), and 16,000 photons should show about 0.31 of 2,000's error.
+    CausticLevel reference("cornell", 2, 64'000);
+    for (std::uint64_t f = 0; f < 8; ++f) {
+        reference.frame(f);
+    }
+    const std::vector<double> truth = floor_irradiance(reference.only_list());
+    const double before = relative_rmse(first, truth);
+    const double after = relative_rmse(floor_irradiance(list), truth);
+    std::printf(
+        "cornell floor caustic, relRMSE against 64k photons: %.1f%% with 2k, %.1f%% "
+        "with 8 generations of 2k\n",
+        100.0 * before, 100.0 * after);
+    EXPECT_LT(after, 0.55 * before);
+
+    // A change drops the generations at once, the first generation keeping its power.
+    const ecs::Entity cube = level.instance.find("moving cube");
+    ASSERT_NE(cube, ecs::null_entity);
+    level.registry.patch<ecs::Transform>(cube, [](ecs::Transform& t) { t.translation.x += 0.05f; });
+    level.transforms.update();
+    level.photons->sync();
+    EXPECT_EQ(list.generations(), 1u);
+    EXPECT_EQ(list.slice_count(), 8u);
+    EXPECT_TRUE(list.needs_retrace());
+    EXPECT_NEAR(list.stored_power().x / first_power.x, 1.0, 0.05);
+    EXPECT_EQ(level.frame(frame++).slices_refined, 0u) << "retraces come first";
+}
+
+TEST(CausticWorld, RefinementPhotonsAreSharedByPower) {
+    CausticLevel level("caustics", 2, 1'000, 40'000);
+    ASSERT_EQ(level.photons->caustics().size(), 9u);
+    double total_power = 0.0;
+    std::uint32_t extra = 0;
+    for (const lighting::CausticPair& pair : level.photons->caustics()) {
+        total_power += pair.photons.emitter().nominal_power();
+        extra += (pair.photons.generation_limit() - 1) * 1'000;
+    }
+    EXPECT_LE(extra, 40'000u);
+    EXPECT_GT(extra, 40'000u - 9u * 1'000u) << "only rounding down is left over";
+    for (const lighting::CausticPair& pair : level.photons->caustics()) {
+        const double share = pair.photons.emitter().nominal_power() / total_power;
+        const double expected = 1.0 + std::floor(share * 40.0);
+        EXPECT_EQ(pair.photons.generation_limit(), static_cast<std::uint32_t>(expected));
+    }
 }
 
 TEST(CausticWorld, OneAndTwoThreadsStoreIdenticalCausticPhotons) {

@@ -24,6 +24,7 @@ lighting::LightingConfig BenchConfig::lighting() const {
     config.photons.selective.per_group = per_group;
     config.photons.caustics.photons_per_pair = caustic_photons;
     config.photons.caustics.slices = caustic_slices;
+    config.photons.caustics.refinement_photons = caustic_refine;
     config.maps.density.nearest = aim_n;
     config.gather.rays_per_texel = rays;
     config.texels_per_gather_unit = texels_per_unit;
@@ -77,6 +78,9 @@ std::string BenchConfig::knobs() const {
     if (sky_edges != "on") {
         out << " sky_edges=" << sky_edges;
     }
+    if (caustic_refine != lighting::CausticSettings{}.refinement_photons) {
+        out << " caustic_refine=" << caustic_refine;
+    }
     return out.str();
 }
 
@@ -110,6 +114,8 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.filter = whole(value);
             } else if (sweep.knob == "refine") {
                 c.refine = whole(value);
+            } else if (sweep.knob == "caustic_refine") {
+                c.caustic_refine = whole(value);
             } else if (sweep.knob == "local") {
                 c.local = whole(value);
             } else if (sweep.knob == "exact") {

@@ -53,6 +53,9 @@ struct BenchConfig {
     double keep = lighting::IlluminationSettings{}.change_test_sigmas;
     std::uint32_t caustic_photons = 10'000;  ///< per (generator, light) pair; the paper's
     std::uint32_t caustic_slices = 8;        ///< ... over 8 frames
+    /// Photons all progressive caustic generations may hold together
+    /// (CausticSettings::refinement_photons; 0: none, the paper's caustics).
+    std::uint32_t caustic_refine = lighting::CausticSettings{}.refinement_photons;
     /// The final-gather backend: "cpu" (Embree rays, `rays` per texel) or the hemi-plane
     /// (HemiPlaneGatherer, in the bench's GL context; `rays` does not apply): "gpu" as luxel
     /// runs it (turned each pass, the band it misses and the light behind mirrors and glass

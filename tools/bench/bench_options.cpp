@@ -94,6 +94,12 @@ Sweep parse_sweep(const std::string& text) {
             if (v < 0.0 || v > 16.0 || v != std::floor(v)) {
                 throw Error(what + ": '" + value + "' is not a whole number of texels in 0..16");
             }
+        } else if (sweep.knob == "caustic_refine") {
+            const double v = number(value, what);
+            if (v < 0.0 || v > 1e8 || v != std::floor(v)) {
+                throw Error(what + ": '" + value +
+                            "' is not a whole number of photons in 0..100,000,000");
+            }
         } else if (sweep.knob == "refine") {
             const double v = number(value, what);
             if (v < 1.0 || v > 1024.0 || v != std::floor(v)) {

@@ -116,6 +116,10 @@ void CausticLists::sync(const PhotonGeometry& geometry, const LightGroups& light
     const std::vector<std::uint8_t> fresh = merge_pairs(wanted);
 
     const BoundingSphere scene_bounds = geometry.sphere();
+    // A pair gone changes the others' shares as much as one come or re-aimed.
+    const bool fresh_any = pairs_.size() != pair_count_at_share_;
+    pair_count_at_share_ = pairs_.size();
+    bool any_stale = false;
     for (std::size_t i = 0; i < pairs_.size(); ++i) {
         CausticPair& pair = pairs_[i];
         const bool stale =
@@ -127,13 +131,44 @@ void CausticLists::sync(const PhotonGeometry& geometry, const LightGroups& light
             pair.photons.set_emitter(CausticEmitter(lights.source(pair.light),
                                                     generators_.at(pair.generator).world_sphere,
                                                     scene_bounds));
+            any_stale = true;
         }
+    }
+    if (any_stale || fresh_any) {
+        share_refinement();
     }
 }
 
 bool CausticLists::pending() const {
     return std::any_of(pairs_.begin(), pairs_.end(),
                        [](const CausticPair& pair) { return pair.photons.needs_retrace(); });
+}
+
+bool CausticLists::refining() const {
+    return std::any_of(pairs_.begin(), pairs_.end(), [](const CausticPair& pair) {
+        return pair.photons.refinement_slice().has_value();
+    });
+}
+
+void CausticLists::share_refinement() {
+    // Each pair's share of the refinement photons follows the power its light sends toward
+    // its generator: the brighter caustic shows its noise more.
+    double total = 0.0;
+    for (const CausticPair& pair : pairs_) {
+        total += pair.photons.emitter().nominal_power();
+    }
+    for (CausticPair& pair : pairs_) {
+        std::uint32_t limit = 1;
+        const double power = pair.photons.emitter().nominal_power();
+        if (total > 0.0 && power > 0.0 && settings_.photons_per_pair > 0) {
+            const double photons =
+                static_cast<double>(settings_.refinement_photons) * power / total;
+            const double extra = std::floor(photons / settings_.photons_per_pair);
+            limit = static_cast<std::uint32_t>(std::min<double>(
+                1.0 + extra, std::max<std::uint32_t>(settings_.max_generations, 1)));
+        }
+        pair.photons.set_generation_limit(limit);
+    }
 }
 
 CausticFrameStats CausticLists::update(std::uint64_t frame, const PhotonGeometry& geometry,
@@ -143,14 +178,17 @@ CausticFrameStats CausticLists::update(std::uint64_t frame, const PhotonGeometry
     for (CausticPair& pair : pairs_) {
         if (const auto slice = pair.photons.slice_for_frame(frame)) {
             work.push_back({&pair.photons, *slice});
+            ++stats.slices_retraced;
+        } else if (const auto refine = pair.photons.refinement_slice()) {
+            work.push_back({&pair.photons, *refine});
+            ++stats.slices_refined;
         }
     }
     if (work.empty()) {
-        return stats;  // nothing moved: nothing is traced
+        return stats;  // nothing moved and nothing to refine: nothing is traced
     }
     stats.trace = CausticPhotonList::retrace(geometry.scene(), geometry.materials(), work,
                                              settings_.max_specular_interactions, jobs);
-    stats.slices_retraced = static_cast<std::uint32_t>(work.size());
     return stats;
 }
 

@@ -35,6 +35,8 @@ class CausticLists {
     [[nodiscard]] std::span<const CausticPair> pairs() const { return pairs_; }
     [[nodiscard]] CausticTotals totals() const;
     [[nodiscard]] bool pending() const;
+    /// Whether some list, current, may trace a further generation (progressive caustics).
+    [[nodiscard]] bool refining() const;
 
   private:
     /// A caustic generator's bounding sphere, which its caustic photons are aimed at.
@@ -44,6 +46,9 @@ class CausticLists {
         BoundingSphere world_sphere;
     };
     void update_spheres(const PhotonGeometry& geometry);
+    /// Sets every list's generation limit from CausticSettings::refinement_photons, shared in
+    /// proportion to the power each pair's light sends toward its generator.
+    void share_refinement();
     /// Rebuilds the pair vector for the pairs in `wanted` (merging, so surviving lists keep
     /// their photons); returns which pairs are new.
     std::vector<std::uint8_t> merge_pairs(
@@ -53,6 +58,7 @@ class CausticLists {
     std::map<ecs::Entity, GeneratorRecord> generators_;
     std::vector<CausticPair> pairs_;  ///< sorted by (generator, light)
     std::uint32_t next_seed_ = 1;
+    std::size_t pair_count_at_share_ = 0;
 };
 
 }  // namespace luxel::lighting

@@ -133,6 +133,7 @@ CausticPhotonList::CausticPhotonList(std::uint32_t photon_count, std::uint32_t s
                                      std::uint32_t seed)
     : photon_count_(photon_count),
       seed_(seed),
+      slices_per_generation_(slices),
       slice_stride_(slices == 0 ? 0 : (photon_count + slices - 1) / slices),
       slices_(slices),
       dirty_(slices, 1),
@@ -150,14 +151,31 @@ void CausticPhotonList::set_emitter(CausticEmitter emitter) {
 
 void CausticPhotonList::invalidate() {
     std::fill(dirty_.begin(), dirty_.end(), std::uint8_t{1});
-    dirty_count_ = slice_count();
+    dirty_count_ = slices_per_generation_;
+    refined_.clear();
+    refined_done_.clear();
+    refined_count_ = 0;
+    if (generations_ > 1) {
+        // Back to the first generation, whose photons carry the pair's power alone again until
+        // their retrace replaces them.
+        const auto scale = static_cast<float>(generations_);
+        slices_.resize(slices_per_generation_);
+        slice_retraces_.resize(slices_per_generation_);
+        for (std::uint32_t k = 0; k < slices_per_generation_; ++k) {
+            for (CausticPhoton& photon : slices_[k]) {
+                photon.power *= scale;
+            }
+            ++slice_retraces_[k];
+        }
+        generations_ = 1;
+    }
 }
 
 std::optional<std::uint32_t> CausticPhotonList::slice_for_frame(std::uint64_t frame) const {
     if (dirty_count_ == 0) {
         return std::nullopt;
     }
-    const std::uint32_t count = slice_count();
+    const std::uint32_t count = slices_per_generation_;
     const auto start = static_cast<std::uint32_t>(frame % count);
     for (std::uint32_t offset = 0; offset < count; ++offset) {
         const std::uint32_t slice = (start + offset) % count;
@@ -168,19 +186,50 @@ std::optional<std::uint32_t> CausticPhotonList::slice_for_frame(std::uint64_t fr
     return std::nullopt;
 }
 
+void CausticPhotonList::set_generation_limit(std::uint32_t generations) {
+    generation_limit_ = std::max<std::uint32_t>(generations, 1);
+}
+
+std::optional<std::uint32_t> CausticPhotonList::refinement_slice() const {
+    if (dirty_count_ > 0 || generations_ >= generation_limit_ || photon_count_ == 0) {
+        return std::nullopt;
+    }
+    for (std::uint32_t k = 0; k < slices_per_generation_; ++k) {
+        if (k >= refined_done_.size() || refined_done_[k] == 0) {
+            return generations_ * slices_per_generation_ + k;
+        }
+    }
+    return std::nullopt;  // not reached: a complete generation is averaged in at once
+}
+
 std::uint32_t CausticPhotonList::slice_size(std::uint32_t slice) const {
-    const std::uint32_t count = slice_count();
-    return slice < photon_count_ ? (photon_count_ - slice + count - 1) / count : 0;
+    const std::uint32_t count = slices_per_generation_;
+    const std::uint32_t k = slice % count;
+    return k < photon_count_ ? (photon_count_ - k + count - 1) / count : 0;
 }
 
 std::uint64_t CausticPhotonList::sample_index(std::uint32_t photon) const {
-    const std::uint32_t count = slice_count();
-    return 1 + static_cast<std::uint64_t>(photon % count) * slice_stride_ + photon / count;
+    const std::uint32_t count = slices_per_generation_;
+    return slice_sample_index(photon % count, photon / count);
+}
+
+std::uint64_t CausticPhotonList::slice_sample_index(std::uint32_t slice, std::uint32_t i) const {
+    return 1 + static_cast<std::uint64_t>(slice) * slice_stride_ + i;
 }
 
 void CausticPhotonList::store_slice(std::uint32_t slice,
                                     std::span<const std::optional<CausticPhoton>> traced) {
-    std::vector<CausticPhoton>& photons = slices_.at(slice);
+    const bool refinement = slice >= slice_count();
+    std::vector<CausticPhoton>* target = nullptr;
+    const std::uint32_t k = slice % slices_per_generation_;
+    if (refinement) {
+        refined_.resize(slices_per_generation_);
+        refined_done_.resize(slices_per_generation_, 0);
+        target = &refined_[k];
+    } else {
+        target = &slices_.at(slice);
+    }
+    std::vector<CausticPhoton>& photons = *target;
     // A photon stores at most one hit, so the slice's size bounds its photons: reserving it
     // once means retracing every frame never reallocates, and no growth slack is held.
     photons.clear();
@@ -190,11 +239,44 @@ void CausticPhotonList::store_slice(std::uint32_t slice,
             photons.push_back(*photon);
         }
     }
+    if (refinement) {
+        if (refined_done_[k] == 0) {
+            refined_done_[k] = 1;
+            ++refined_count_;
+        }
+        if (refined_count_ == slices_per_generation_) {
+            complete_generation();
+        }
+        return;
+    }
     if (dirty_[slice] != 0) {
         dirty_[slice] = 0;
         --dirty_count_;
     }
     ++slice_retraces_[slice];
+}
+
+void CausticPhotonList::complete_generation() {
+    const double g = generations_;
+    const auto keep = static_cast<float>(g / (g + 1.0));
+    const auto add = static_cast<float>(1.0 / (g + 1.0));
+    for (std::uint32_t s = 0; s < slice_count(); ++s) {
+        for (CausticPhoton& photon : slices_[s]) {
+            photon.power *= keep;
+        }
+        ++slice_retraces_[s];
+    }
+    for (std::vector<CausticPhoton>& photons : refined_) {
+        for (CausticPhoton& photon : photons) {
+            photon.power *= add;
+        }
+        slices_.push_back(std::move(photons));
+        slice_retraces_.push_back(1);
+    }
+    refined_.clear();
+    refined_done_.clear();
+    refined_count_ = 0;
+    ++generations_;
 }
 
 CausticTraceCounters CausticPhotonList::retrace_slice(const RayScene& scene,
@@ -214,7 +296,9 @@ CausticTraceCounters CausticPhotonList::retrace(const RayScene& scene,
     // All photons of all slices in one index space: work item w owns [first[w], first[w + 1]).
     std::vector<std::size_t> first(work.size() + 1, 0);
     for (std::size_t w = 0; w < work.size(); ++w) {
-        if (work[w].list == nullptr || work[w].slice >= work[w].list->slice_count()) {
+        // A stored slice, or one of the generation being refined.
+        if (work[w].list == nullptr ||
+            work[w].slice >= work[w].list->slice_count() + work[w].list->slices_per_generation_) {
             throw Error("CausticPhotonList::retrace: no such list or slice");
         }
         first[w + 1] = first[w] + work[w].list->slice_size(work[w].slice);
@@ -235,9 +319,8 @@ CausticTraceCounters CausticPhotonList::retrace(const RayScene& scene,
                 ++w;
             }
             const CausticPhotonList& list = *work[w].list;
-            const std::uint32_t count = list.slice_count();
-            const auto photon = static_cast<std::uint32_t>(work[w].slice + (i - first[w]) * count);
-            const std::uint64_t index = list.sample_index(photon);
+            const std::uint64_t index =
+                list.slice_sample_index(work[w].slice, static_cast<std::uint32_t>(i - first[w]));
             const std::uint32_t seed = list.seed_;
             const EmittedPhoton emitted = list.emitter_.emit(
                 {photon_sample(index, 0, seed), photon_sample(index, 1, seed)},
@@ -286,7 +369,11 @@ std::size_t CausticPhotonList::bytes_used() const {
     for (const auto& photons : slices_) {
         bytes += photons.capacity() * sizeof(CausticPhoton);
     }
-    bytes += slices_.capacity() * sizeof(std::vector<CausticPhoton>);
+    for (const auto& photons : refined_) {
+        bytes += photons.capacity() * sizeof(CausticPhoton);
+    }
+    bytes += (slices_.capacity() + refined_.capacity()) * sizeof(std::vector<CausticPhoton>);
+    bytes += refined_done_.capacity() * sizeof(std::uint8_t);
     bytes += dirty_.capacity() * sizeof(std::uint8_t);
     bytes += slice_retraces_.capacity() * sizeof(std::uint64_t);
     return bytes;

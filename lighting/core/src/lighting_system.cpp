@@ -98,9 +98,14 @@ WarmUpResult LightingSystem::warm_up(double now_seconds, double max_ms,
     // Larger units while no frame waits; back to the frame's size however the warm-up ends.
     struct UnitScale {
         std::uint32_t& scale;
-        ~UnitScale() { scale = 1; }
-    } const unit_scale{unit_scale_};
+        bool& refine;
+        ~UnitScale() {
+            scale = 1;
+            refine = true;
+        }
+    } const unit_scale{unit_scale_, refine_caustics_};
     unit_scale_ = std::max<std::uint32_t>(config_.warm_up_unit_scale, 1);
+    refine_caustics_ = false;
     const SchedulerTotals before = scheduler_.totals();
     double reported_ms = 0.0;
     const auto report = [&] {
@@ -365,8 +370,11 @@ void LightingSystem::queue_photon_units() {
     }
     queued_retrace_units_ = retrace_units;
 
-    // Caustic slices: one slice of every list that needs it, as one unit.
-    if (plan_.caustics() && photons_->caustics_pending()) {
+    // Caustic slices: one slice of every list that needs it, as one unit; while every list is
+    // current, one slice of the next generation of those still refining (progressive
+    // caustics), so a still caustic keeps getting less noisy.
+    if (plan_.caustics() &&
+        (photons_->caustics_pending() || (refine_caustics_ && photons_->caustics_refining()))) {
         scheduler_.enqueue({WorkKind::CausticSlice, 0, 1.0,
                             [this] {
                                 const CausticFrameStats done =

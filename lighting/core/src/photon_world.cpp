@@ -223,6 +223,10 @@ bool PhotonWorld::caustics_pending() const {
     return caustics_->pending();
 }
 
+bool PhotonWorld::caustics_refining() const {
+    return caustics_->refining();
+}
+
 std::size_t PhotonWorld::light_count() const {
     return lights_->size();
 }

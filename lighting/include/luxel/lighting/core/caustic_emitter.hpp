@@ -59,6 +59,13 @@ class CausticEmitter {
     [[nodiscard]] LightKind kind() const { return kind_; }
     /// The cone the photons are sampled in (point and spot lights).
     [[nodiscard]] const DirectionCone& cone() const { return cone_; }
+    /// The power the light sends toward the generator's sphere, watts summed over the
+    /// channels, before a spot's falloff and an area light's cosine (an upper bound: what
+    /// shares the refinement photons between pairs). 0 when it does not reach it.
+    [[nodiscard]] double nominal_power() const {
+        return reaches_ ? static_cast<double>(power_scale_.x) + power_scale_.y + power_scale_.z
+                        : 0.0;
+    }
 
     /// Photon of direction sample `d` (Halton bases 2, 3) and position sample `p` (bases 5, 7;
     /// area lights and directional beams), one of `photon_count`. Its power is zero when the

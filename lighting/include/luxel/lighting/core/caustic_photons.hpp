@@ -48,6 +48,16 @@ struct CausticSettings {
     /// A photon still bouncing between specular surfaces after this many interactions is
     /// dropped (counted as truncated): light trapped in glass by total internal reflection.
     std::uint32_t max_specular_interactions = 16;
+    /// Progressive caustics (luxel; METHOD 7.6): while nothing invalidates a pair's list,
+    /// further generations of photons_per_pair photons are traced, one slice a frame as the
+    /// first generation is, and averaged in when complete, so a still caustic's noise falls as
+    /// 1 / sqrt(photons); a change drops them and starts again from the first generation. This
+    /// is how many photons the refinements of all pairs may hold together, shared in proportion
+    /// to the power each light sends toward its generator (CausticEmitter::nominal_power);
+    /// 0 turns refinement off.
+    std::uint32_t refinement_photons = 320'000;
+    /// At most this many generations per pair, the first included.
+    std::uint32_t max_generations = 32;
 };
 
 /// Counters of caustic tracing.
@@ -75,17 +85,23 @@ struct CausticTraceCounters {
     std::uint64_t sample_index, std::uint32_t seed, std::uint32_t max_specular_interactions,
     CausticTraceCounters& counters);
 
-/// The caustic photons of one (generator, light) pair: photon_count photons in K slices.
+/// The caustic photons of one (generator, light) pair: photon_count photons in K slices, and
+/// up to G - 1 further generations of as many (progressive caustics).
 ///
 /// Slice k holds the photons j (0 <= j < photon_count) with j mod K = k. Photon j uses the
 /// Halton point of index 1 + k * ceil(N / K) + j / K, so each slice is a contiguous run of the
 /// Halton sequence and covers the whole emission cone on its own (with the plain index j, the
 /// base-2 digits of j mod 8 would confine each slice to one eighth of the cone's cos theta).
+/// Generation g's slice k is slice s = g K + k, and its i-th photon takes index
+/// 1 + s * ceil(N / K) + i: every generation continues the same sequence.
 ///
-/// Retracing is driven by dirty slices: invalidate() marks all K (something moved), and each
-/// frame slice_for_frame() names the slice to retrace: frame mod K if dirty, else the next dirty
-/// one. While things keep moving every slice is retraced exactly once per K frames; when
-/// nothing moves nothing is traced.
+/// Retracing is driven by dirty slices of the first generation: invalidate() marks all K
+/// (something moved) and drops the later generations, and each frame slice_for_frame() names
+/// the slice to retrace: frame mod K if dirty, else the next dirty one. While things keep
+/// moving every slice is retraced exactly once per K frames. When nothing is dirty and the list
+/// may hold more generations (set_generation_limit), refinement_slice() names the next slice of
+/// the generation being traced; it is kept aside until its K slices are done, then every
+/// stored photon's power is scaled so the G generations together carry the pair's power once.
 class CausticPhotonList {
   public:
     CausticPhotonList(std::uint32_t photon_count, std::uint32_t slices, std::uint32_t seed);
@@ -94,7 +110,8 @@ class CausticPhotonList {
     /// slice for retrace.
     void set_emitter(CausticEmitter emitter);
     [[nodiscard]] const CausticEmitter& emitter() const { return emitter_; }
-    /// Marks every slice for retrace (the receivers moved).
+    /// Marks every slice of the first generation for retrace and drops the others (the
+    /// receivers moved).
     void invalidate();
 
     [[nodiscard]] bool needs_retrace() const { return dirty_count_ > 0; }
@@ -102,13 +119,24 @@ class CausticPhotonList {
     /// The slice to retrace in `frame`, or nullopt when the list is current.
     [[nodiscard]] std::optional<std::uint32_t> slice_for_frame(std::uint64_t frame) const;
 
+    /// How many generations the list may hold, the first included (at least 1); fewer than
+    /// it holds keeps those and traces no more.
+    void set_generation_limit(std::uint32_t generations);
+    [[nodiscard]] std::uint32_t generation_limit() const { return generation_limit_; }
+    /// Complete generations stored (1 until the first refinement completes).
+    [[nodiscard]] std::uint32_t generations() const { return generations_; }
+    /// The next slice of the generation being refined (an index from slice_count() on), or
+    /// nullopt while the list needs a retrace or holds its limit.
+    [[nodiscard]] std::optional<std::uint32_t> refinement_slice() const;
+
     /// Retraces one slice in parallel and replaces its photons.
     CausticTraceCounters retrace_slice(const RayScene& scene,
                                        std::span<const TraceMaterial> materials,
                                        std::uint32_t slice, std::uint32_t max_specular_interactions,
                                        JobSystem& jobs);
 
-    /// One slice of several lists, for retracing them together.
+    /// One slice of several lists, for retracing them together: a dirty slice, or a
+    /// refinement slice.
     struct SliceWork {
         CausticPhotonList* list = nullptr;
         std::uint32_t slice = 0;
@@ -122,41 +150,60 @@ class CausticPhotonList {
                                         std::uint32_t max_specular_interactions, JobSystem& jobs);
 
     [[nodiscard]] std::uint32_t photon_count() const { return photon_count_; }
+    /// K, the slices of one generation.
+    [[nodiscard]] std::uint32_t slices_per_generation() const { return slices_per_generation_; }
+    /// The slices stored: K per complete generation.
     [[nodiscard]] std::uint32_t slice_count() const {
         return static_cast<std::uint32_t>(slices_.size());
     }
-    /// Photons of slice k: ceil((N - k) / K) of them.
+    /// Photons of slice s (any generation): ceil((N - k) / K) of them, k = s mod K.
     [[nodiscard]] std::uint32_t slice_size(std::uint32_t slice) const;
-    /// The Halton index of photon j (see the class comment).
+    /// The Halton index of photon j of the first generation (see the class comment).
     [[nodiscard]] std::uint64_t sample_index(std::uint32_t photon) const;
+    /// The Halton index of the i-th photon of slice s (any generation).
+    [[nodiscard]] std::uint64_t slice_sample_index(std::uint32_t slice, std::uint32_t i) const;
     [[nodiscard]] std::uint32_t seed() const { return seed_; }
 
-    /// The stored photons of one slice, in photon order.
+    /// The stored photons of one slice, in photon order, with their share of the pair's power
+    /// over the generations stored.
     [[nodiscard]] std::span<const CausticPhoton> slice(std::uint32_t k) const {
         return slices_.at(k);
     }
-    /// How many times slice k has been retraced: a renderer re-uploads the slices whose count
-    /// changed, and tests check the schedule with it.
+    /// How many times slice k has been written (retraced, or rescaled as a generation was
+    /// averaged in): a renderer re-uploads the slices whose count changed, and tests check the
+    /// schedule with it.
     [[nodiscard]] std::uint64_t slice_retraces(std::uint32_t k) const {
         return slice_retraces_.at(k);
     }
     [[nodiscard]] std::size_t stored_count() const;
     /// Sum of the stored photons' power per channel.
     [[nodiscard]] glm::dvec3 stored_power() const;
-    /// Bytes held: photon capacity plus the per-slice bookkeeping.
+    /// Bytes held: photon capacity (the generation being refined included) plus the per-slice
+    /// bookkeeping.
     [[nodiscard]] std::size_t bytes_used() const;
 
   private:
     void store_slice(std::uint32_t slice, std::span<const std::optional<CausticPhoton>> traced);
+    /// Averages the refined generation in: every stored photon's power times G / (G + 1), the
+    /// new ones' times 1 / (G + 1), appended as slices G K .. G K + K - 1.
+    void complete_generation();
 
     CausticEmitter emitter_;
     std::uint32_t photon_count_;
     std::uint32_t seed_;
-    std::uint32_t slice_stride_;  ///< ceil(N / K): Halton indices per slice
+    std::uint32_t slices_per_generation_;  ///< K
+    std::uint32_t slice_stride_;           ///< ceil(N / K): Halton indices per slice
     std::vector<std::vector<CausticPhoton>> slices_;
-    std::vector<std::uint8_t> dirty_;
+    std::vector<std::uint8_t> dirty_;  ///< one per slice of the first generation
     std::vector<std::uint64_t> slice_retraces_;
     std::uint32_t dirty_count_ = 0;
+    std::uint32_t generations_ = 1;
+    std::uint32_t generation_limit_ = 1;
+    /// The generation being refined: its K slices as they are traced, with the power each
+    /// photon was emitted with (the pair's power over N).
+    std::vector<std::vector<CausticPhoton>> refined_;
+    std::vector<std::uint8_t> refined_done_;
+    std::uint32_t refined_count_ = 0;
 };
 
 }  // namespace luxel::lighting

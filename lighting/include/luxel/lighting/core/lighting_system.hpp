@@ -211,6 +211,9 @@ class LightingSystem {
     std::size_t queued_gather_units_ = 0;
     /// LightingConfig::warm_up_unit_scale while warm_up runs, 1 otherwise.
     std::uint32_t unit_scale_ = 1;
+    /// Off during the warm-up: its convergence is the lists' first generation, and the frames'
+    /// budget refines a still caustic from there (progressive caustics, METHOD 7.6).
+    bool refine_caustics_ = true;
 };
 
 }  // namespace luxel::lighting

@@ -52,6 +52,7 @@ struct CausticPair {
 /// Counters of one PhotonWorld::update_caustics.
 struct CausticFrameStats {
     std::uint32_t slices_retraced = 0;  ///< one per list that needed it
+    std::uint32_t slices_refined = 0;   ///< one per current list still refining
     CausticTraceCounters trace;
 };
 
@@ -111,6 +112,9 @@ class PhotonWorld {
     [[nodiscard]] CausticTotals caustic_totals() const;
     /// Whether some caustic list has slices waiting for a retrace.
     [[nodiscard]] bool caustics_pending() const;
+    /// Whether some current caustic list may trace a further generation (progressive
+    /// caustics, CausticSettings::refinement_photons): work for a still frame's spare budget.
+    [[nodiscard]] bool caustics_refining() const;
     [[nodiscard]] const PhotonSyncStats& last_sync() const { return last_sync_; }
     /// The boxes where geometry changed in the last sync() (empty when nothing moved).
     [[nodiscard]] const std::vector<GeometryChange>& geometry_changes() const;
