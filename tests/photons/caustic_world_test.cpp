@@ -394,6 +394,66 @@ TEST(CausticWorld, RefinementPhotonsAreSharedByPower) {
     }
 }
 
+/// Every photon a caustic list holds, slice by slice.
+std::vector<lighting::CausticPhoton> all_photons(const lighting::CausticPhotonList& list) {
+    std::vector<lighting::CausticPhoton> photons;
+    for (std::uint32_t k = 0; k < list.slice_count(); ++k) {
+        photons.insert(photons.end(), list.slice(k).begin(), list.slice(k).end());
+    }
+    return photons;
+}
+
+TEST(CausticWorld, ASliceTracedInPartsIsTheSliceTracedWholeAndShowsOnlyWhenComplete) {
+    // Two generations of 2,000 photons, K = 8: slices of 250 photons.
+    CausticLevel whole("cornell", 2, 2'000, 2'000);
+    for (std::uint64_t frame = 0; frame < 16; ++frame) {
+        whole.frame(frame);
+    }
+    ASSERT_EQ(whole.only_list().generations(), 2u);
+
+    // The scheduler's way: units of 100 photons, each going on to the next slice when one is
+    // complete: 40 units for 16 slices of 250.
+    CausticLevel parts("cornell", 2, 2'000, 2'000);
+    const lighting::CausticPhotonList& list = parts.only_list();
+    EXPECT_EQ(parts.photons->caustic_photons_left(false), 250u);
+    auto stats = parts.photons->trace_caustic_unit(100, true, parts.jobs);
+    EXPECT_EQ(stats.trace.photons, 100u);
+    EXPECT_EQ(stats.slices_retraced, 0u);
+    EXPECT_EQ(list.stored_count(), 0u) << "a part of a slice is not shown";
+    EXPECT_EQ(parts.photons->caustic_photons_left(false), 150u);
+    int units = 1;
+    std::uint32_t retraced = 0;
+    std::uint32_t refined = 0;
+    while (parts.photons->caustics_pending() || parts.photons->caustics_refining()) {
+        stats = parts.photons->trace_caustic_unit(100, true, parts.jobs);
+        retraced += stats.slices_retraced;
+        refined += stats.slices_refined;
+        ++units;
+        ASSERT_LT(units, 100);
+    }
+    EXPECT_EQ(units, 40);
+    EXPECT_EQ(retraced, 8u);
+    EXPECT_EQ(refined, 8u);
+    EXPECT_EQ(list.generations(), 2u);
+    const auto a = all_photons(whole.only_list());
+    const auto b = all_photons(list);
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(lighting::CausticPhoton)), 0);
+    // Without refinement (the warm-up) a current list has no unit work.
+    EXPECT_EQ(parts.photons->trace_caustic_unit(100, false, parts.jobs).trace.photons, 0u);
+
+    // A change in the middle of a slice discards the part traced in the old scene.
+    const ecs::Entity cube = parts.instance.find("moving cube");
+    parts.registry.patch<ecs::Transform>(cube, [](ecs::Transform& t) { t.translation.x += 0.05f; });
+    parts.transforms.update();
+    parts.photons->sync();
+    parts.photons->trace_caustic_unit(100, true, parts.jobs);
+    parts.registry.patch<ecs::Transform>(cube, [](ecs::Transform& t) { t.translation.x -= 0.05f; });
+    parts.transforms.update();
+    parts.photons->sync();
+    EXPECT_EQ(parts.photons->caustic_photons_left(false), 250u) << "the part was dropped";
+}
+
 TEST(CausticWorld, OneAndTwoThreadsStoreIdenticalCausticPhotons) {
     auto run = [](int threads) {
         CausticLevel level("caustics", threads, 3'000);

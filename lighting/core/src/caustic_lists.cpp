@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace luxel::lighting {
 namespace {
@@ -190,6 +191,62 @@ CausticFrameStats CausticLists::update(std::uint64_t frame, const PhotonGeometry
     stats.trace = CausticPhotonList::retrace(geometry.scene(), geometry.materials(), work,
                                              settings_.max_specular_interactions, jobs);
     return stats;
+}
+
+CausticFrameStats CausticLists::trace_unit(const PhotonGeometry& geometry,
+                                           std::uint32_t max_photons, bool refine,
+                                           JobSystem& jobs) {
+    CausticFrameStats stats;
+    const std::size_t count = pairs_.size();
+    // A unit takes one list's slice, and the next list's once that slice is complete, until
+    // its photons are spent: 10,000 lights' lists of 16 photons each fill units of 256 as
+    // one list's slice of 1,250 photons takes five of them.
+    std::uint32_t left = std::max<std::uint32_t>(max_photons, 1);
+    while (left > 0) {
+        // Retraces before refinement: a list that needs one shows the old scene.
+        std::optional<std::size_t> chosen;
+        for (int pass = 0; pass < (refine ? 2 : 1) && !chosen; ++pass) {
+            for (std::size_t n = 0; n < count; ++n) {
+                const std::size_t i = (unit_cursor_ + n) % count;
+                const CausticPhotonList& list = pairs_[i].photons;
+                if (pass == 0 ? list.needs_retrace() : list.has_work()) {
+                    chosen = i;
+                    break;
+                }
+            }
+        }
+        if (!chosen) {
+            break;
+        }
+        CausticPhotonList& list = pairs_[*chosen].photons;
+        const bool retrace = list.needs_retrace();
+        const std::uint64_t completed = list.parts_completed();
+        const CausticTraceCounters part =
+            list.trace_part(geometry.scene(), geometry.materials(), left,
+                            settings_.max_specular_interactions, jobs);
+        stats.trace += part;
+        const bool done = list.parts_completed() != completed;
+        if (done) {
+            (retrace ? stats.slices_retraced : stats.slices_refined) += 1;
+        }
+        // A list keeps the turn until its slice is complete, so slices land as soon as they can.
+        unit_cursor_ = done ? *chosen + 1 : *chosen;
+        if (part.photons == 0 || part.photons >= left) {
+            break;
+        }
+        left -= static_cast<std::uint32_t>(part.photons);
+    }
+    return stats;
+}
+
+std::uint64_t CausticLists::photons_left(bool refine) const {
+    std::uint64_t left = 0;
+    for (const CausticPair& pair : pairs_) {
+        if (refine || pair.photons.needs_retrace()) {
+            left += pair.photons.part_photons_left();
+        }
+    }
+    return left;
 }
 
 CausticTotals CausticLists::totals() const {

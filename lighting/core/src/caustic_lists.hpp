@@ -37,6 +37,11 @@ class CausticLists {
     [[nodiscard]] bool pending() const;
     /// Whether some list, current, may trace a further generation (progressive caustics).
     [[nodiscard]] bool refining() const;
+    /// PhotonWorld::trace_caustic_unit.
+    CausticFrameStats trace_unit(const PhotonGeometry& geometry, std::uint32_t max_photons,
+                                 bool refine, JobSystem& jobs);
+    /// PhotonWorld::caustic_photons_left.
+    [[nodiscard]] std::uint64_t photons_left(bool refine) const;
 
   private:
     /// A caustic generator's bounding sphere, which its caustic photons are aimed at.
@@ -59,6 +64,7 @@ class CausticLists {
     std::vector<CausticPair> pairs_;  ///< sorted by (generator, light)
     std::uint32_t next_seed_ = 1;
     std::size_t pair_count_at_share_ = 0;
+    std::size_t unit_cursor_ = 0;  ///< the list trace_unit tries first
 };
 
 }  // namespace luxel::lighting

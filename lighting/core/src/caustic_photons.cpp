@@ -152,6 +152,8 @@ void CausticPhotonList::set_emitter(CausticEmitter emitter) {
 void CausticPhotonList::invalidate() {
     std::fill(dirty_.begin(), dirty_.end(), std::uint8_t{1});
     dirty_count_ = slices_per_generation_;
+    tracing_ = false;  // a part traced in the old scene would mix two scenes in one slice
+    staged_.clear();
     refined_.clear();
     refined_done_.clear();
     refined_count_ = 0;
@@ -219,27 +221,27 @@ std::uint64_t CausticPhotonList::slice_sample_index(std::uint32_t slice, std::ui
 
 void CausticPhotonList::store_slice(std::uint32_t slice,
                                     std::span<const std::optional<CausticPhoton>> traced) {
-    const bool refinement = slice >= slice_count();
-    std::vector<CausticPhoton>* target = nullptr;
-    const std::uint32_t k = slice % slices_per_generation_;
-    if (refinement) {
-        refined_.resize(slices_per_generation_);
-        refined_done_.resize(slices_per_generation_, 0);
-        target = &refined_[k];
-    } else {
-        target = &slices_.at(slice);
-    }
-    std::vector<CausticPhoton>& photons = *target;
-    // A photon stores at most one hit, so the slice's size bounds its photons: reserving it
-    // once means retracing every frame never reallocates, and no growth slack is held.
-    photons.clear();
+    std::vector<CausticPhoton> photons;
     photons.reserve(traced.size());
     for (const auto& photon : traced) {
         if (photon) {
             photons.push_back(*photon);
         }
     }
-    if (refinement) {
+    // A whole slice traced at once supersedes a part of it in progress.
+    if (tracing_ && tracing_slice_ == slice) {
+        tracing_ = false;
+        staged_.clear();
+    }
+    commit_slice(slice, std::move(photons));
+}
+
+void CausticPhotonList::commit_slice(std::uint32_t slice, std::vector<CausticPhoton> photons) {
+    if (slice >= slice_count()) {
+        const std::uint32_t k = slice % slices_per_generation_;
+        refined_.resize(slices_per_generation_);
+        refined_done_.resize(slices_per_generation_, 0);
+        refined_[k] = std::move(photons);
         if (refined_done_[k] == 0) {
             refined_done_[k] = 1;
             ++refined_count_;
@@ -249,11 +251,25 @@ void CausticPhotonList::store_slice(std::uint32_t slice,
         }
         return;
     }
+    slices_.at(slice) = std::move(photons);
     if (dirty_[slice] != 0) {
         dirty_[slice] = 0;
         --dirty_count_;
     }
     ++slice_retraces_[slice];
+}
+
+std::uint32_t CausticPhotonList::part_photons_left() const {
+    if (tracing_) {
+        return slice_size(tracing_slice_) - tracing_next_;
+    }
+    if (const auto slice = slice_for_frame(part_cursor_)) {
+        return slice_size(*slice);
+    }
+    if (const auto slice = refinement_slice()) {
+        return slice_size(*slice);
+    }
+    return 0;
 }
 
 void CausticPhotonList::complete_generation() {
@@ -288,6 +304,80 @@ CausticTraceCounters CausticPhotonList::retrace_slice(const RayScene& scene,
     return retrace(scene, materials, work, max_specular_interactions, jobs);
 }
 
+std::optional<CausticPhoton> CausticPhotonList::trace_photon(
+    const RayScene& scene, std::span<const TraceMaterial> materials, std::uint32_t slice,
+    std::uint32_t i, std::uint32_t max_specular_interactions,
+    CausticTraceCounters& counters) const {
+    const std::uint64_t index = slice_sample_index(slice, i);
+    const EmittedPhoton emitted = emitter_.emit(
+        {photon_sample(index, 0, seed_), photon_sample(index, 1, seed_)},
+        {photon_sample(index, 2, seed_), photon_sample(index, 3, seed_)}, photon_count_);
+    ++counters.photons;
+    if (!has_power(emitted.power)) {
+        return std::nullopt;  // outside the spot's cone or behind the area light
+    }
+    ++counters.traced;
+    return trace_caustic_photon(scene, materials, emitted, index, seed_, max_specular_interactions,
+                                counters);
+}
+
+CausticTraceCounters CausticPhotonList::trace_part(const RayScene& scene,
+                                                   std::span<const TraceMaterial> materials,
+                                                   std::uint32_t max_photons,
+                                                   std::uint32_t max_specular_interactions,
+                                                   JobSystem& jobs) {
+    CausticTraceCounters sum;
+    if (!tracing_) {
+        std::optional<std::uint32_t> slice = slice_for_frame(part_cursor_);
+        if (!slice) {
+            slice = refinement_slice();
+        }
+        if (!slice) {
+            return sum;
+        }
+        tracing_ = true;
+        tracing_slice_ = *slice;
+        tracing_next_ = 0;
+        staged_.clear();
+        staged_.reserve(slice_size(*slice));
+    }
+    const std::uint32_t size = slice_size(tracing_slice_);
+    const std::uint32_t begin = tracing_next_;
+    const std::uint32_t count = std::min(std::max<std::uint32_t>(max_photons, 1), size - begin);
+    // Traced into per-photon slots in fixed chunks and appended in photon order, so the slice
+    // does not depend on the thread count or on how it was cut into parts.
+    std::vector<std::optional<CausticPhoton>> traced(count);
+    const std::size_t chunks = (count + kPhotonsPerChunk - 1) / kPhotonsPerChunk;
+    std::vector<CausticTraceCounters> chunk_counters(chunks);
+    jobs.parallel_for(0, chunks, [&](std::size_t chunk) {
+        const std::size_t end = std::min<std::size_t>(count, (chunk + 1) * kPhotonsPerChunk);
+        for (std::size_t i = chunk * kPhotonsPerChunk; i < end; ++i) {
+            traced[i] = trace_photon(scene, materials, tracing_slice_,
+                                     begin + static_cast<std::uint32_t>(i),
+                                     max_specular_interactions, chunk_counters[chunk]);
+        }
+    });
+    for (const CausticTraceCounters& counters : chunk_counters) {
+        sum += counters;
+    }
+    for (const auto& photon : traced) {
+        if (photon) {
+            staged_.push_back(*photon);
+        }
+    }
+    tracing_next_ = begin + count;
+    if (tracing_next_ >= size) {
+        tracing_ = false;
+        if (tracing_slice_ < slices_per_generation_) {
+            part_cursor_ = tracing_slice_ + 1;  // the next dirty slice after this one
+        }
+        ++parts_completed_;
+        commit_slice(tracing_slice_, std::move(staged_));
+        staged_ = {};
+    }
+    return sum;
+}
+
 CausticTraceCounters CausticPhotonList::retrace(const RayScene& scene,
                                                 std::span<const TraceMaterial> materials,
                                                 std::span<const SliceWork> work,
@@ -318,20 +408,9 @@ CausticTraceCounters CausticPhotonList::retrace(const RayScene& scene,
             while (i >= first[w + 1]) {
                 ++w;
             }
-            const CausticPhotonList& list = *work[w].list;
-            const std::uint64_t index =
-                list.slice_sample_index(work[w].slice, static_cast<std::uint32_t>(i - first[w]));
-            const std::uint32_t seed = list.seed_;
-            const EmittedPhoton emitted = list.emitter_.emit(
-                {photon_sample(index, 0, seed), photon_sample(index, 1, seed)},
-                {photon_sample(index, 2, seed), photon_sample(index, 3, seed)}, list.photon_count_);
-            ++counters.photons;
-            if (!has_power(emitted.power)) {
-                continue;  // outside the spot's cone or behind the area light
-            }
-            ++counters.traced;
-            traced[i] = trace_caustic_photon(scene, materials, emitted, index, seed,
-                                             max_specular_interactions, counters);
+            traced[i] = work[w].list->trace_photon(scene, materials, work[w].slice,
+                                                   static_cast<std::uint32_t>(i - first[w]),
+                                                   max_specular_interactions, counters);
         }
     });
     CausticTraceCounters sum;
@@ -372,6 +451,7 @@ std::size_t CausticPhotonList::bytes_used() const {
     for (const auto& photons : refined_) {
         bytes += photons.capacity() * sizeof(CausticPhoton);
     }
+    bytes += staged_.capacity() * sizeof(CausticPhoton);
     bytes += (slices_.capacity() + refined_.capacity()) * sizeof(std::vector<CausticPhoton>);
     bytes += refined_done_.capacity() * sizeof(std::uint8_t);
     bytes += dirty_.capacity() * sizeof(std::uint8_t);

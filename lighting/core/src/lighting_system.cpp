@@ -370,21 +370,34 @@ void LightingSystem::queue_photon_units() {
     }
     queued_retrace_units_ = retrace_units;
 
-    // Caustic slices: one slice of every list that needs it, as one unit; while every list is
-    // current, one slice of the next generation of those still refining (progressive
-    // caustics), so a still caustic keeps getting less noisy.
+    // Caustic slices, traced in parts of caustic_photons_per_unit photons that fit a frame's
+    // caustic share: the lists that need a retrace first, then (not in the warm-up) the next
+    // generation of those still refining (progressive caustics, METHOD 7.6), so a still
+    // caustic keeps getting less noisy.
+    std::size_t caustic_units = 0;
+    const bool refine = refine_caustics_;
+    const std::uint32_t photons_per_unit =
+        std::max<std::uint32_t>(config_.caustic_photons_per_unit, 1) * unit_scale_;
     if (plan_.caustics() &&
-        (photons_->caustics_pending() || (refine_caustics_ && photons_->caustics_refining()))) {
-        scheduler_.enqueue({WorkKind::CausticSlice, 0, 1.0,
-                            [this] {
+        (photons_->caustics_pending() || (refine && photons_->caustics_refining()))) {
+        constexpr std::uint64_t kMaxCausticUnits = 32;  // a frame never has room for more
+        const std::uint64_t left = photons_->caustic_photons_left(refine);
+        caustic_units = static_cast<std::size_t>(
+            std::min(kMaxCausticUnits, (left + photons_per_unit - 1) / photons_per_unit));
+    }
+    for (std::size_t unit = 0; unit < caustic_units; ++unit) {
+        scheduler_.enqueue({WorkKind::CausticSlice, unit, rank_priority(unit, caustic_units),
+                            [this, photons_per_unit, refine] {
                                 const CausticFrameStats done =
-                                    photons_->update_caustics(caustic_frame_++, jobs_);
+                                    photons_->trace_caustic_unit(photons_per_unit, refine, jobs_);
                                 stats_.caustic_photons_traced += done.trace.photons;
                             },
-                            1.0});
-    } else {
-        scheduler_.cancel(WorkKind::CausticSlice, 0);
+                            static_cast<double>(photons_per_unit) / 1000.0});
     }
+    for (std::size_t unit = caustic_units; unit < queued_caustic_units_; ++unit) {
+        scheduler_.cancel(WorkKind::CausticSlice, unit);
+    }
+    queued_caustic_units_ = caustic_units;
 }
 
 void LightingSystem::queue_map_units() {

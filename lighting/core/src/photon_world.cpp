@@ -227,6 +227,15 @@ bool PhotonWorld::caustics_refining() const {
     return caustics_->refining();
 }
 
+CausticFrameStats PhotonWorld::trace_caustic_unit(std::uint32_t max_photons, bool refine,
+                                                  JobSystem& jobs) {
+    return caustics_->trace_unit(*geometry_, max_photons, refine, jobs);
+}
+
+std::uint64_t PhotonWorld::caustic_photons_left(bool refine) const {
+    return caustics_->photons_left(refine);
+}
+
 std::size_t PhotonWorld::light_count() const {
     return lights_->size();
 }

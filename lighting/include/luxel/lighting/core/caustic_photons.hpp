@@ -129,6 +129,24 @@ class CausticPhotonList {
     /// nullopt while the list needs a retrace or holds its limit.
     [[nodiscard]] std::optional<std::uint32_t> refinement_slice() const;
 
+    /// Whether trace_part has work: a slice in progress, a dirty slice or a refinement slice.
+    [[nodiscard]] bool has_work() const {
+        return tracing_ || needs_retrace() || refinement_slice().has_value();
+    }
+    /// The photons trace_part still has to trace before the list is current and at its
+    /// generation limit, at most one slice's worth (an estimate for the scheduler).
+    [[nodiscard]] std::uint32_t part_photons_left() const;
+    /// Traces up to `max_photons` photons of one slice in parallel: the slice in progress, else
+    /// the next dirty slice, else the next refinement slice. The slice's photons are staged
+    /// until all are traced, then replace it (or complete the generation being refined), so a
+    /// reader never sees half a slice; invalidate() discards a staged part. This is how the
+    /// lighting system spends a frame's caustic share in units that fit it.
+    CausticTraceCounters trace_part(const RayScene& scene, std::span<const TraceMaterial> materials,
+                                    std::uint32_t max_photons,
+                                    std::uint32_t max_specular_interactions, JobSystem& jobs);
+    /// Slices trace_part completed, first-generation and refinement ones.
+    [[nodiscard]] std::uint64_t parts_completed() const { return parts_completed_; }
+
     /// Retraces one slice in parallel and replaces its photons.
     CausticTraceCounters retrace_slice(const RayScene& scene,
                                        std::span<const TraceMaterial> materials,
@@ -184,6 +202,14 @@ class CausticPhotonList {
 
   private:
     void store_slice(std::uint32_t slice, std::span<const std::optional<CausticPhoton>> traced);
+    /// Stores a complete slice's photons: replaces a first-generation slice, or adds a slice to
+    /// the generation being refined.
+    void commit_slice(std::uint32_t slice, std::vector<CausticPhoton> photons);
+    /// Emits and traces the i-th photon of slice s.
+    [[nodiscard]] std::optional<CausticPhoton> trace_photon(
+        const RayScene& scene, std::span<const TraceMaterial> materials, std::uint32_t slice,
+        std::uint32_t i, std::uint32_t max_specular_interactions,
+        CausticTraceCounters& counters) const;
     /// Averages the refined generation in: every stored photon's power times G / (G + 1), the
     /// new ones' times 1 / (G + 1), appended as slices G K .. G K + K - 1.
     void complete_generation();
@@ -204,6 +230,13 @@ class CausticPhotonList {
     std::vector<std::vector<CausticPhoton>> refined_;
     std::vector<std::uint8_t> refined_done_;
     std::uint32_t refined_count_ = 0;
+    /// trace_part's slice in progress: its index, the photons traced so far and the next one.
+    bool tracing_ = false;
+    std::uint32_t tracing_slice_ = 0;
+    std::uint32_t tracing_next_ = 0;
+    std::vector<CausticPhoton> staged_;
+    std::uint64_t part_cursor_ = 0;  ///< first-generation slices trace_part completed
+    std::uint64_t parts_completed_ = 0;
 };
 
 }  // namespace luxel::lighting

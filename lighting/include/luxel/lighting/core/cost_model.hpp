@@ -11,7 +11,7 @@ namespace luxel::lighting {
 enum class WorkKind : std::uint8_t {
     PhotonProbe,   ///< one photon per group, round robin
     GroupRetrace,  ///< retrace of one invalidated photon group
-    CausticSlice,  ///< 1/K of a caustic photon list
+    CausticSlice,  ///< photons of one caustic slice (size = thousands of photons)
     AimRebuild,    ///< rebuild of one surface's approximated illumination map
     IimGather,     ///< a batch of IIM texel gathers (size = texels)
     ProbeGather,   ///< a pass of a few irradiance probes (size = probes)
@@ -34,7 +34,8 @@ using PerKind = std::array<T, kWorkKindCount>;
 struct CostModelSettings {
     /// Priors, in ms per unit of size, used until measurements replace them. They are guesses
     /// of the order of magnitude on a desktop CPU, not measurements: probe, retrace, caustic
-    /// slice, AIM rebuild, IIM gather (per texel batch unit), irradiance probe (per probe).
+    /// part (per 1,000 photons), AIM rebuild, IIM gather (per texel batch unit), irradiance
+    /// probe (per probe).
     PerKind<double> prior_ms = {0.05, 0.2, 0.5, 1.0, 0.05, 0.3};
     /// How many measurements the prior counts as. 0 (the default): the first measurement
     /// replaces it, since a prior is a guess and may be off by 10x on another machine or

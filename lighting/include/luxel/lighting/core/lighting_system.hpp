@@ -46,6 +46,9 @@ struct LightingConfig {
     std::uint32_t texels_per_gather_unit = 16;
     std::uint32_t texels_per_aim_unit = 128;
     std::uint32_t groups_per_retrace_unit = 2;
+    /// Caustic photons per unit: a slice is traced in parts this large (staged until the
+    /// slice is complete), so a frame spends its caustic share in units that fit it.
+    std::uint32_t caustic_photons_per_unit = 256;
     /// The irradiance probes (for receivers without a light map, when the FeaturePlan has them)
     /// and probes per unit of their passes.
     IrradianceProbeSettings probes;
@@ -204,10 +207,10 @@ class LightingSystem {
     /// cycle (M frames) after the last change, since a path may diverge at any of its photons.
     /// (Starts as "long ago": nothing has moved yet.)
     std::uint64_t frames_since_change_ = std::numeric_limits<std::uint64_t>::max() / 2;
-    std::uint64_t probe_frame_ = 0;    ///< advances only when probes run
-    std::uint64_t caustic_frame_ = 0;  ///< advances only when caustic slices run
+    std::uint64_t probe_frame_ = 0;  ///< advances only when probes run
     std::size_t queued_retrace_units_ = 0;
     std::size_t queued_aim_units_ = 0;
+    std::size_t queued_caustic_units_ = 0;
     std::size_t queued_gather_units_ = 0;
     /// LightingConfig::warm_up_unit_scale while warm_up runs, 1 otherwise.
     std::uint32_t unit_scale_ = 1;

@@ -115,6 +115,15 @@ class PhotonWorld {
     /// Whether some current caustic list may trace a further generation (progressive
     /// caustics, CausticSettings::refinement_photons): work for a still frame's spare budget.
     [[nodiscard]] bool caustics_refining() const;
+    /// One unit of caustic work for the scheduler: `max_photons` photons of the lists' slices
+    /// (CausticPhotonList::trace_part), the lists taken in turn, those that need a retrace
+    /// before (when `refine`) those still refining; a list keeps the turn until its slice is
+    /// complete, so slices land as soon as they can, and a unit goes on to the next list's
+    /// slice until its photons are spent.
+    CausticFrameStats trace_caustic_unit(std::uint32_t max_photons, bool refine, JobSystem& jobs);
+    /// The photons the lists' current slices have left (each list's slice in progress or next
+    /// one; refinement slices only when `refine`): what the caustic units are sized by.
+    [[nodiscard]] std::uint64_t caustic_photons_left(bool refine) const;
     [[nodiscard]] const PhotonSyncStats& last_sync() const { return last_sync_; }
     /// The boxes where geometry changed in the last sync() (empty when nothing moved).
     [[nodiscard]] const std::vector<GeometryChange>& geometry_changes() const;
