@@ -24,6 +24,7 @@
 #include "luxel/scene/skin.hpp"
 #include "luxel/world/scene_instance.hpp"
 #include "luxel/world/skinning.hpp"
+#include "sheet_mesh.hpp"
 
 namespace {
 
@@ -35,27 +36,13 @@ constexpr int kSide = 100;  // vertices along each side of the sheet: 10,000 in 
 /// around it; node 0 holds the mesh (skinned unless `rigid`), nodes 1-4 are the joints.
 std::shared_ptr<const scene::Scene> sheet(bool rigid) {
     auto s = std::make_shared<scene::Scene>();
-    scene::Primitive primitive;
-    for (int z = 0; z < kSide; ++z) {
-        for (int x = 0; x < kSide; ++x) {
-            const float u = static_cast<float>(x) / (kSide - 1);
-            primitive.positions.emplace_back(2.0f * u, 0.0f,
-                                             2.0f * static_cast<float>(z) / (kSide - 1));
-            primitive.normals.emplace_back(0.0f, 1.0f, 0.0f);
-            const float along = u * 3.0f;  // between joints floor(along) and the next
-            const auto first = static_cast<std::uint16_t>(std::min(2.0f, along));
-            const float w = along - static_cast<float>(first);
-            primitive.joints.emplace_back(first, first + 1, 0, 0);
-            primitive.weights.emplace_back(1.0f - w, w, 0.0f, 0.0f);
-        }
-    }
-    for (int z = 0; z + 1 < kSide; ++z) {
-        for (int x = 0; x + 1 < kSide; ++x) {
-            const auto i = static_cast<std::uint32_t>(z * kSide + x);
-            const auto side = static_cast<std::uint32_t>(kSide);
-            primitive.indices.insert(primitive.indices.end(),
-                                     {i, i + side, i + 1, i + 1, i + side, i + side + 1});
-        }
+    scene::Primitive primitive = luxel::testing::sheet_primitive(kSide, glm::vec3(0.0f), 2.0f);
+    for (const glm::vec3& p : primitive.positions) {
+        const float along = p.x / 2.0f * 3.0f;  // between joints floor(along) and the next
+        const auto first = static_cast<std::uint16_t>(std::min(2.0f, along));
+        const float w = along - static_cast<float>(first);
+        primitive.joints.emplace_back(first, first + 1, 0, 0);
+        primitive.weights.emplace_back(1.0f - w, w, 0.0f, 0.0f);
     }
     if (rigid) {
         primitive.joints.clear();

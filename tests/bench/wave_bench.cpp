@@ -19,6 +19,7 @@
 #include "luxel/scene/components.hpp"
 #include "luxel/world/scene_instance.hpp"
 #include "luxel/world/vertex_wave.hpp"
+#include "sheet_mesh.hpp"
 
 namespace {
 
@@ -30,22 +31,8 @@ constexpr int kSide = 64;  // vertices along each side: 4,096 in all, 7,938 tria
 /// (then flagged dynamic, to be moved by its transform).
 std::shared_ptr<const scene::Scene> water(bool rigid) {
     auto s = std::make_shared<scene::Scene>();
-    scene::Primitive primitive;
-    for (int z = 0; z < kSide; ++z) {
-        for (int x = 0; x < kSide; ++x) {
-            primitive.positions.emplace_back(-1.0f + 2.0f * x / (kSide - 1), 0.0f,
-                                             -1.0f + 2.0f * z / (kSide - 1));
-            primitive.normals.emplace_back(0.0f, 1.0f, 0.0f);
-        }
-    }
-    for (int z = 0; z + 1 < kSide; ++z) {
-        for (int x = 0; x + 1 < kSide; ++x) {
-            const auto i = static_cast<std::uint32_t>(z * kSide + x);
-            const auto side = static_cast<std::uint32_t>(kSide);
-            primitive.indices.insert(primitive.indices.end(),
-                                     {i, i + side, i + 1, i + 1, i + side, i + side + 1});
-        }
-    }
+    const scene::Primitive primitive =
+        luxel::testing::sheet_primitive(kSide, glm::vec3(-1.0f, 0.0f, -1.0f), 2.0f);
     s->meshes.push_back({"water", {primitive}});
     s->nodes.resize(1);
     s->nodes[0].mesh = 0;

@@ -19,6 +19,7 @@
 #include "luxel/world/mesh_shape.hpp"
 #include "luxel/world/scene_instance.hpp"
 #include "luxel/world/vertex_wave.hpp"
+#include "sheet_mesh.hpp"
 
 namespace {
 
@@ -28,23 +29,7 @@ constexpr int kSide = 17;  // vertices along each side of the test sheet
 
 /// A flat sheet in the xz plane, 2 x 2 m from (-1, -1), normals up (or `normal` if given).
 scene::Primitive sheet(glm::vec3 normal = {0.0f, 1.0f, 0.0f}) {
-    scene::Primitive primitive;
-    for (int z = 0; z < kSide; ++z) {
-        for (int x = 0; x < kSide; ++x) {
-            primitive.positions.emplace_back(-1.0f + 2.0f * x / (kSide - 1), 0.0f,
-                                             -1.0f + 2.0f * z / (kSide - 1));
-            primitive.normals.push_back(normal);
-        }
-    }
-    for (int z = 0; z + 1 < kSide; ++z) {
-        for (int x = 0; x + 1 < kSide; ++x) {
-            const auto i = static_cast<std::uint32_t>(z * kSide + x);
-            const auto side = static_cast<std::uint32_t>(kSide);
-            primitive.indices.insert(primitive.indices.end(),
-                                     {i, i + side, i + 1, i + 1, i + side, i + side + 1});
-        }
-    }
-    return primitive;
+    return luxel::testing::sheet_primitive(kSide, glm::vec3(-1.0f, 0.0f, -1.0f), 2.0f, normal);
 }
 
 /// A level of one node holding the sheet, its extras.luxel as given.
