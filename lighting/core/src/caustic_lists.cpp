@@ -117,10 +117,6 @@ void CausticLists::sync(const PhotonGeometry& geometry, const LightGroups& light
     const std::vector<std::uint8_t> fresh = merge_pairs(wanted);
 
     const BoundingSphere scene_bounds = geometry.sphere();
-    // A pair gone changes the others' shares as much as one come or re-aimed.
-    const bool fresh_any = pairs_.size() != pair_count_at_share_;
-    pair_count_at_share_ = pairs_.size();
-    bool any_stale = false;
     for (std::size_t i = 0; i < pairs_.size(); ++i) {
         CausticPair& pair = pairs_[i];
         const bool stale =
@@ -132,12 +128,10 @@ void CausticLists::sync(const PhotonGeometry& geometry, const LightGroups& light
             pair.photons.set_emitter(CausticEmitter(lights.source(pair.light),
                                                     generators_.at(pair.generator).world_sphere,
                                                     scene_bounds));
-            any_stale = true;
         }
     }
-    if (any_stale || fresh_any) {
-        share_refinement();
-    }
+    // Every sync, O(pairs): a pair come, gone or re-aimed changes every other pair's share.
+    share_refinement();
 }
 
 bool CausticLists::pending() const {

@@ -63,7 +63,6 @@ class CausticLists {
     std::map<ecs::Entity, GeneratorRecord> generators_;
     std::vector<CausticPair> pairs_;  ///< sorted by (generator, light)
     std::uint32_t next_seed_ = 1;
-    std::size_t pair_count_at_share_ = 0;
     std::size_t unit_cursor_ = 0;  ///< the list trace_unit tries first
 };
 
