@@ -18,7 +18,10 @@ if(LUXEL_SANITIZE)
     # ASan and UBSan on everything we compile; UBSan findings abort so a test cannot pass over them.
     set(_luxel_san_flags -fsanitize=address,undefined -fno-sanitize-recover=undefined
                          -fno-omit-frame-pointer)
-    target_compile_options(luxel_sanitize INTERFACE ${_luxel_san_flags})
+    # -O1 -g1 (after the build type's -O2 -g, so they win): ASan's own advice for speed, and line
+    # tables are all its stack traces need. Full debug info with the instrumentation made a test
+    # file take 44 s to compile instead of 20 s, and the sanitized build is half of CI's time.
+    target_compile_options(luxel_sanitize INTERFACE ${_luxel_san_flags} -O1 -g1)
     target_link_options(luxel_sanitize INTERFACE ${_luxel_san_flags})
     target_compile_definitions(luxel_sanitize INTERFACE LUXEL_SANITIZE=1)
     # ASan's instrumentation defeats GCC 12's flow analysis: -Wmaybe-uninitialized then fires
