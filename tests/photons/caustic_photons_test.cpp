@@ -105,6 +105,83 @@ TEST(CausticEmission, PointPhotonsCarryIntensityTimesTheConeSolidAngle) {
     EXPECT_LT(widest, cos_half + 0.02 * (1.0 - cos_half));  // and the cone is filled to its rim
 }
 
+/// The summed red power of every photon a list's emitter makes.
+double emitted_power(const CausticPhotonList& list) {
+    double total = 0.0;
+    for (const EmittedPhoton& photon : emitted_photons(list)) {
+        total += static_cast<double>(photon.power.r);
+    }
+    return total;
+}
+
+TEST(CausticEmission, OverlappingConesOfOneLightCountItsLightOnce) {
+    // A point light with a near generator A and a far one B wholly inside A's cone: the two
+    // pairs sample B's cone twice. With their siblings each sample carries half there, so the
+    // pairs together carry I * Omega_A, the light toward the union of the two cones, not
+    // I * (Omega_A + Omega_B).
+    LightSource light;
+    light.kind = LightKind::Point;
+    light.position = {0.0f, 3.0f, 0.0f};
+    light.power = glm::vec3(static_cast<float>(4.0 * kPi * 10.0));  // I = 10 W/sr
+    const BoundingSphere near_sphere{{0.0f, 2.0f, 0.0f}, 0.4f};
+    const BoundingSphere far_sphere{{0.05f, 0.0f, 0.0f}, 0.6f};
+    const auto solid_angle = [&](const BoundingSphere& sphere) {
+        const double d = glm::length(glm::dvec3(sphere.centre - light.position));
+        const double r = sphere.radius;
+        return 2.0 * kPi * (1.0 - std::sqrt(d * d - r * r) / d);
+    };
+    ASSERT_LT(solid_angle(far_sphere), solid_angle(near_sphere));
+    CausticPhotonList near_list(40'000, 8, 3);
+    CausticPhotonList far_list(40'000, 8, 5);
+    CausticEmitter near_emitter(light, near_sphere, {});
+    CausticEmitter far_emitter(light, far_sphere, {});
+    near_list.set_emitter(near_emitter);
+    far_list.set_emitter(far_emitter);
+    const double alone = emitted_power(near_list) + emitted_power(far_list);
+    EXPECT_NEAR(alone, 10.0 * (solid_angle(near_sphere) + solid_angle(far_sphere)), 1e-3 * alone)
+        << "without siblings the overlap counts twice";
+    near_emitter.set_siblings({far_sphere});
+    far_emitter.set_siblings({near_sphere});
+    near_list.set_emitter(near_emitter);
+    far_list.set_emitter(far_emitter);
+    for (const EmittedPhoton& photon : emitted_photons(far_list)) {
+        EXPECT_NEAR(photon.power.r, 0.5f * 10.0f * solid_angle(far_sphere) / 40'000.0, 1e-9)
+            << "every ray toward B also goes toward A";
+    }
+    const double shared = emitted_power(near_list) + emitted_power(far_list);
+    EXPECT_NEAR(shared, 10.0 * solid_angle(near_sphere), 0.005 * shared);
+}
+
+TEST(CausticEmission, OverlappingBeamsOfTheSunCountTheirDiscsUnionOnce) {
+    // Two spheres of radius r whose discs, seen from the sun, overlap with their centres d
+    // apart: the beams together carry E times the area of the union of the two discs.
+    LightSource sun;
+    sun.kind = LightKind::Directional;
+    sun.direction = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
+    sun.power = glm::vec3(3.0f);  // E = 3 W/m^2
+    const float r = 0.5f;
+    const glm::vec3 across = glm::normalize(glm::cross(sun.direction, glm::vec3(1, 0, 0)));
+    const BoundingSphere a{{0.0f, 0.5f, 0.0f}, r};
+    // 0.6 m across the beam and 1 m along it: the discs overlap, the spheres do not.
+    const BoundingSphere b{a.centre + 0.6f * across - 1.0f * sun.direction, r};
+    const BoundingSphere scene{{0.0f, 0.0f, 0.0f}, 5.0f};
+    CausticEmitter to_a(sun, a, scene);
+    CausticEmitter to_b(sun, b, scene);
+    to_a.set_siblings({b});
+    to_b.set_siblings({a});
+    CausticPhotonList list_a(40'000, 8, 7);
+    CausticPhotonList list_b(40'000, 8, 9);
+    list_a.set_emitter(to_a);
+    list_b.set_emitter(to_b);
+    const double d = 0.6;
+    const double rr = r;
+    const double lens =
+        2.0 * rr * rr * std::acos(d / (2.0 * rr)) - 0.5 * d * std::sqrt(4.0 * rr * rr - d * d);
+    const double union_area = 2.0 * kPi * rr * rr - lens;
+    const double total = emitted_power(list_a) + emitted_power(list_b);
+    EXPECT_NEAR(total, 3.0 * union_area, 0.005 * 3.0 * union_area);
+}
+
 TEST(CausticEmission, SlicesAreDisjointRunsOfTheSequenceThatEachCoverTheCone) {
     CausticPhotonList list(10'001, 8, 1);  // not a multiple of K on purpose
     std::set<std::uint64_t> indices;

@@ -21,6 +21,20 @@ bool has_power(const glm::vec3& power) {
     return power.r > 0.0f || power.g > 0.0f || power.b > 0.0f;
 }
 
+/// Whether the ray (whole_line: the line) through `origin` along unit `direction` meets the
+/// sphere; in double, as the cone a sibling samples is decided at its boundary.
+bool meets(const glm::vec3& origin, const glm::vec3& direction, const BoundingSphere& sphere,
+           bool whole_line) {
+    const glm::dvec3 to_centre = glm::dvec3(sphere.centre) - glm::dvec3(origin);
+    const double r2 = static_cast<double>(sphere.radius) * static_cast<double>(sphere.radius);
+    const double along = glm::dot(to_centre, glm::dvec3(direction));
+    const double distance2 = glm::dot(to_centre, to_centre);
+    if (!whole_line && distance2 <= r2) {
+        return true;  // the apex is inside: that pair samples every direction
+    }
+    return (whole_line || along > 0.0) && distance2 - along * along <= r2;
+}
+
 }  // namespace
 
 double DirectionCone::solid_angle() const {
@@ -150,8 +164,65 @@ CausticEmitter::CausticEmitter(const LightSource& light, const BoundingSphere& g
     }
 }
 
+std::uint32_t CausticEmitter::sampling_pairs(const glm::vec3& apex,
+                                             const glm::vec3& direction) const {
+    // A light at infinity samples lines (the beam starts behind the whole scene whatever the
+    // generator); a light with a position samples rays from the point it emits at.
+    const bool whole_line = kind_ == LightKind::Directional || kind_ == LightKind::Sky;
+    std::uint32_t pairs = 1;
+    for (const BoundingSphere& sibling : siblings_) {
+        if (meets(apex, direction, sibling, whole_line)) {
+            ++pairs;
+        }
+    }
+    return pairs;
+}
+
+bool CausticEmitter::may_sample(const BoundingSphere& sphere) const {
+    if (!reaches_) {
+        return false;
+    }
+    switch (kind_) {
+        case LightKind::Point:
+        case LightKind::Spot: {
+            // Two cones from one apex meet when their axes are closer than the half angles'
+            // sum; an apex inside either sphere sees it in every direction.
+            const DirectionCone other = cone_toward(origin_, sphere);
+            if (other.cos_half_angle <= -1.0 || cone_.cos_half_angle <= -1.0) {
+                return true;
+            }
+            const double between = std::acos(std::clamp(
+                static_cast<double>(glm::dot(glm::normalize(other.axis), cone_.axis)), -1.0, 1.0));
+            return between <= half_angle(cone_) + half_angle(other) + 1e-6;
+        }
+        case LightKind::Directional: {
+            // Parallel lines: the two discs across the beam overlap.
+            const glm::dvec3 offset = glm::dvec3(sphere.centre) - glm::dvec3(beam_centre_);
+            const glm::dvec3 along = glm::dvec3(beam_direction_);
+            const glm::dvec3 across = offset - glm::dot(offset, along) * along;
+            const double reach =
+                static_cast<double>(beam_radius_) + static_cast<double>(sphere.radius);
+            return glm::dot(across, across) <= reach * reach * (1.0 + 1e-6);
+        }
+        case LightKind::Area:
+        case LightKind::Sky:
+            return true;
+    }
+    return true;
+}
+
 EmittedPhoton CausticEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
                                    std::uint64_t photon_count) const {
+    glm::vec3 apex(0.0f);
+    EmittedPhoton photon = emit_alone(d, p, photon_count, apex);
+    if (!siblings_.empty() && has_power(photon.power)) {
+        photon.power /= static_cast<float>(sampling_pairs(apex, photon.direction));
+    }
+    return photon;
+}
+
+EmittedPhoton CausticEmitter::emit_alone(const glm::dvec2& d, const glm::dvec2& p,
+                                         std::uint64_t photon_count, glm::vec3& apex) const {
     EmittedPhoton photon;
     photon.power = glm::vec3(0.0f);
     if (!reaches_) {
@@ -161,11 +232,13 @@ EmittedPhoton CausticEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
     switch (kind_) {
         case LightKind::Point:
             photon.origin = origin_;
+            apex = origin_;
             photon.direction = direction_in_cone(cone_, d);
             photon.power = power_scale_ * static_cast<float>(share);
             break;
         case LightKind::Spot: {
             photon.origin = origin_;
+            apex = origin_;
             photon.direction = direction_in_cone(cone_, d);
             const float falloff =
                 spot_falloff(cos_outer_, cos_inner_, glm::dot(photon.direction, spot_axis_));
@@ -181,6 +254,7 @@ EmittedPhoton CausticEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
             photon.origin = beam_centre_ + static_cast<float>(r * std::cos(phi)) * tangent +
                             static_cast<float>(r * std::sin(phi)) * bitangent;
             photon.direction = beam_direction_;
+            apex = photon.origin;
             photon.power = power_scale_ * static_cast<float>(share);
             break;
         }
@@ -193,6 +267,7 @@ EmittedPhoton CausticEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
             const DirectionCone toward = cone_toward(point, generator_);
             photon.direction = direction_in_cone(toward, d);
             photon.origin = offset_ray_origin(point, normal);
+            apex = point;  // the cones are drawn from the point itself, before the offset
             const float cosine = glm::dot(normal, photon.direction);
             if (cosine > 0.0f && pieces_ != nullptr) {
                 // L cos / (density x cone pdf x N), the cone's pdf 1 / solid angle.
@@ -225,6 +300,7 @@ EmittedPhoton CausticEmitter::emit(const glm::dvec2& d, const glm::dvec2& p,
                             static_cast<float>(r * std::cos(phi)) * tangent +
                             static_cast<float>(r * std::sin(phi)) * bitangent;
             photon.direction = travel;
+            apex = photon.origin;
             // L pi r^2 / (pdf N) through the generator's disc.
             const double disc =
                 kPi * static_cast<double>(beam_radius_) * static_cast<double>(beam_radius_);

@@ -50,13 +50,17 @@ void CausticLists::update_spheres(const PhotonGeometry& geometry) {
         const std::optional<ObjectId> object = geometry.object(entity);
         if (!object) {
             record.object = kNoObject;  // a generator without geometry aims nothing
+            record.moved = false;
             continue;
         }
         if (record.object != *object) {
             record.object = *object;
             record.local_sphere = sphere_around(geometry.scene().mesh(*object).positions);
         }
+        const BoundingSphere before = record.world_sphere;
         record.world_sphere = transformed(record.local_sphere, geometry.scene().transform(*object));
+        record.moved = record.world_sphere.centre != before.centre ||
+                       record.world_sphere.radius != before.radius;
     }
 }
 
@@ -99,7 +103,8 @@ std::vector<std::uint8_t> CausticLists::merge_pairs(
 
 void CausticLists::sync(const PhotonGeometry& geometry, const LightGroups& lights,
                         std::span<const ecs::Entity> lights_touched,
-                        std::span<const ecs::Entity> generators_touched, bool objects_changed) {
+                        std::span<const ecs::Entity> generators_touched,
+                        std::span<const GeometryChange> changes) {
     update_spheres(geometry);
     // The pairs that should exist, in (generator, light) order as both maps iterate.
     std::vector<std::pair<ecs::Entity, ecs::Entity>> wanted;
@@ -117,21 +122,85 @@ void CausticLists::sync(const PhotonGeometry& geometry, const LightGroups& light
     const std::vector<std::uint8_t> fresh = merge_pairs(wanted);
 
     const BoundingSphere scene_bounds = geometry.sphere();
+    // The emitters as they will be, without their siblings yet: a stale pair's new one. A
+    // geometry change re-aims only the lists whose recorded paths pass where it happened
+    // (METHOD 7.2): elsewhere no photon of theirs can have changed its way.
+    std::vector<std::optional<CausticEmitter>> aimed(pairs_.size());
     for (std::size_t i = 0; i < pairs_.size(); ++i) {
-        CausticPair& pair = pairs_[i];
+        const CausticPair& pair = pairs_[i];
+        const GeneratorRecord& generator = generators_.at(pair.generator);
         const bool stale =
-            fresh[i] != 0 || objects_changed ||
+            fresh[i] != 0 || generator.moved ||
+            (!changes.empty() && pair.photons.paths_meet(changes)) ||
             std::binary_search(lights_touched.begin(), lights_touched.end(), pair.light) ||
             std::binary_search(generators_touched.begin(), generators_touched.end(),
                                pair.generator);
         if (stale) {
-            pair.photons.set_emitter(CausticEmitter(lights.source(pair.light),
-                                                    generators_.at(pair.generator).world_sphere,
-                                                    scene_bounds));
+            aimed[i] = CausticEmitter(lights.source(pair.light),
+                                      generators_.at(pair.generator).world_sphere, scene_bounds);
         }
     }
+    set_siblings(aimed, AxisBox{scene_bounds.centre - glm::vec3(scene_bounds.radius),
+                                scene_bounds.centre + glm::vec3(scene_bounds.radius)});
     // Every sync, O(pairs): a pair come, gone or re-aimed changes every other pair's share.
     share_refinement();
+}
+
+void CausticLists::set_siblings(const std::vector<std::optional<CausticEmitter>>& aimed,
+                                const AxisBox& path_region) {
+    const auto emitter = [&](std::size_t i) -> const CausticEmitter& {
+        return aimed[i] ? *aimed[i] : pairs_[i].photons.emitter();
+    };
+    // The pairs of each light, in pair order: pairs_ is sorted by generator first.
+    std::map<ecs::Entity, std::vector<std::size_t>> by_light;
+    for (std::size_t i = 0; i < pairs_.size(); ++i) {
+        by_light[pairs_[i].light].push_back(i);
+    }
+    std::vector<BoundingSphere> siblings;
+    for (const auto& [light, indices] : by_light) {
+        for (const std::size_t i : indices) {
+            siblings.clear();
+            for (const std::size_t j : indices) {
+                if (j != i && emitter(j).reaches_generator()) {
+                    siblings.push_back(generators_.at(pairs_[j].generator).world_sphere);
+                }
+            }
+            // A sibling come, gone or moved changes how this pair's photons share their power,
+            // so the pair is re-aimed (and retraced) as if it had changed itself.
+            const auto& current = emitter(i).siblings();
+            const auto same_sphere = [](const BoundingSphere& a, const BoundingSphere& b) {
+                return a.centre == b.centre && a.radius == b.radius;
+            };
+            if (!aimed[i]) {
+                // The siblings that came, went or moved: a pair none of whose rays crosses
+                // them keeps its photons' shares, and its photons.
+                bool shares_change = false;
+                const auto check = [&](const std::vector<BoundingSphere>& from,
+                                       const std::vector<BoundingSphere>& in) {
+                    for (const BoundingSphere& sphere : from) {
+                        const bool kept = std::any_of(in.begin(), in.end(), [&](const auto& s) {
+                            return same_sphere(s, sphere);
+                        });
+                        shares_change = shares_change || (!kept && emitter(i).may_sample(sphere));
+                    }
+                };
+                check(siblings, current);
+                check(current, siblings);
+                if (std::equal(siblings.begin(), siblings.end(), current.begin(), current.end(),
+                               same_sphere)) {
+                    continue;
+                }
+                if (!shares_change) {
+                    pairs_[i].photons.set_siblings_keeping_photons(siblings);
+                    continue;
+                }
+            }
+            CausticEmitter next = emitter(i);
+            next.set_siblings(siblings);
+            pairs_[i].photons.set_emitter(
+                std::move(next), aimed[i] ? path_region : pairs_[i].photons.path_cells().region());
+        }
+    }
 }
 
 bool CausticLists::pending() const {

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -14,8 +15,10 @@ namespace luxel::lighting {
 
 /// PhotonWorld's caustics (docs/METHOD.md §7): the caustic generators with the spheres their
 /// photons are aimed at, and one CausticPhotonList per (generator, enabled light) pair, ordered
-/// by (generator, light). A list is re-aimed (and so retraced) when it is new, when any geometry
-/// changed, or when its light or generator was touched.
+/// by (generator, light). A list is re-aimed (and so retraced) when it is new, when geometry
+/// changed where its photons' paths go (CausticPhotonList::paths_meet), when its light or
+/// generator was touched or moved, or when a sibling generator its rays may cross came, went or
+/// moved.
 class CausticLists {
   public:
     explicit CausticLists(const CausticSettings& settings) : settings_(settings) {}
@@ -28,7 +31,8 @@ class CausticLists {
     /// `lights_touched` and `generators_touched` are sorted.
     void sync(const PhotonGeometry& geometry, const LightGroups& lights,
               std::span<const ecs::Entity> lights_touched,
-              std::span<const ecs::Entity> generators_touched, bool objects_changed);
+              std::span<const ecs::Entity> generators_touched,
+              std::span<const GeometryChange> changes);
     /// Retraces one slice of every list that needs it, all lists together in one parallel pass.
     CausticFrameStats update(std::uint64_t frame, const PhotonGeometry& geometry, JobSystem& jobs);
 
@@ -49,11 +53,17 @@ class CausticLists {
         ObjectId object = kNoObject;  ///< the object local_sphere was computed for
         BoundingSphere local_sphere;  ///< around the object's vertices, in its mesh's frame
         BoundingSphere world_sphere;
+        bool moved = false;  ///< world_sphere changed in the last sync
     };
     void update_spheres(const PhotonGeometry& geometry);
     /// Sets every list's generation limit from CausticSettings::refinement_photons, shared in
     /// proportion to the power each pair's light sends toward its generator.
     void share_refinement();
+    /// Gives each pair's emitter the spheres of its light's other emitting pairs and sets it
+    /// on the list where it is new (`aimed`: the re-aimed emitters, none where a pair kept its
+    /// own) or where its siblings changed.
+    void set_siblings(const std::vector<std::optional<CausticEmitter>>& aimed,
+                      const AxisBox& path_region);
     /// Rebuilds the pair vector for the pairs in `wanted` (merging, so surviving lists keep
     /// their photons); returns which pairs are new.
     std::vector<std::uint8_t> merge_pairs(

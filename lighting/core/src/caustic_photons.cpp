@@ -74,12 +74,12 @@ CausticTraceCounters& CausticTraceCounters::operator+=(const CausticTraceCounter
     return *this;
 }
 
-std::optional<CausticPhoton> trace_caustic_photon(const RayScene& scene,
-                                                  std::span<const TraceMaterial> materials,
-                                                  const EmittedPhoton& photon,
-                                                  std::uint64_t sample_index, std::uint32_t seed,
-                                                  std::uint32_t max_specular_interactions,
-                                                  CausticTraceCounters& counters) {
+std::optional<CausticPhoton> trace_caustic_photon(
+    const RayScene& scene, std::span<const TraceMaterial> materials, const EmittedPhoton& photon,
+    std::uint64_t sample_index, std::uint32_t seed, std::uint32_t max_specular_interactions,
+    CausticTraceCounters& counters, PathCells* cells) {
+    // An escaped segment is recorded out to here: beyond any region a list records over.
+    constexpr float kEscape = 1e6f;
     glm::vec3 origin = photon.origin;
     glm::vec3 direction = photon.direction;
     glm::vec3 power = photon.power;
@@ -89,6 +89,9 @@ std::optional<CausticPhoton> trace_caustic_photon(const RayScene& scene,
     for (;;) {
         ++counters.segments;
         const auto hit = scene.intersect(origin, direction);
+        if (cells != nullptr) {
+            cells->add_segment(origin, hit ? hit->position : origin + kEscape * direction);
+        }
         if (!hit) {
             ++counters.escaped;
             return std::nullopt;
@@ -144,12 +147,23 @@ CausticPhotonList::CausticPhotonList(std::uint32_t photon_count, std::uint32_t s
     }
 }
 
-void CausticPhotonList::set_emitter(CausticEmitter emitter) {
+void CausticPhotonList::set_emitter(CausticEmitter emitter, const AxisBox& path_region) {
     emitter_ = std::move(emitter);
+    path_cells_ = PathCells(path_region);
     invalidate();
 }
 
+void CausticPhotonList::set_siblings_keeping_photons(std::vector<BoundingSphere> siblings) {
+    emitter_.set_siblings(std::move(siblings));
+}
+
+bool CausticPhotonList::paths_meet(std::span<const AxisBox> boxes) const {
+    return std::any_of(boxes.begin(), boxes.end(),
+                       [&](const AxisBox& box) { return path_cells_.meets(box); });
+}
+
 void CausticPhotonList::invalidate() {
+    path_cells_.clear();  // every photon that stays in use is traced again, and recorded then
     std::fill(dirty_.begin(), dirty_.end(), std::uint8_t{1});
     dirty_count_ = slices_per_generation_;
     tracing_ = false;  // a part traced in the old scene would mix two scenes in one slice
@@ -306,8 +320,8 @@ CausticTraceCounters CausticPhotonList::retrace_slice(const RayScene& scene,
 
 std::optional<CausticPhoton> CausticPhotonList::trace_photon(
     const RayScene& scene, std::span<const TraceMaterial> materials, std::uint32_t slice,
-    std::uint32_t i, std::uint32_t max_specular_interactions,
-    CausticTraceCounters& counters) const {
+    std::uint32_t i, std::uint32_t max_specular_interactions, CausticTraceCounters& counters,
+    PathCells* cells) const {
     const std::uint64_t index = slice_sample_index(slice, i);
     const EmittedPhoton emitted = emitter_.emit(
         {photon_sample(index, 0, seed_), photon_sample(index, 1, seed_)},
@@ -318,7 +332,7 @@ std::optional<CausticPhoton> CausticPhotonList::trace_photon(
     }
     ++counters.traced;
     return trace_caustic_photon(scene, materials, emitted, index, seed_, max_specular_interactions,
-                                counters);
+                                counters, cells);
 }
 
 CausticTraceCounters CausticPhotonList::trace_part(const RayScene& scene,
@@ -349,16 +363,19 @@ CausticTraceCounters CausticPhotonList::trace_part(const RayScene& scene,
     std::vector<std::optional<CausticPhoton>> traced(count);
     const std::size_t chunks = (count + kPhotonsPerChunk - 1) / kPhotonsPerChunk;
     std::vector<CausticTraceCounters> chunk_counters(chunks);
+    std::vector<PathCells> chunk_cells(chunks, PathCells(path_cells_.region()));
     jobs.parallel_for(0, chunks, [&](std::size_t chunk) {
         const std::size_t end = std::min<std::size_t>(count, (chunk + 1) * kPhotonsPerChunk);
         for (std::size_t i = chunk * kPhotonsPerChunk; i < end; ++i) {
-            traced[i] = trace_photon(scene, materials, tracing_slice_,
-                                     begin + static_cast<std::uint32_t>(i),
-                                     max_specular_interactions, chunk_counters[chunk]);
+            traced[i] = trace_photon(
+                scene, materials, tracing_slice_, begin + static_cast<std::uint32_t>(i),
+                max_specular_interactions, chunk_counters[chunk], &chunk_cells[chunk]);
         }
     });
-    for (const CausticTraceCounters& counters : chunk_counters) {
-        sum += counters;
+    for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
+        sum += chunk_counters[chunk];
+        // Recorded as traced, the staged part too: a change where it went discards it.
+        path_cells_.merge(chunk_cells[chunk]);
     }
     for (const auto& photon : traced) {
         if (photon) {
@@ -397,6 +414,8 @@ CausticTraceCounters CausticPhotonList::retrace(const RayScene& scene,
     std::vector<std::optional<CausticPhoton>> traced(total);
     const std::size_t chunks = (total + kPhotonsPerChunk - 1) / kPhotonsPerChunk;
     std::vector<CausticTraceCounters> chunk_counters(chunks);
+    // Each chunk's path cells per work item it reaches (a chunk spans one or two lists).
+    std::vector<std::vector<std::pair<std::size_t, PathCells>>> chunk_cells(chunks);
     jobs.parallel_for(0, chunks, [&](std::size_t chunk) {
         CausticTraceCounters& counters = chunk_counters[chunk];
         const std::size_t begin = chunk * kPhotonsPerChunk;
@@ -404,18 +423,25 @@ CausticTraceCounters CausticPhotonList::retrace(const RayScene& scene,
         auto w = static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), begin) -
                                           first.begin()) -
                  1;
+        auto& cells = chunk_cells[chunk];
         for (std::size_t i = begin; i < end; ++i) {
             while (i >= first[w + 1]) {
                 ++w;
             }
-            traced[i] = work[w].list->trace_photon(scene, materials, work[w].slice,
-                                                   static_cast<std::uint32_t>(i - first[w]),
-                                                   max_specular_interactions, counters);
+            if (cells.empty() || cells.back().first != w) {
+                cells.emplace_back(w, PathCells(work[w].list->path_cells_.region()));
+            }
+            traced[i] = work[w].list->trace_photon(
+                scene, materials, work[w].slice, static_cast<std::uint32_t>(i - first[w]),
+                max_specular_interactions, counters, &cells.back().second);
         }
     });
     CausticTraceCounters sum;
-    for (const CausticTraceCounters& counters : chunk_counters) {
-        sum += counters;
+    for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
+        sum += chunk_counters[chunk];
+        for (const auto& [w, cells] : chunk_cells[chunk]) {
+            work[w].list->path_cells_.merge(cells);
+        }
     }
     for (std::size_t w = 0; w < work.size(); ++w) {
         work[w].list->store_slice(

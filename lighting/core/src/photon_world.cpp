@@ -63,7 +63,7 @@ void PhotonWorld::sync() {
         lights_->refresh_directional(light_touched, geometry_->sphere());
     }
     std::sort(generators_touched.begin(), generators_touched.end());
-    caustics_->sync(*geometry_, *lights_, light_touched, generators_touched, objects_changed);
+    caustics_->sync(*geometry_, *lights_, light_touched, generators_touched, geometry_->changes());
 }
 
 /// Meshes added, removed or replaced, mirrored into the ray scene; every such entity may be an

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -67,13 +68,34 @@ class CausticEmitter {
                         : 0.0;
     }
 
+    /// The bounding spheres of the light's other generators whose pairs emit (docs/METHOD.md
+    /// §7.1): a ray that also crosses k of them is sampled by k + 1 pairs, so each of them
+    /// carries 1 / (k + 1) of its power and overlapping cones count the light there once.
+    void set_siblings(std::vector<BoundingSphere> siblings) { siblings_ = std::move(siblings); }
+    [[nodiscard]] const std::vector<BoundingSphere>& siblings() const { return siblings_; }
+    /// How many pairs of this light sample the ray: 1 + the siblings whose pair could emit it
+    /// (for a point, spot or area light, the ray from `apex` crosses the sibling's sphere or
+    /// starts inside it; for a directional light or the sky, the whole line crosses it).
+    [[nodiscard]] std::uint32_t sampling_pairs(const glm::vec3& apex,
+                                               const glm::vec3& direction) const;
+
+    /// Whether some ray this pair emits may cross `sphere` (so that its photons' shares
+    /// depend on a sibling there): the cones of a point or spot light, and the beam of a
+    /// directional one, tested exactly; area lights and the sky always may.
+    [[nodiscard]] bool may_sample(const BoundingSphere& sphere) const;
+
     /// Photon of direction sample `d` (Halton bases 2, 3) and position sample `p` (bases 5, 7;
     /// area lights and directional beams), one of `photon_count`. Its power is zero when the
-    /// sample falls where the light does not shine (outside a spot, behind an area light).
+    /// sample falls where the light does not shine (outside a spot, behind an area light), and
+    /// divided by sampling_pairs where siblings' cones overlap this pair's.
     [[nodiscard]] EmittedPhoton emit(const glm::dvec2& d, const glm::dvec2& p,
                                      std::uint64_t photon_count) const;
 
   private:
+    /// emit() before the siblings' share; `apex` is where the sampled cone starts.
+    [[nodiscard]] EmittedPhoton emit_alone(const glm::dvec2& d, const glm::dvec2& p,
+                                           std::uint64_t photon_count, glm::vec3& apex) const;
+
     LightKind kind_ = LightKind::Point;
     bool reaches_ = false;
     glm::vec3 origin_{0.0f};  ///< point / spot position
@@ -100,6 +122,7 @@ class CausticEmitter {
     std::shared_ptr<const SkyRadiance> sky_;
     float sky_scale_ = 1.0f;
     float beam_back_ = 0.0f;
+    std::vector<BoundingSphere> siblings_;
 };
 
 }  // namespace luxel::lighting

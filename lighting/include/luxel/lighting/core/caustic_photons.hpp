@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "luxel/lighting/core/caustic_emitter.hpp"
+#include "luxel/lighting/core/path_cells.hpp"
 #include "luxel/lighting/core/photon_tracer.hpp"
 #include "luxel/lighting/core/ray_scene.hpp"
 #include "luxel/runtime/jobs.hpp"
@@ -83,7 +84,7 @@ struct CausticTraceCounters {
 [[nodiscard]] std::optional<CausticPhoton> trace_caustic_photon(
     const RayScene& scene, std::span<const TraceMaterial> materials, const EmittedPhoton& photon,
     std::uint64_t sample_index, std::uint32_t seed, std::uint32_t max_specular_interactions,
-    CausticTraceCounters& counters);
+    CausticTraceCounters& counters, PathCells* cells = nullptr);
 
 /// The caustic photons of one (generator, light) pair: photon_count photons in K slices, and
 /// up to G - 1 further generations of as many (progressive caustics).
@@ -107,12 +108,22 @@ class CausticPhotonList {
     CausticPhotonList(std::uint32_t photon_count, std::uint32_t slices, std::uint32_t seed);
 
     /// Replaces the emission (the light or the generator moved or changed) and marks every
-    /// slice for retrace.
-    void set_emitter(CausticEmitter emitter);
+    /// slice for retrace. `path_region`: the box the list records its photons' paths over
+    /// (paths_meet; the scene's); empty, any change met by any path re-aims the list.
+    void set_emitter(CausticEmitter emitter, const AxisBox& path_region = {});
     [[nodiscard]] const CausticEmitter& emitter() const { return emitter_; }
+    /// Gives the emitter new siblings without a retrace: only for siblings whose spheres no
+    /// ray of this pair crosses, old or new (CausticEmitter::may_sample), so no photon's share
+    /// of the power changes.
+    void set_siblings_keeping_photons(std::vector<BoundingSphere> siblings);
     /// Marks every slice of the first generation for retrace and drops the others (the
     /// receivers moved).
     void invalidate();
+    /// Whether a path segment of a photon traced since the last invalidation (stored, dropped,
+    /// escaped, staged or refined) may meet one of `boxes` (PathCells: never false when one
+    /// does): where geometry changed, the list must be retraced; elsewhere its photons hold.
+    [[nodiscard]] bool paths_meet(std::span<const AxisBox> boxes) const;
+    [[nodiscard]] const PathCells& path_cells() const { return path_cells_; }
 
     [[nodiscard]] bool needs_retrace() const { return dirty_count_ > 0; }
     [[nodiscard]] bool slice_dirty(std::uint32_t slice) const { return dirty_.at(slice) != 0; }
@@ -208,13 +219,14 @@ class CausticPhotonList {
     /// Emits and traces the i-th photon of slice s.
     [[nodiscard]] std::optional<CausticPhoton> trace_photon(
         const RayScene& scene, std::span<const TraceMaterial> materials, std::uint32_t slice,
-        std::uint32_t i, std::uint32_t max_specular_interactions,
-        CausticTraceCounters& counters) const;
+        std::uint32_t i, std::uint32_t max_specular_interactions, CausticTraceCounters& counters,
+        PathCells* cells) const;
     /// Averages the refined generation in: every stored photon's power times G / (G + 1), the
     /// new ones' times 1 / (G + 1), appended as slices G K .. G K + K - 1.
     void complete_generation();
 
     CausticEmitter emitter_;
+    PathCells path_cells_;  ///< where the photons traced since the last invalidation went
     std::uint32_t photon_count_;
     std::uint32_t seed_;
     std::uint32_t slices_per_generation_;  ///< K
