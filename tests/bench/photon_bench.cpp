@@ -17,6 +17,9 @@
 //        wall time and of process CPU time (summed over the job threads).
 //   RadicalInverse     the photon samples' radical inverses as computed now against the sum of
 //        digit weights they replaced; counter `ratio` = the old way's time over the new's.
+//   CausticPathCells   every slice of the glass sphere's caustic list (40,000 photons) traced
+//        with its paths recorded in PathCells over the scene's box against without (no region:
+//        one flag), alternately; counter `ratio` = with / without (median), `cells` marked.
 //   ExactInvalidation  the whole level traced and stored with exact invalidation's path index
 //        against without, alternately; counters `ratio` (on / off, median), `index_bytes_per_hit`,
 //        `segments_per_hit`, `query_us` (one query for a 0.5 m box) and `groups_found`.
@@ -367,6 +370,56 @@ void ExactInvalidation(benchmark::State& state) {
     state.counters["groups_found"] = static_cast<double>(found) / kQueries;
 }
 BENCHMARK(ExactInvalidation)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// What recording a caustic list's paths costs (METHOD 7.2): the list traced whole with its
+/// PathCells over the scene's box, against the same list recording nothing but a flag.
+void CausticPathCells(benchmark::State& state) {
+    JobSystem jobs(2);
+    Level level(false);
+    if (level.photons->caustics().empty()) {
+        state.SkipWithError("cornell-13k has no caustic generator");
+        return;
+    }
+    const lighting::CausticEmitter& emitter = level.photons->caustics().front().photons.emitter();
+    const lighting::RayScene& rays = level.photons->ray_scene();
+    lighting::AxisBox region;
+    region.add(rays.bounds_min());
+    region.add(rays.bounds_max());
+    lighting::CausticPhotonList with(40'000, 8, 1);
+    lighting::CausticPhotonList without(40'000, 8, 1);
+    const auto trace = [&](lighting::CausticPhotonList& list, const lighting::AxisBox& box) {
+        list.set_emitter(emitter, box);
+        const auto start = std::chrono::steady_clock::now();
+        for (std::uint32_t k = 0; k < 8; ++k) {
+            list.retrace_slice(rays, level.photons->materials(), k, 16, jobs);
+        }
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    std::vector<double> ratios;
+    for (auto _ : state) {
+        const double base = trace(without, {});
+        const double recorded = trace(with, region);
+        ratios.push_back(base > 0.0 ? recorded / base : 0.0);
+    }
+    int cells = 0;
+    const lighting::PathCells& recorded = with.path_cells();
+    constexpr int kCells = lighting::PathCells::kCells;
+    const glm::vec3 size = (region.max - region.min) / static_cast<float>(kCells);
+    for (int z = 0; z < kCells; ++z) {
+        for (int y = 0; y < kCells; ++y) {
+            for (int x = 0; x < kCells; ++x) {
+                const glm::vec3 lo = region.min + size * glm::vec3(x, y, z) + 0.1f * size;
+                lighting::AxisBox cell;
+                cell.add(lo);
+                cell.add(lo + 0.8f * size);
+                cells += recorded.meets(cell) ? 1 : 0;
+            }
+        }
+    }
+    state.counters["ratio"] = percentile(ratios, 0.5);
+    state.counters["cells"] = cells;
+}
+BENCHMARK(CausticPathCells)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void PaperFrame(benchmark::State& state) {
     lighting::PhotonWorldSettings settings;  // 77 x 40; 10,000 caustic photons, K = 8

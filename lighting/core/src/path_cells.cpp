@@ -39,76 +39,67 @@ void PathCells::add_segment(const glm::vec3& from, const glm::vec3& to) {
         outside_ = true;
         return;
     }
-    // Clip the segment to the region (slabs), in double: a far end of an escaped path is
-    // thousands of metres away.
-    const glm::dvec3 a(from);
-    const glm::dvec3 d = glm::dvec3(to) - a;
-    double t0 = 0.0;
-    double t1 = 1.0;
+    // In cell units, where the region is [0, kCells)^3. Float suffices: an escaped path's far
+    // end (1e6 m) is clipped away before any cell is read from it. This runs for every segment
+    // of every caustic photon, so it is kept lean (luxel_photon_bench CausticPathCells).
+    const glm::vec3 g0 = (from - region_.min) / cell_size_;
+    const glm::vec3 span = (to - region_.min) / cell_size_ - g0;
+    constexpr auto kSize = static_cast<float>(kCells);
+    float t0 = 0.0f;
+    float t1 = 1.0f;
     for (int axis = 0; axis < 3; ++axis) {
-        const double lo = region_.min[axis];
-        const double hi = region_.max[axis];
-        if (std::abs(d[axis]) < 1e-300) {
-            if (a[axis] < lo || a[axis] > hi) {
+        if (span[axis] == 0.0f) {
+            if (g0[axis] < 0.0f || g0[axis] > kSize) {
                 outside_ = true;
                 return;  // parallel to the slab and outside it
             }
             continue;
         }
-        double near = (lo - a[axis]) / d[axis];
-        double far = (hi - a[axis]) / d[axis];
+        const float inverse = 1.0f / span[axis];
+        float near = -g0[axis] * inverse;
+        float far = (kSize - g0[axis]) * inverse;
         if (near > far) {
             std::swap(near, far);
         }
         t0 = std::max(t0, near);
         t1 = std::min(t1, far);
     }
-    if (t0 > 0.0 || t1 < 1.0) {
+    if (t0 > 0.0f || t1 < 1.0f) {
         outside_ = true;
     }
     if (t0 > t1) {
         return;  // wholly outside
     }
-    // Walk the cells from the clipped start to the clipped end (Amanatides and Woo), in cell
-    // units.
-    const glm::dvec3 size(cell_size_);
-    const glm::dvec3 g0 = (a + t0 * d - glm::dvec3(region_.min)) / size;
-    const glm::dvec3 g1 = (a + t1 * d - glm::dvec3(region_.min)) / size;
-    const auto cell_of = [](const glm::dvec3& g) {
+    // Walk the cells from the clipped start to the clipped end (Amanatides and Woo).
+    const glm::vec3 start = g0 + t0 * span;
+    const glm::vec3 end = g0 + t1 * span;
+    const auto cell_of = [](const glm::vec3& g) {
         return glm::clamp(glm::ivec3(glm::floor(g)), glm::ivec3(0), glm::ivec3(kCells - 1));
     };
-    glm::ivec3 cell = cell_of(g0);
-    const glm::ivec3 last = cell_of(g1);
-    const glm::dvec3 span = g1 - g0;
+    glm::ivec3 cell = cell_of(start);
+    const glm::ivec3 last = cell_of(end);
+    const glm::vec3 walk = end - start;
     glm::ivec3 step(0);
-    glm::dvec3 next(std::numeric_limits<double>::infinity());
-    glm::dvec3 delta(std::numeric_limits<double>::infinity());
+    glm::vec3 next(std::numeric_limits<float>::infinity());
+    glm::vec3 delta(std::numeric_limits<float>::infinity());
     for (int axis = 0; axis < 3; ++axis) {
-        if (span[axis] > 0.0) {
+        if (walk[axis] > 0.0f) {
             step[axis] = 1;
-            delta[axis] = 1.0 / span[axis];
-            next[axis] = (static_cast<double>(cell[axis]) + 1.0 - g0[axis]) / span[axis];
-        } else if (span[axis] < 0.0) {
+            delta[axis] = 1.0f / walk[axis];
+            next[axis] = (static_cast<float>(cell[axis]) + 1.0f - start[axis]) * delta[axis];
+        } else if (walk[axis] < 0.0f) {
             step[axis] = -1;
-            delta[axis] = -1.0 / span[axis];
-            next[axis] = (g0[axis] - static_cast<double>(cell[axis])) / -span[axis];
+            delta[axis] = -1.0f / walk[axis];
+            next[axis] = (start[axis] - static_cast<float>(cell[axis])) * delta[axis];
         }
     }
-    // At most one step per cell boundary on each axis; the bound only guards rounding.
-    for (int steps = 0; steps <= 3 * kCells; ++steps) {
+    // At most one step per cell boundary on each axis; the bound only guards rounding, and
+    // the last cell is marked whatever the rounding.
+    for (int steps = 0; steps <= 3 * kCells && cell != last; ++steps) {
         mark(cell);
-        if (cell == last) {
+        const int axis = next.x <= next.y ? (next.x <= next.z ? 0 : 2) : (next.y <= next.z ? 1 : 2);
+        if (!(next[axis] <= 1.0f + 1e-5f)) {
             break;
-        }
-        int axis = 0;
-        if (next.y < next[axis]) {
-            axis = 1;
-        }
-        if (next.z < next[axis]) {
-            axis = 2;
-        }
-        if (!(next[axis] <= 1.0 + 1e-9)) {
-            break;  // rounding left the last cell one short: it is marked below
         }
         cell[axis] += step[axis];
         if (cell[axis] < 0 || cell[axis] >= kCells) {
