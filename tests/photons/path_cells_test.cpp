@@ -1,6 +1,7 @@
 // PathCells: where a caustic list's photon paths went, coarsely. Checked against the exact
 // segment-box test of the global photons' index: a box a segment meets must always be met.
 
+#include <array>
 #include <limits>
 #include <random>
 #include <vector>
@@ -15,10 +16,8 @@ namespace {
 using namespace luxel::lighting;
 
 AxisBox box(const glm::vec3& lo, const glm::vec3& hi) {
-    AxisBox b;
-    b.add(lo);
-    b.add(hi);
-    return b;
+    const std::array<glm::vec3, 2> corners{lo, hi};
+    return box_around(corners);
 }
 
 const AxisBox kRoom = box({-4.0f, 0.0f, -4.0f}, {4.0f, 4.0f, 4.0f});  // cells of 0.5 x 0.25 x 0.5

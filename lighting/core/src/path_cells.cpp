@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
+#include <utility>
+
+#include "grid_walk.hpp"
 
 namespace luxel::lighting {
 namespace {
@@ -70,44 +72,12 @@ void PathCells::add_segment(const glm::vec3& from, const glm::vec3& to) {
     if (t0 > t1) {
         return;  // wholly outside
     }
-    // Walk the cells from the clipped start to the clipped end (Amanatides and Woo).
-    const glm::vec3 start = g0 + t0 * span;
-    const glm::vec3 end = g0 + t1 * span;
-    const auto cell_of = [](const glm::vec3& g) {
-        return glm::clamp(glm::ivec3(glm::floor(g)), glm::ivec3(0), glm::ivec3(kCells - 1));
-    };
-    glm::ivec3 cell = cell_of(start);
-    const glm::ivec3 last = cell_of(end);
-    const glm::vec3 walk = end - start;
-    glm::ivec3 step(0);
-    glm::vec3 next(std::numeric_limits<float>::infinity());
-    glm::vec3 delta(std::numeric_limits<float>::infinity());
-    for (int axis = 0; axis < 3; ++axis) {
-        if (walk[axis] > 0.0f) {
-            step[axis] = 1;
-            delta[axis] = 1.0f / walk[axis];
-            next[axis] = (static_cast<float>(cell[axis]) + 1.0f - start[axis]) * delta[axis];
-        } else if (walk[axis] < 0.0f) {
-            step[axis] = -1;
-            delta[axis] = -1.0f / walk[axis];
-            next[axis] = (start[axis] - static_cast<float>(cell[axis])) * delta[axis];
-        }
-    }
-    // At most one step per cell boundary on each axis; the bound only guards rounding, and
-    // the last cell is marked whatever the rounding.
-    for (int steps = 0; steps <= 3 * kCells && cell != last; ++steps) {
-        mark(cell);
-        const int axis = next.x <= next.y ? (next.x <= next.z ? 0 : 2) : (next.y <= next.z ? 1 : 2);
-        if (!(next[axis] <= 1.0f + 1e-5f)) {
-            break;
-        }
-        cell[axis] += step[axis];
-        if (cell[axis] < 0 || cell[axis] >= kCells) {
-            break;
-        }
-        next[axis] += delta[axis];
-    }
-    mark(last);
+    // The cells from the clipped start to the clipped end; a clipped end on the region's far
+    // face (16.0) belongs to the last cell.
+    walk_grid(glm::dvec3(g0 + t0 * span), glm::dvec3(g0 + t1 * span), 4 * kCells,
+              [&](const glm::i64vec3& cell) {
+                  mark(glm::clamp(glm::ivec3(cell), glm::ivec3(0), glm::ivec3(kCells - 1)));
+              });
 }
 
 void PathCells::merge(const PathCells& other) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "grid_walk.hpp"
+
 namespace luxel::lighting {
 
 namespace {
@@ -108,55 +110,9 @@ bool PathSegmentIndex::add_cells(const PathSegment& segment,
             return false;
         }
     }
-    // A 3D digital differential analyser (Amanatides & Woo): from the cell of `a`, step into
-    // whichever neighbour the line reaches first, until the cell of `b`.
-    glm::i64vec3 cell(static_cast<std::int64_t>(std::floor(a.x)),
-                      static_cast<std::int64_t>(std::floor(a.y)),
-                      static_cast<std::int64_t>(std::floor(a.z)));
-    const glm::i64vec3 last(static_cast<std::int64_t>(std::floor(b.x)),
-                            static_cast<std::int64_t>(std::floor(b.y)),
-                            static_cast<std::int64_t>(std::floor(b.z)));
-    const glm::dvec3 delta = b - a;
-    glm::i64vec3 step(0);
-    glm::dvec3 next(std::numeric_limits<double>::infinity());
-    glm::dvec3 advance(std::numeric_limits<double>::infinity());
-    for (int axis = 0; axis < 3; ++axis) {
-        if (delta[axis] > 0.0) {
-            step[axis] = 1;
-            next[axis] = (static_cast<double>(cell[axis] + 1) - a[axis]) / delta[axis];
-            advance[axis] = 1.0 / delta[axis];
-        } else if (delta[axis] < 0.0) {
-            step[axis] = -1;
-            next[axis] = (static_cast<double>(cell[axis]) - a[axis]) / delta[axis];
-            advance[axis] = -1.0 / delta[axis];
-        }
-    }
-    const std::int64_t span =
-        std::abs(last.x - cell.x) + std::abs(last.y - cell.y) + std::abs(last.z - cell.z) + 1;
-    if (span > static_cast<std::int64_t>(kMaxCellsPerSegment)) {
-        return false;
-    }
-    for (std::int64_t visited = 0; visited < span; ++visited) {
-        cells.push_back(cell_key(cell.x, cell.y, cell.z));
-        if (cell == last) {
-            return true;
-        }
-        int axis = 0;
-        if (next.y < next[axis]) {
-            axis = 1;
-        }
-        if (next.z < next[axis]) {
-            axis = 2;
-        }
-        if (step[axis] == 0) {
-            break;
-        }
-        cell[axis] += step[axis];
-        next[axis] += advance[axis];
-    }
-    // Rounding can leave the walk a step short of `b`'s cell: it is a cell of the segment.
-    cells.push_back(cell_key(last.x, last.y, last.z));
-    return true;
+    return walk_grid(
+        a, b, static_cast<std::int64_t>(kMaxCellsPerSegment),
+        [&](const glm::i64vec3& cell) { cells.push_back(cell_key(cell.x, cell.y, cell.z)); });
 }
 
 bool PathSegmentIndex::cells_of(std::span<const PathSegment> segments,
