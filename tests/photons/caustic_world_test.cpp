@@ -34,7 +34,8 @@ struct CausticLevel {
     /// schedule alone is seen.
     explicit CausticLevel(const std::string& name, int threads = 2,
                           std::uint32_t photons_per_pair = 2'000,
-                          std::uint32_t refinement_photons = 0)
+                          std::uint32_t refinement_photons = 0,
+                          std::uint32_t max_photons = 1'000'000)
         : jobs(threads) {
         world::InstantiateOptions options;
         options.play_animations = false;
@@ -47,6 +48,7 @@ struct CausticLevel {
         lighting::PhotonWorldSettings settings;
         settings.caustics.photons_per_pair = photons_per_pair;
         settings.caustics.refinement_photons = refinement_photons;
+        settings.caustics.max_photons = max_photons;
         photons = std::make_unique<lighting::PhotonWorld>(registry, settings);
         photons->sync();
     }
@@ -447,6 +449,63 @@ TEST(CausticWorld, OverlappingGeneratorsCountEachLightsCausticOnce) {
         ++lights_checked;
     }
     EXPECT_EQ(lights_checked, 3);
+}
+
+TEST(CausticWorld, ManyLightsShareTheCausticPhotonBudgetByPower) {
+    // Cornell's glass sphere under 200 more lamps of 0.1 to 2 W: 201 pairs of 10,000 photons
+    // would hold 2 million; a budget of 40,000 gives each pair a share by the power its light
+    // sends toward the sphere. The caustic power landed is what 2,000 photons a pair land.
+    const auto add_lamps = [](CausticLevel& level) {
+        for (int i = 0; i < 200; ++i) {
+            const ecs::Entity lamp = level.registry.create();
+            const float watts = 0.1f + 1.9f * static_cast<float>(i % 20) / 19.0f;
+            level.registry.emplace<lighting::PointLight>(lamp, glm::vec3(watts), 0.0f, true);
+            const float x = -0.8f + 1.6f * static_cast<float>(i % 20) / 19.0f;
+            const float z = -0.8f + 1.6f * static_cast<float>(i / 20) / 9.0f;
+            level.registry.emplace<ecs::Transform>(lamp, glm::vec3(x, 1.7f, z));
+        }
+        level.transforms.update();
+        level.photons->sync();
+    };
+    CausticLevel shared("cornell", 2, 10'000, 0, 40'000);
+    add_lamps(shared);
+    const auto pairs = shared.photons->caustics();
+    ASSERT_EQ(pairs.size(), 201u);
+    std::uint64_t photons = 0;
+    double total_power = 0.0;
+    for (const lighting::CausticPair& pair : pairs) {
+        photons += pair.photons.photon_count();
+        total_power += pair.photons.emitter().nominal_power();
+        EXPECT_GE(pair.photons.photon_count(), 8u) << "at least a photon per slice";
+    }
+    EXPECT_LE(photons, 40'000u);
+    EXPECT_GT(photons, 40'000u - 201u) << "only rounding down is left over";
+    for (const lighting::CausticPair& pair : pairs) {
+        const double expected =
+            std::floor(40'000.0 * pair.photons.emitter().nominal_power() / total_power);
+        EXPECT_EQ(pair.photons.photon_count(), static_cast<std::uint32_t>(std::max(expected, 8.0)));
+    }
+    // Without a budget every pair keeps its full count.
+    CausticLevel full("cornell", 2, 2'000, 0, 0);
+    add_lamps(full);
+    for (const lighting::CausticPair& pair : full.photons->caustics()) {
+        EXPECT_EQ(pair.photons.photon_count(), 2'000u);
+    }
+    for (std::uint64_t frame = 0; frame < 8; ++frame) {
+        shared.frame(frame);
+        full.frame(frame);
+    }
+    glm::dvec3 shared_power(0.0);
+    glm::dvec3 full_power(0.0);
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+        shared_power += pairs[i].photons.stored_power();
+        full_power += full.photons->caustics()[i].photons.stored_power();
+    }
+    std::printf(
+        "201 pairs, caustic power stored: %.4f W with 40,000 photons shared, %.4f W with "
+        "2,000 per pair\n",
+        shared_power.x, full_power.x);
+    EXPECT_NEAR(shared_power.x / full_power.x, 1.0, 0.03);
 }
 
 TEST(CausticWorld, RefinementPhotonsAreSharedByPower) {

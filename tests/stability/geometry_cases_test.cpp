@@ -138,9 +138,8 @@ TEST(Geometry, CoplanarOverlappingFacesStayFinite) {
 
 TEST(Lights, TenThousandLightsInOneScene) {
     // Caustic lists exist per (generator, light) pair: the Cornell box's glass sphere with
-    // 10,000 lights at the default 2,000 photons per pair would trace 20 million caustic
-    // photons. 16 per pair keeps that at 160,000 (docs/STABILITY.md: a global caustic photon
-    // budget shared by the pairs is what such a scene needs).
+    // 10,000 lights would hold a million caustic photons under the default budget
+    // (CausticSettings::max_photons, 100 a pair); 16 per pair keeps the test at 160,000.
     lighting::LightingConfig config = stability_config(1, 2);
     config.photons.caustics.photons_per_pair = 16;
     LitLevel level(luxel::testing::load_prepared("cornell"), config);

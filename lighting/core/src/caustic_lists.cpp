@@ -131,7 +131,10 @@ void CausticLists::sync(const PhotonGeometry& geometry, const LightGroups& light
         const GeneratorRecord& generator = generators_.at(pair.generator);
         const bool stale =
             fresh[i] != 0 || generator.moved ||
-            (!changes.empty() && pair.photons.paths_meet(changes)) ||
+            // A list that recorded no path yet has lost nothing: re-aimed, it cannot keep
+            // an aim (a sun's beam start behind the scene) that the change made wrong.
+            (!changes.empty() &&
+             (pair.photons.path_cells().empty() || pair.photons.paths_meet(changes))) ||
             std::binary_search(lights_touched.begin(), lights_touched.end(), pair.light) ||
             std::binary_search(generators_touched.begin(), generators_touched.end(),
                                pair.generator);
@@ -143,6 +146,7 @@ void CausticLists::sync(const PhotonGeometry& geometry, const LightGroups& light
     set_siblings(aimed, AxisBox{scene_bounds.centre - glm::vec3(scene_bounds.radius),
                                 scene_bounds.centre + glm::vec3(scene_bounds.radius)});
     // Every sync, O(pairs): a pair come, gone or re-aimed changes every other pair's share.
+    apportion_photons();
     share_refinement();
 }
 
@@ -214,6 +218,39 @@ bool CausticLists::refining() const {
     });
 }
 
+void CausticLists::apportion_photons() {
+    const std::uint32_t full = settings_.photons_per_pair;
+    // At least a photon per slice (fewer leaves slices empty), unless the pairs hold fewer.
+    const std::uint32_t least = std::min(std::max<std::uint32_t>(settings_.slices, 1), full);
+    const bool capped = settings_.max_photons > 0 &&
+                        static_cast<std::uint64_t>(pairs_.size()) * full > settings_.max_photons;
+    double total = 0.0;
+    for (const CausticPair& pair : pairs_) {
+        total += pair.photons.emitter().nominal_power();
+    }
+    for (CausticPair& pair : pairs_) {
+        std::uint32_t target = full;
+        if (capped) {
+            const double power = pair.photons.emitter().nominal_power();
+            const double share =
+                total > 0.0 ? power / total : 1.0 / static_cast<double>(pairs_.size());
+            const double photons = std::floor(static_cast<double>(settings_.max_photons) * share);
+            target = static_cast<std::uint32_t>(
+                std::clamp(photons, static_cast<double>(least), static_cast<double>(full)));
+        }
+        const std::uint32_t current = pair.photons.photon_count();
+        // A quarter's slack, so that a lamp switched on among thousands does not retrace every
+        // other pair; back to the full count always, as the budget no longer binds.
+        const double ratio = static_cast<double>(target) / static_cast<double>(current);
+        if (target == current || (target != full && ratio > 0.8 && ratio < 1.25)) {
+            continue;
+        }
+        CausticPhotonList resized(target, settings_.slices, pair.photons.seed());
+        resized.set_emitter(pair.photons.emitter(), pair.photons.path_cells().region());
+        pair.photons = std::move(resized);
+    }
+}
+
 void CausticLists::share_refinement() {
     // Each pair's share of the refinement photons follows the power its light sends toward
     // its generator: the brighter caustic shows its noise more.
@@ -224,10 +261,11 @@ void CausticLists::share_refinement() {
     for (CausticPair& pair : pairs_) {
         std::uint32_t limit = 1;
         const double power = pair.photons.emitter().nominal_power();
-        if (total > 0.0 && power > 0.0 && settings_.photons_per_pair > 0) {
+        const std::uint32_t generation = pair.photons.photon_count();
+        if (total > 0.0 && power > 0.0 && generation > 0) {
             const double photons =
                 static_cast<double>(settings_.refinement_photons) * power / total;
-            const double extra = std::floor(photons / settings_.photons_per_pair);
+            const double extra = std::floor(photons / generation);
             limit = static_cast<std::uint32_t>(std::min<double>(
                 1.0 + extra, std::max<std::uint32_t>(settings_.max_generations, 1)));
         }

@@ -59,6 +59,10 @@ class CausticLists {
     /// Sets every list's generation limit from CausticSettings::refinement_photons, shared in
     /// proportion to the power each pair's light sends toward its generator.
     void share_refinement();
+    /// Sizes each pair's list by CausticSettings::max_photons: a list whose share moved by more
+    /// than a quarter (or back to photons_per_pair) is replaced by one of its new size, with its
+    /// seed and emitter, to be traced afresh.
+    void apportion_photons();
     /// Gives each pair's emitter the spheres of its light's other emitting pairs and sets it
     /// on the list where it is new (`aimed`: the re-aimed emitters, none where a pair kept its
     /// own) or where its siblings changed.

@@ -42,8 +42,15 @@ static_assert(sizeof(CausticPhoton) == 32, "caustic photons are 32 bytes");
 
 struct CausticSettings {
     /// Photons per (generator, light) pair; the paper's 10,000 for its one glass sphere and one
-    /// light. A scene with G generators and L lights keeps G * L lists of this many.
+    /// light. A scene with G generators and L lights keeps G * L lists of this many, unless
+    /// that exceeds max_photons.
     std::uint32_t photons_per_pair = 10'000;
+    /// The first-generation photons all pairs may hold together (luxel; METHOD 7.6): where
+    /// G * L * photons_per_pair would exceed it (10,000 lamps around one glass sphere), each
+    /// pair gets a share in proportion to the power its light sends toward its generator
+    /// (CausticEmitter::nominal_power), at least one photon per slice and at most
+    /// photons_per_pair. About 32 MB of photons. 0: no limit.
+    std::uint32_t max_photons = 1'000'000;
     /// K: a list is retraced over K frames, one slice per frame (the paper: 8).
     std::uint32_t slices = 8;
     /// A photon still bouncing between specular surfaces after this many interactions is
