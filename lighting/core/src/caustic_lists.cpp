@@ -169,15 +169,14 @@ void CausticLists::set_siblings(const std::vector<std::optional<CausticEmitter>>
                     siblings.push_back(generators_.at(pairs_[j].generator).world_sphere);
                 }
             }
-            // A sibling come, gone or moved changes how this pair's photons share their power,
-            // so the pair is re-aimed (and retraced) as if it had changed itself.
+            // A sibling come, gone or moved changes the shares of the rays that cross its old
+            // or new sphere: a pair with such rays is re-aimed (and retraced) as if it had
+            // changed itself; one without keeps its photons.
             const auto& current = emitter(i).siblings();
             const auto same_sphere = [](const BoundingSphere& a, const BoundingSphere& b) {
                 return a.centre == b.centre && a.radius == b.radius;
             };
             if (!aimed[i]) {
-                // The siblings that came, went or moved: a pair none of whose rays crosses
-                // them keeps its photons' shares, and its photons.
                 bool shares_change = false;
                 const auto check = [&](const std::vector<BoundingSphere>& from,
                                        const std::vector<BoundingSphere>& in) {
