@@ -17,6 +17,7 @@
 #include "luxel/ecs/observer.hpp"
 #include "luxel/ecs/transform.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
+#include "luxel/lighting/gpu/caustic_light_maps.hpp"
 #include "luxel/lighting/gpu/irradiance_probe_textures.hpp"
 #include "luxel/lighting/gpu/lightmap_textures.hpp"
 #include "luxel/lighting/gpu/sky_texture.hpp"
@@ -111,6 +112,8 @@ struct FrameRenderer::Impl {
     ShaderLibrary shader_library;  ///< for the passes made later (the caustic pass)
     std::optional<lighting::CausticPass>
         own_caustics;  ///< FrameSettings::caustics, while the plan has data
+    /// The caustic layer the cube maps' faces sample, while own_caustics and a cube map exist.
+    std::optional<lighting::CausticLightMaps> caustic_light_maps;
     LightBatches batches;
     gl::Texture black = gl::Texture::create_2d(GL_RGBA16F, 1, 1);
     ecs::Observer<scene::MeshInstance> mesh_changes;
@@ -334,6 +337,21 @@ struct FrameRenderer::Impl {
         }
     }
 
+    /// The caustic layer of the light maps for the cube maps' faces (they see surfaces the
+    /// camera's caustic splat cannot reach): kept while the own caustic pass and the specular
+    /// pass both run. Returns whether the layer changed this frame.
+    bool sync_caustic_light_maps(bool specular_pass) {
+        if (!specular_pass || !own_caustics || !terms.caustics) {
+            caustic_light_maps.reset();
+            return false;
+        }
+        own_caustics->upload(lighting.photons().caustics());
+        if (!caustic_light_maps) {
+            caustic_light_maps.emplace(shader_library);
+        }
+        return caustic_light_maps->sync(*own_caustics, lighting.maps());
+    }
+
     /// The caustic stage the renderer runs itself: this frame's photons, splatted against this
     /// frame's depth from this frame's camera.
     CausticInput own_caustic_stage(const FrameCamera& camera) {
@@ -418,17 +436,21 @@ struct FrameRenderer::Impl {
         const bool sky_on = sky.sync(lighting.maps().aim());
         const bool sky_changed = sky.changes() != sky_before;
         bool specular = false;
+        sync_own_caustics();
         if (specular_pass) {
             timer.begin(RenderPass::Specular);
-            const bool changed = counters.shadow_maps_drawn > 0 ||
-                                 lights.size() != previous_light_count ||
-                                 lightmaps.uploads() != previous_page_uploads || sky_changed;
-            specular =
-                cube_maps.render(draws, lights, shadows, batches, lightmaps, targets, camera,
-                                 sky_on ? sky.id() : 0, now_seconds, changed, terms.specular);
+            const bool caustics_changed = sync_caustic_light_maps(specular_pass);
+            const bool changed =
+                counters.shadow_maps_drawn > 0 || lights.size() != previous_light_count ||
+                lightmaps.uploads() != previous_page_uploads || sky_changed || caustics_changed;
+            specular = cube_maps.render(draws, lights, shadows, batches, lightmaps,
+                                        caustic_light_maps ? &*caustic_light_maps : nullptr,
+                                        targets, camera, sky_on ? sky.id() : 0, now_seconds,
+                                        changed, terms.specular);
             timer.end(RenderPass::Specular);
         } else {
             cube_maps.clear();
+            caustic_light_maps.reset();
         }
         if (!specular) {
             clear_colour(targets.specular_target.id());
@@ -439,7 +461,6 @@ struct FrameRenderer::Impl {
         counters.specular_faces = cube_maps.faces_rendered();
         counters.draws_over_fill_budget =
             shadows.skipped_casters() + cube_maps.skipped_draws() + gbuffer_skipped;
-        sync_own_caustics();
         const CausticInput external = caustics;
         if (terms.caustics && (caustic_stage || (caustics.texture == 0 && own_caustics))) {
             // The stage draws with its own state and timers: outside the composite's query.

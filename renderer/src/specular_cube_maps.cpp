@@ -16,6 +16,18 @@
 #include "material_textures.hpp"
 
 namespace luxel::renderer {
+namespace {
+
+/// shaders/render/caustic_light_map.glsl's u_caustic_light_map.
+constexpr GLuint kCausticLightMapUnit = 20;
+
+/// How far a face draws: twice the level's diagonal, so a probe anywhere in it sees all of it.
+float face_reach(const DrawList& draws) {
+    return std::max(glm::length(draws.bounds.hi - draws.bounds.lo) * 2.0f, 1.0f);
+}
+
+}  // namespace
+
 SpecularCubeMaps::SpecularCubeMaps(const ShaderLibrary& shaders, int size, int faces_per_frame)
     : face_program_(shaders.build(
           {{ShaderStage::Vertex, "render/mesh.vert"},
@@ -55,12 +67,14 @@ void SpecularCubeMaps::render_face(CubeMap& cube_map, int face, const DrawList& 
     cube_map.framebuffer.check_complete("specular cube_map face");
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
     glViewport(0, 0, size_, size_);
-    const std::array<float, 4> zero = {0.0f, 0.0f, 0.0f, 0.0f};
+    // No light, and alpha "far": the distance the specular term's parallax correction reads
+    // where nothing was drawn (shaders/render/specular.frag).
+    const std::array<float, 4> nothing = {0.0f, 0.0f, 0.0f, 1e6f};
     const float far_depth = 1.0f;
-    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, zero.data());
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, nothing.data());
     glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &far_depth);
-    const float far = std::max(glm::length(draws.bounds.hi - draws.bounds.lo) * 2.0f, 1.0f);
-    const glm::mat4 projection = glm::perspective(glm::half_pi<float>(), 1.0f, 0.01f, far);
+    const glm::mat4 projection =
+        glm::perspective(glm::half_pi<float>(), 1.0f, 0.01f, face_reach(draws));
     const gl::Program& program = face_program_;
     const glm::mat4 view_projection = projection * cube_face_view(cube_map.centre, face);
     if (sky != 0) {
@@ -127,6 +141,8 @@ void SpecularCubeMaps::draw_term(const DrawList& draws, const FrameTargets& targ
             continue;
         }
         glBindTextureUnit(0, found->second.cube.id());
+        program.set("u_probe_centre", found->second.centre);
+        program.set("u_probe_reach", face_reach(draws));
         bind_draw_item(program, item);
         for (std::size_t i = item.first; i < item.first + item.count; ++i) {
             const DrawPrimitive& primitive = draws.primitives[i];
@@ -147,6 +163,7 @@ void SpecularCubeMaps::draw_term(const DrawList& draws, const FrameTargets& targ
 bool SpecularCubeMaps::render(const DrawList& draws, const std::vector<FrameLight>& lights,
                               const ShadowMaps& shadows, LightBatches& batches,
                               const lighting::LightmapTextures& lightmaps,
+                              const lighting::CausticLightMaps* caustics,
                               const FrameTargets& targets, const FrameCamera& camera, GLuint sky,
                               double now_seconds, bool scene_changed, bool draw_term_now) {
     std::set<ecs::Entity> present;
@@ -179,6 +196,11 @@ bool SpecularCubeMaps::render(const DrawList& draws, const std::vector<FrameLigh
     face_program_.set("u_now", static_cast<float>(now_seconds));
     batches.bind(lights, 0, shadows);
     lightmaps.bind();
+    const bool caustic_layer = caustics != nullptr && !caustics->empty();
+    face_program_.set("u_caustic_layer", caustic_layer ? 1 : 0);
+    if (caustic_layer) {
+        glBindTextureUnit(kCausticLightMapUnit, caustics->texture());
+    }
     for (auto& [entity, cube_map] : cube_maps_) {
         // A new cube_map fills every face at once so it never shows black; afterwards the budget
         // holds.

@@ -7,6 +7,7 @@
 #include "frame_lights.hpp"
 #include "frame_targets.hpp"
 #include "light_batches.hpp"
+#include "luxel/lighting/gpu/caustic_light_maps.hpp"
 #include "luxel/lighting/gpu/lightmap_textures.hpp"
 #include "luxel/renderer/frame_camera.hpp"
 #include "luxel/runtime/gl_objects.hpp"
@@ -40,11 +41,14 @@ class SpecularCubeMaps {
     /// Something in the scene changed near `bounds`: every cube_map refreshes its faces.
     void invalidate(const Bounds& bounds);
     /// Refreshes cube maps and draws the specular term into targets.specular_target. `sky` is
-    /// the frame's SkyTexture (0 without a sky: black behind the level). Returns whether a term
-    /// was drawn (false when there is no specular object or `draw_term` is off).
+    /// the frame's SkyTexture (0 without a sky: black behind the level). `caustics`: the
+    /// caustic layer of the light maps the faces add (null: the scene's faces show no
+    /// caustics). Returns whether a term was drawn (false when there is no specular object or
+    /// `draw_term` is off).
     bool render(const DrawList& draws, const std::vector<FrameLight>& lights,
                 const ShadowMaps& shadows, LightBatches& batches,
-                const lighting::LightmapTextures& lightmaps, const FrameTargets& targets,
+                const lighting::LightmapTextures& lightmaps,
+                const lighting::CausticLightMaps* caustics, const FrameTargets& targets,
                 const FrameCamera& camera, GLuint sky, double now_seconds, bool scene_changed,
                 bool draw_term);
     void clear() { cube_maps_.clear(); }

@@ -15,6 +15,9 @@
 #define CAUSTIC_CONTROL_BINDING 2     // CausticControl: dispatch size and counters
 #define CAUSTIC_TILE_LIST_BINDING 3   // the compacted list of tiles to filter
 #define CAUSTIC_WEIGHTS_BINDING 4     // the screen-space kernel's (2 RADIUS + 1)^2 weights
+// The caustic layer of the light maps (CausticLightMaps): per surface vec4(page layer or -1,
+// page size, 1 / texel area in m^-2, 0).
+#define CAUSTIC_LIGHT_MAP_SURFACES_BINDING 5
 // Textures and images.
 #define CAUSTIC_DEPTH_UNIT 0    // the scene's depth
 #define CAUSTIC_SPLAT_UNIT 1    // the splat buffer, read by the filter
@@ -22,10 +25,10 @@
 
 // struct Photon (lighting::CausticPhoton on the C++ side), std430.
 #define CAUSTIC_PHOTON_SIZE 32
-#define CAUSTIC_PHOTON_POSITION 0         // vec3, world metres
-#define CAUSTIC_PHOTON_SURFACE 12         // int, light-mapped surface or -1
-#define CAUSTIC_PHOTON_POWER 16           // vec3, watts per channel
-#define CAUSTIC_PHOTON_DIRECTION_BITS 28  // uint, octahedral incident direction
+#define CAUSTIC_PHOTON_POSITION 0      // vec3, world metres
+#define CAUSTIC_PHOTON_SURFACE 12      // int, light-mapped surface or -1
+#define CAUSTIC_PHOTON_POWER 16        // vec3, watts per channel
+#define CAUSTIC_PHOTON_LIGHTMAP_UV 28  // uint, the hit's light-map UV (unpackUnorm2x16)
 
 // CausticControl: six uints. The first three are the indirect dispatch's (x, y, z), so the tile
 // compaction appends straight into the dispatch.
@@ -36,7 +39,7 @@ struct Photon {
     vec3 position;
     int surface;
     vec3 power;
-    uint direction_bits;
+    uint lightmap_uv_bits;
 };
 #endif
 

@@ -1,10 +1,13 @@
 #version 450 core
 // Forward shading of one face of a specular cube map (around a mirror or glass
 // object): the diffuse scene as the main view shows it, emitted + direct (first light batch,
-// with shadows) + indirect from the IIM, at the cube map's reduced resolution.
+// with shadows) + indirect from the IIM + caustics from the caustic layer of the light maps
+// (the camera's screen-space caustics do not reach this view), at the cube map's reduced
+// resolution. Alpha holds the distance from the centre to the surface shown.
 
 #include "render/direct_lights.glsl"
 #include "render/iim.glsl"
+#include "render/caustic_light_map.glsl"
 
 in vec3 v_position;
 in vec3 v_normal;
@@ -35,6 +38,9 @@ void main() {
     vec3 albedo = u_albedo * texture(u_base_color, v_texcoord0).rgb;
     vec3 l = u_emission * texture(u_emissive, v_texcoord0).rgb +
              lambert_radiance(albedo, batch_irradiance(v_position, n)) +
-             iim_radiance(v_lightmap_uv, u_lightmap.x, u_lightmap.y > 0.5, albedo);
-    out_radiance = vec4(l, 1.0);
+             iim_radiance(v_lightmap_uv, u_lightmap.x, u_lightmap.y > 0.5, albedo) +
+             caustic_light_map_radiance(v_lightmap_uv, u_lightmap.x, albedo);
+    // Alpha: how far the surface is from the cube map's centre, which the specular term's
+    // parallax correction looks along (render/specular.frag); 1e6 where nothing was drawn.
+    out_radiance = vec4(l, max(length(v_position - u_camera), 1e-6));
 }

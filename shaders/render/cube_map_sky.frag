@@ -17,5 +17,7 @@ layout(location = 0) out vec4 out_radiance;
 
 void main() {
     vec4 far = u_inverse_view_projection * vec4(2.0 * v_uv - 1.0, 0.5, 1.0);
-    out_radiance = vec4(sky_radiance(u_sky, far.xyz / far.w - u_centre), 1.0);
+    // Alpha: "far", 1e6 m, as a face's clear colour where there is no sky (the specular term's
+    // parallax correction, render/specular.frag, says why not 0).
+    out_radiance = vec4(sky_radiance(u_sky, far.xyz / far.w - u_centre), 1e6);
 }

@@ -64,6 +64,39 @@ std::vector<EmittedPhoton> emitted_photons(const CausticPhotonList& list) {
     return photons;
 }
 
+/// A stored photon and its direction of travel on arrival, which the photon does not keep.
+struct DirectedPhoton {
+    CausticPhoton photon;
+    glm::vec3 incident{0.0f};
+};
+
+/// The list's first generation traced one photon at a time as retrace_slice traces it, with
+/// each stored photon's incident direction.
+std::vector<DirectedPhoton> directed_photons(const CausticWorld& world,
+                                             const CausticPhotonList& list) {
+    std::vector<DirectedPhoton> out;
+    CausticTraceCounters counters;
+    for (std::uint32_t j = 0; j < list.photon_count(); ++j) {
+        const std::uint64_t index = list.sample_index(j);
+        const EmittedPhoton emitted = list.emitter().emit(
+            {photon_sample(index, 0, list.seed()), photon_sample(index, 1, list.seed())},
+            {photon_sample(index, 2, list.seed()), photon_sample(index, 3, list.seed())},
+            list.photon_count());
+        if (!(emitted.power.r > 0.0f || emitted.power.g > 0.0f || emitted.power.b > 0.0f)) {
+            continue;
+        }
+        DirectedPhoton directed;
+        const std::optional<CausticPhoton> photon =
+            trace_caustic_photon(world.scene, world.materials, emitted, index, list.seed(),
+                                 kMaxSpecular, counters, nullptr, &directed.incident);
+        if (photon) {
+            directed.photon = *photon;
+            out.push_back(directed);
+        }
+    }
+    return out;
+}
+
 double smoothstep(double edge0, double edge1, double x) {
     const double t = std::clamp((x - edge0) / (edge1 - edge0), 0.0, 1.0);
     return t * t * (3.0 - 2.0 * t);
@@ -257,25 +290,63 @@ TEST(CausticEmission, SpotsAreClippedToTheirConeAndApplyTheirFalloff) {
     EXPECT_FALSE(CausticEmitter(spot, generator, {}).reaches_generator());
 }
 
-TEST(CausticPhotonStorage, DirectionsSurviveTheOctahedralEncoding) {
+TEST(CausticPhotonStorage, LightMapUvsSurviveTheFixedPointEncoding) {
     double worst = 0.0;
     for (std::uint64_t i = 1; i <= 20'000; ++i) {
-        const double z = 1.0 - 2.0 * radical_inverse(2, i);
-        const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
-        const double phi = 2.0 * kPi * radical_inverse(3, i);
-        const glm::vec3 d(static_cast<float>(r * std::cos(phi)),
-                          static_cast<float>(r * std::sin(phi)), static_cast<float>(z));
-        const glm::dvec3 back(decode_direction(encode_direction(d)));
-        // atan2 of |cross| and dot in double: acos of a float dot cannot resolve 1e-4 rad.
-        const glm::dvec3 exact = glm::normalize(glm::dvec3(d));
-        worst = std::max(worst,
-                         std::atan2(glm::length(glm::cross(back, exact)), glm::dot(back, exact)));
+        const glm::vec2 uv(static_cast<float>(radical_inverse(2, i)),
+                           static_cast<float>(radical_inverse(3, i)));
+        const glm::vec2 back = decode_lightmap_uv(encode_lightmap_uv(uv));
+        worst = std::max(worst, static_cast<double>(glm::length(back - uv)));
     }
-    for (const glm::vec3 axis : {glm::vec3(1, 0, 0), glm::vec3(0, -1, 0), glm::vec3(0, 0, -1)}) {
-        EXPECT_GT(glm::dot(decode_direction(encode_direction(axis)), axis), 0.99999f);
+    // Half a step of 1/65535 per axis.
+    EXPECT_LT(worst, 0.5 * std::sqrt(2.0) / 65535.0 + 1e-7);
+    EXPECT_EQ(decode_lightmap_uv(encode_lightmap_uv({1.0f, 0.0f})), glm::vec2(1.0f, 0.0f));
+    // Out of range and NaN clamp into the page.
+    EXPECT_EQ(decode_lightmap_uv(encode_lightmap_uv({-0.5f, 2.0f})), glm::vec2(0.0f, 1.0f));
+    EXPECT_EQ(decode_lightmap_uv(encode_lightmap_uv({std::nanf(""), 0.0f})), glm::vec2(0.0f));
+    // u in the low half, as GLSL's unpackUnorm2x16 reads it.
+    EXPECT_EQ(encode_lightmap_uv({1.0f, 0.0f}), 0xFFFFu);
+    EXPECT_EQ(sizeof(CausticPhoton), 32u);
+}
+
+TEST(CausticPhotonStorage, AStoredPhotonKeepsTheLightMapUvOfItsHit) {
+    // A mirror over a 20 x 20 m floor whose light map spans it linearly: every stored photon's
+    // UV must be the floor's UV at its position.
+    CausticWorld world;
+    world.materials = {{Scattering::Diffuse, glm::vec3(0.5f), glm::vec3(1.0f), 1.5f},
+                       {Scattering::Mirror, glm::vec3(0.0f), glm::vec3(0.8f), 1.5f}};
+    TriangleMesh floor = luxel::testing::quad_mesh({-10, 0, 10}, {20, 0, 0}, {0, 0, -20}, 0, 0);
+    floor.lightmap_uvs = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
+    world.scene.add_object(floor, glm::mat4(1.0f), false);
+    const TriangleMesh mirror =
+        luxel::testing::quad_mesh({0.0f, 0.4f, 0.5f}, {0, 0, -1}, {0, 1, 0}, -1, 1);
+    world.scene.add_object(mirror, glm::mat4(1.0f), false);
+    world.scene.commit();
+    LightSource light;
+    light.position = {0.8f, 1.2f, 0.15f};
+    light.power = glm::vec3(10.0f);
+    CausticPhotonList list(4'000, 8, 2);
+    list.set_emitter(
+        CausticEmitter(light, luxel::testing::bounding_sphere(mirror), world.bounds()));
+    JobSystem jobs(2);
+    trace_every_slice(world, list, jobs);
+    const std::vector<CausticPhoton> photons = all_photons(list);
+    ASSERT_GT(photons.size(), 400u);
+    double worst = 0.0;
+    glm::vec2 lo(1.0f);
+    glm::vec2 hi(0.0f);
+    for (const CausticPhoton& photon : photons) {
+        ASSERT_EQ(photon.surface, 0);
+        const glm::vec2 expected((photon.position.x + 10.0f) / 20.0f,
+                                 (10.0f - photon.position.z) / 20.0f);
+        worst = std::max(worst, static_cast<double>(glm::length(photon.lightmap_uv() - expected)));
+        lo = glm::min(lo, photon.lightmap_uv());
+        hi = glm::max(hi, photon.lightmap_uv());
     }
     EXPECT_LT(worst, 1e-4);
-    EXPECT_EQ(sizeof(CausticPhoton), 32u);
+    // The photons spread over the floor's light map, not onto one texel.
+    EXPECT_GT(hi.x - lo.x, 0.01f);
+    EXPECT_GT(hi.y - lo.y, 0.01f);
 }
 
 // --- A glass sphere over a floor, against an analytic sphere tracer --------------------------
@@ -457,10 +528,12 @@ TEST(CausticMirror, APointLightsPatchComesFromItsMirrorImageWithTheRightPower) {
     glm::dmat3 normal_matrix(0.0);
     glm::dvec3 rhs(0.0);
     double worst_miss = 0.0;
-    for (const CausticPhoton& photon : photons) {
+    const std::vector<DirectedPhoton> directed = directed_photons(world, list);
+    EXPECT_EQ(directed.size(), photons.size());
+    for (const auto& [photon, incident] : directed) {
         EXPECT_EQ(photon.surface, 0);
         const glm::dvec3 p(photon.position);
-        const glm::dvec3 d = glm::normalize(glm::dvec3(photon.incident_direction()));
+        const glm::dvec3 d = glm::normalize(glm::dvec3(incident));
         const glm::dvec3 offset = image - p;
         worst_miss = std::max(worst_miss, glm::length(offset - glm::dot(offset, d) * d));
         const glm::dmat3 projector = glm::dmat3(1.0) - glm::outerProduct(d, d);
@@ -579,8 +652,12 @@ TEST(CausticRefraction, TotalInternalReflectionTurnsTheBeamInAPrism) {
         glm::dvec2 wall_floor(0.0);
         for (const CausticPhoton& photon : all_photons(list)) {
             wall_floor[photon.surface == 1 ? 0 : 1] += static_cast<double>(photon.power.r);
-            if (photon.surface == 1 && ior > 1.4f) {
-                EXPECT_GT(photon.incident_direction().x, 0.999f);
+        }
+        if (ior > 1.4f) {
+            for (const auto& [photon, incident] : directed_photons(world, list)) {
+                if (photon.surface == 1) {
+                    EXPECT_GT(incident.x, 0.999f);
+                }
             }
         }
         return wall_floor;

@@ -29,15 +29,7 @@ const int kWidth = output_dir() != nullptr ? 480 : 96;
 const int kHeight = output_dir() != nullptr ? 360 : 72;
 
 renderer::FrameCamera level_camera(ecs::Registry& registry) {
-    for (auto [entity, camera] : registry.view<scene::CameraComponent>()) {
-        const auto* world = registry.try_get<ecs::WorldTransform>(entity);
-        return renderer::FrameCamera::from_scene(
-            camera.camera, world ? world->matrix : glm::mat4(1.0f),
-            static_cast<float>(kWidth) / static_cast<float>(kHeight));
-    }
-    return renderer::FrameCamera::look_at({0.0f, 1.0f, 4.0f}, {0.0f, 1.0f, 0.0f},
-                                          {0.0f, 1.0f, 0.0f}, 0.9f,
-                                          static_cast<float>(kWidth) / static_cast<float>(kHeight));
+    return test::level_camera(registry, static_cast<float>(kWidth) / static_cast<float>(kHeight));
 }
 
 /// Checks every value; returns the sum of the rgb values.

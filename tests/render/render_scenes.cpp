@@ -5,6 +5,7 @@
 #include <stb_image_write.h>
 
 #include "luxel/ecs/transform.hpp"
+#include "luxel/scene/components.hpp"
 #include "luxel/scene/gltf.hpp"
 
 namespace luxel::test {
@@ -143,6 +144,16 @@ std::vector<std::string> prepared_levels() {
     }
     std::sort(names.begin(), names.end());
     return names;
+}
+
+renderer::FrameCamera level_camera(ecs::Registry& registry, float aspect) {
+    for (auto [entity, camera] : registry.view<scene::CameraComponent>()) {
+        const auto* world = registry.try_get<ecs::WorldTransform>(entity);
+        return renderer::FrameCamera::from_scene(camera.camera,
+                                                 world ? world->matrix : glm::mat4(1.0f), aspect);
+    }
+    return renderer::FrameCamera::look_at({0.0f, 1.0f, 4.0f}, {0.0f, 1.0f, 0.0f},
+                                          {0.0f, 1.0f, 0.0f}, 0.9f, aspect);
 }
 
 std::vector<glm::vec4> read_texture(GLuint texture, int width, int height) {

@@ -17,6 +17,7 @@
 #include "luxel/ecs/transform_system.hpp"
 #include "luxel/lighting/components.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
+#include "luxel/renderer/frame_camera.hpp"
 #include "luxel/runtime/gl.hpp"
 #include "luxel/runtime/gl_context.hpp"
 #include "luxel/runtime/jobs.hpp"
@@ -72,6 +73,10 @@ struct RenderWorld {
 [[nodiscard]] std::filesystem::path prepared_level(const std::string& name);
 /// Every prepared level's name.
 [[nodiscard]] std::vector<std::string> prepared_levels();
+
+/// The first camera of the registry's level (its world transform applied), or a default view
+/// 4 m in front of the origin.
+[[nodiscard]] renderer::FrameCamera level_camera(ecs::Registry& registry, float aspect);
 
 /// Reads a texture's level 0 as RGBA floats, rows bottom first (GL order).
 [[nodiscard]] std::vector<glm::vec4> read_texture(GLuint texture, int width, int height);

@@ -16,17 +16,10 @@ namespace {
 
 using lighting::reference::ReferenceScene;
 
-/// Finds the texel under a caustic photon: a short ray through its position along its travel
-/// direction recovers the hit's light-map UV, which the photon does not keep; -1 where the
-/// reference bins none (ReferenceScene::open_texel_at).
+/// The reference's texel under a caustic photon, from the light-map UV the photon keeps; -1
+/// where the reference bins none (ReferenceScene::open_texel_at).
 std::int64_t texel_of(const lighting::CausticPhoton& photon, const ReferenceScene& scene) {
-    const glm::vec3 d = photon.incident_direction();
-    const float reach = 1e-3f * std::max(1.0f, glm::length(photon.position));
-    const auto hit = scene.rays().intersect(photon.position - reach * d, d, 2.0f * reach);
-    if (!hit || hit->surface != photon.surface) {
-        return -1;
-    }
-    return scene.open_texel_at(hit->surface, hit->lightmap_uv);
+    return scene.open_texel_at(photon.surface, photon.lightmap_uv());
 }
 
 }  // namespace

@@ -12,54 +12,27 @@ namespace {
 /// per-chunk counters add up in the same order on any machine.
 constexpr std::size_t kPhotonsPerChunk = 64;
 
-float sign_not_zero(float value) {
-    return value >= 0.0f ? 1.0f : -1.0f;
-}
-
-std::uint32_t quantize_snorm16(float value) {
-    const float clamped = std::clamp(value, -1.0f, 1.0f);
-    const auto fixed = static_cast<std::int32_t>(std::lround(clamped * 32767.0f));
-    return static_cast<std::uint32_t>(fixed) & 0xFFFFu;
-}
-
-float dequantize_snorm16(std::uint32_t bits) {
-    const auto fixed = static_cast<std::int16_t>(static_cast<std::uint16_t>(bits & 0xFFFFu));
-    return std::max(static_cast<float>(fixed) / 32767.0f, -1.0f);
-}
-
 bool has_power(const glm::vec3& power) {
     return power.r > 0.0f || power.g > 0.0f || power.b > 0.0f;
 }
 
 }  // namespace
 
-std::uint32_t encode_direction(const glm::vec3& unit) {
-    const float norm = std::abs(unit.x) + std::abs(unit.y) + std::abs(unit.z);
-    if (!(norm > 0.0f)) {
-        return encode_direction(glm::vec3(0.0f, 0.0f, 1.0f));
-    }
-    glm::vec2 folded(unit.x / norm, unit.y / norm);
-    if (unit.z < 0.0f) {
-        // The lower hemisphere folds over the diagonals of the square.
-        folded = glm::vec2((1.0f - std::abs(folded.y)) * sign_not_zero(folded.x),
-                           (1.0f - std::abs(folded.x)) * sign_not_zero(folded.y));
-    }
-    return quantize_snorm16(folded.x) | (quantize_snorm16(folded.y) << 16);
+std::uint32_t encode_lightmap_uv(const glm::vec2& uv) {
+    const auto fixed = [](float value) {
+        // NaN fails both comparisons of the clamp's guard and reads 0.
+        const float clamped = value > 0.0f ? std::min(value, 1.0f) : 0.0f;
+        return static_cast<std::uint32_t>(std::lround(clamped * 65535.0f));
+    };
+    return fixed(uv.x) | (fixed(uv.y) << 16);
 }
 
-glm::vec3 decode_direction(std::uint32_t bits) {
-    const float x = dequantize_snorm16(bits);
-    const float y = dequantize_snorm16(bits >> 16);
-    glm::vec3 v(x, y, 1.0f - std::abs(x) - std::abs(y));
-    if (v.z < 0.0f) {
-        v = glm::vec3((1.0f - std::abs(y)) * sign_not_zero(x),
-                      (1.0f - std::abs(x)) * sign_not_zero(y), v.z);
-    }
-    return glm::normalize(v);
+glm::vec2 decode_lightmap_uv(std::uint32_t bits) {
+    return glm::vec2(static_cast<float>(bits & 0xFFFFu), static_cast<float>(bits >> 16)) / 65535.0f;
 }
 
-glm::vec3 CausticPhoton::incident_direction() const {
-    return decode_direction(direction_bits);
+glm::vec2 CausticPhoton::lightmap_uv() const {
+    return decode_lightmap_uv(lightmap_uv_bits);
 }
 
 CausticTraceCounters& CausticTraceCounters::operator+=(const CausticTraceCounters& other) {
@@ -77,7 +50,7 @@ CausticTraceCounters& CausticTraceCounters::operator+=(const CausticTraceCounter
 std::optional<CausticPhoton> trace_caustic_photon(
     const RayScene& scene, std::span<const TraceMaterial> materials, const EmittedPhoton& photon,
     std::uint64_t sample_index, std::uint32_t seed, std::uint32_t max_specular_interactions,
-    CausticTraceCounters& counters, PathCells* cells) {
+    CausticTraceCounters& counters, PathCells* cells, glm::vec3* incident_direction) {
     // An escaped segment is recorded out to here: beyond any region a list records over.
     constexpr float kEscape = 1e6f;
     glm::vec3 origin = photon.origin;
@@ -112,7 +85,11 @@ std::optional<CausticPhoton> trace_caustic_photon(
                 return std::nullopt;
             }
             ++counters.stored;
-            return CausticPhoton{hit->position, hit->surface, power, encode_direction(direction)};
+            if (incident_direction != nullptr) {
+                *incident_direction = direction;
+            }
+            const std::uint32_t uv = hit->surface >= 0 ? encode_lightmap_uv(hit->lightmap_uv) : 0;
+            return CausticPhoton{hit->position, hit->surface, power, uv};
         }
 
         if (specular >= max_specular_interactions) {

@@ -45,7 +45,7 @@ static_assert(sizeof(CausticPhoton) == CAUSTIC_PHOTON_SIZE);
 static_assert(offsetof(CausticPhoton, position) == CAUSTIC_PHOTON_POSITION);
 static_assert(offsetof(CausticPhoton, surface) == CAUSTIC_PHOTON_SURFACE);
 static_assert(offsetof(CausticPhoton, power) == CAUSTIC_PHOTON_POWER);
-static_assert(offsetof(CausticPhoton, direction_bits) == CAUSTIC_PHOTON_DIRECTION_BITS);
+static_assert(offsetof(CausticPhoton, lightmap_uv_bits) == CAUSTIC_PHOTON_LIGHTMAP_UV);
 
 /// std430 CausticControl of shaders/caustics/caustic_tiles.glsl (caustic_interface.h).
 struct Control {
@@ -383,6 +383,10 @@ void CausticPass::upload(std::span<const CausticPair> pairs) {
 
 void CausticPass::render(const CausticCamera& camera, GLuint scene_depth) {
     impl_->render(camera, scene_depth);
+}
+
+const CausticPhotonBuffer& CausticPass::photon_buffer() const {
+    return impl_->photons;
 }
 
 GLuint CausticPass::irradiance_texture() const {

@@ -28,17 +28,22 @@ struct CausticPhoton {
     /// object), where the photon is still splatted.
     std::int32_t surface = -1;
     glm::vec3 power{0.0f};  ///< watts per channel
-    /// The photon's travel direction on arrival (pointing into the surface), octahedral-encoded
-    /// in two 16-bit fixed-point numbers (error below 1e-4 rad).
-    std::uint32_t direction_bits = 0;
+    /// The hit's light-map UV, two 16-bit unsigned fixed-point numbers (u in the low half, as
+    /// GLSL's unpackUnorm2x16 reads them; 1/65535 of a page, under 1/30 texel on a 2048 page);
+    /// 0 where `surface` is -1. It puts the photon in its light-map texel without a ray, for
+    /// the caustic layer of the light maps that views other than the camera's sample
+    /// (lighting/gpu CausticLightMaps). It took the slot of the incident direction, which no
+    /// estimator read.
+    std::uint32_t lightmap_uv_bits = 0;
 
-    [[nodiscard]] glm::vec3 incident_direction() const;
+    [[nodiscard]] glm::vec2 lightmap_uv() const;
 };
 static_assert(sizeof(CausticPhoton) == 32, "caustic photons are 32 bytes");
 
-/// Octahedral encoding of a unit vector into 32 bits, and back (the result is unit length).
-[[nodiscard]] std::uint32_t encode_direction(const glm::vec3& unit);
-[[nodiscard]] glm::vec3 decode_direction(std::uint32_t bits);
+/// A light-map UV in [0, 1]^2 as two 16-bit fixed-point numbers, and back (GLSL's
+/// packUnorm2x16 layout; values outside [0, 1] are clamped, NaN reads 0).
+[[nodiscard]] std::uint32_t encode_lightmap_uv(const glm::vec2& uv);
+[[nodiscard]] glm::vec2 decode_lightmap_uv(std::uint32_t bits);
 
 struct CausticSettings {
     /// Photons per (generator, light) pair; the paper's 10,000 for its one glass sphere and one
@@ -88,10 +93,13 @@ struct CausticTraceCounters {
 /// otherwise, with total internal reflection where Snell has no solution. Power is never split:
 /// one photon, at most one stored hit. No Beer absorption: no luxel material has an absorption
 /// coefficient (TraceMaterial's tint scales a refracted photon once, at the interface).
+/// `incident_direction`, when given, receives a stored photon's direction of travel on arrival
+/// (unit; the photon does not keep it), for tests of the specular paths' geometry.
 [[nodiscard]] std::optional<CausticPhoton> trace_caustic_photon(
     const RayScene& scene, std::span<const TraceMaterial> materials, const EmittedPhoton& photon,
     std::uint64_t sample_index, std::uint32_t seed, std::uint32_t max_specular_interactions,
-    CausticTraceCounters& counters, PathCells* cells = nullptr);
+    CausticTraceCounters& counters, PathCells* cells = nullptr,
+    glm::vec3* incident_direction = nullptr);
 
 /// The caustic photons of one (generator, light) pair: photon_count photons in K slices, and
 /// up to G - 1 further generations of as many (progressive caustics).

@@ -17,6 +17,8 @@ class ShaderLibrary;
 
 namespace luxel::lighting {
 
+class CausticPhotonBuffer;
+
 /// How the filter finds the pixels to filter.
 enum class CausticTileMode {
     Full,      ///< every tile of the viewport, photons or not (the reference)
@@ -126,6 +128,8 @@ class CausticPass {
 
     /// The filtered irradiance (see the class comment); valid after render().
     [[nodiscard]] GLuint irradiance_texture() const;
+    /// The photons on the GPU, as the last upload left them (what CausticLightMaps bins).
+    [[nodiscard]] const CausticPhotonBuffer& photon_buffer() const;
     /// The unfiltered splat (E per pixel), for tests and debugging.
     [[nodiscard]] GLuint splat_texture() const;
 
