@@ -506,8 +506,13 @@ bool AimRebuilder::enclosed(const GatherTexel& texel, float ray_length) const {
     constexpr int kFreeAllowed = 2;
     const RayScene& scene = world_.ray_scene();
     const glm::vec3 origin = offset_ray_origin(texel.position, texel.normal);
-    const auto from_behind = [](const glm::vec3& direction, const std::optional<RayHit>& hit) {
-        return hit && glm::dot(direction, hit->geometric_normal) > 0.0f;
+    // Glass and water enclose nothing: light passes through them (the floor of a pool, under
+    // its water sheet, sees that sheet from behind at every angle and is lit all the same).
+    const std::vector<TraceMaterial>& materials = world_.materials();
+    const auto from_behind = [&](const glm::vec3& direction, const std::optional<RayHit>& hit) {
+        return hit && glm::dot(direction, hit->geometric_normal) > 0.0f &&
+               !(hit->material < materials.size() &&
+                 materials[hit->material].scattering == Scattering::Dielectric);
     };
     const std::optional<RayHit> along_normal = scene.intersect(origin, texel.normal);
     const bool inside = from_behind(texel.normal, along_normal);

@@ -46,15 +46,20 @@ glm::dvec3 barycentric(const std::array<glm::dvec2, 3>& uv, const glm::dvec2& q)
 /// meets a face from behind, and four rays 60 degrees off it each meet one too or a face within
 /// `near`, as under a crate whose bottom face lies in the floor's plane (or cuts through its
 /// bumps). One back face is not enough: a floor under a roof modelled facing
-/// the sky sees the roof from behind and the walls around from the front.
-bool hidden_point(const RayScene& rays, const glm::vec3& p, const glm::vec3& n, float near) {
+/// the sky sees the roof from behind and the walls around from the front. Glass and water
+/// (dielectric faces) enclose nothing: light passes through them, so the floor of a pool under
+/// its water sheet, which sees the sheet from behind at every angle, stays open.
+bool hidden_point(const RayScene& rays, std::span<const TraceMaterial> materials,
+                  const glm::vec3& p, const glm::vec3& n, float near) {
     const glm::vec3 origin = offset_ray_origin(p, n);
     const std::optional<RayHit> up = rays.intersect(origin, n);
     if (!up) {
         return false;
     }
-    const auto from_behind = [](const glm::vec3& d, const std::optional<RayHit>& hit) {
-        return hit && glm::dot(hit->geometric_normal, d) > 0.0f;
+    const auto from_behind = [&](const glm::vec3& d, const std::optional<RayHit>& hit) {
+        return hit && glm::dot(hit->geometric_normal, d) > 0.0f &&
+               !(hit->material < materials.size() &&
+                 materials[hit->material].scattering == Scattering::Dielectric);
     };
     if (!from_behind(n, up)) {
         return up->distance < near;
@@ -459,7 +464,8 @@ void ReferenceScene::measure_texels() {
                                         static_cast<std::size_t>(j * kSub + i)];
                         if (state == kUnknown) {
                             const glm::vec3 point(w.x * world[0] + w.y * world[1] + w.z * world[2]);
-                            state = hidden_point(*rays_, point, normal, near) ? kHidden : kOpen;
+                            state = hidden_point(*rays_, materials_, point, normal, near) ? kHidden
+                                                                                          : kOpen;
                         }
                         return state;
                     };
