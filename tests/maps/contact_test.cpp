@@ -24,6 +24,7 @@
 #include "luxel/lighting/core/sky_radiance.hpp"
 #include "luxel/runtime/jobs.hpp"
 #include "map_test_scenes.hpp"
+#include "sheet_mesh.hpp"
 
 namespace {
 
@@ -176,6 +177,52 @@ TEST(ContactLight, TheFloorBesideABoxReadsTheLightThereNotTheBoxsUnlitInside) {
     // Gathered at their centres they hold the box's black inside, and the lookup beside the box
     // reads them (the notch). The test sees it.
     EXPECT_LT(centres.worst, 0.5);
+}
+
+/// The enclosed texels the AIM finds on the 4 x 4 m plane under a 3 x 3 m sheet 0.4 m above
+/// its middle, facing up, of glass (transmission 1) or of a diffuse grey.
+std::uint64_t enclosed_under_sheet(bool glass) {
+    ecs::Registry registry;
+    ecs::TransformSystem transforms{registry};
+    JobSystem jobs{2};
+    const ecs::Entity plane = registry.create();
+    registry.emplace<scene::MeshInstance>(
+        plane, luxel::testing::lightmapped_plane(kSide, 8, kTexel, 64, glm::vec3(0.5f)), 0);
+    registry.emplace<lighting::LightmappedSurface>(plane,
+                                                   luxel::testing::plane_layout(kSide, kTexel, 64));
+    registry.emplace<ecs::Transform>(plane, ecs::Transform{});
+    auto sheet = std::make_shared<scene::Scene>();
+    scene::Material material = luxel::testing::diffuse_material(0.5f);
+    if (glass) {
+        material.transmission = 1.0f;
+        material.roughness = 0.0f;
+        material.ior = 1.33f;
+    }
+    sheet->materials.push_back(material);
+    scene::Primitive quad = luxel::testing::sheet_primitive(2, {0.5f, 0.4f, 0.5f}, 3.0f);
+    quad.material = 0;
+    sheet->meshes.push_back({"sheet", {quad}});
+    const ecs::Entity sheet_entity = registry.create();
+    registry.emplace<scene::MeshInstance>(sheet_entity, sheet, 0);
+    registry.emplace<ecs::Transform>(sheet_entity, ecs::Transform{});
+    const ecs::Entity sky = registry.create();
+    registry.emplace<lighting::SkyLight>(
+        sky, lighting::SkyLight{std::make_shared<const lighting::SkyRadiance>(
+                                    lighting::SkyRadiance::uniform(glm::vec3(kSkyRadiance))),
+                                1.0f, true});
+    transforms.update();
+    lighting::LightingSystem lighting(registry, jobs, luxel::testing::closed_form_config(64, 16));
+    double time = 0.0;
+    EXPECT_LE(luxel::testing::converge(transforms, lighting, time), 100);
+    return lighting.maps().counters().enclosed_texels;
+}
+
+TEST(ContactLight, AFloorUnderWaterIsNotEnclosed) {
+    // The floor's middle sees the sheet from behind along its normal and around it, which is
+    // how the inside of a closed object looks; light passes through glass and water, so under a
+    // glass sheet no texel is enclosed. Under an opaque one the middle is.
+    EXPECT_EQ(enclosed_under_sheet(true), 0u);
+    EXPECT_GT(enclosed_under_sheet(false), 100u);
 }
 
 }  // namespace
