@@ -95,10 +95,12 @@ ReferenceImage reference_image_for(const std::filesystem::path& cache_dir, const
                                    const ReferenceSpec& spec, const ImageSpec& image,
                                    JobSystem& jobs) {
     ReferenceImage reference;
+    // frame=v3: glass and water enclose nothing (ReferenceScene's hidden points), so a pool's
+    // floor seen through its water is lit.
     reference.key = pose + ";" + describe_camera(camera) +
                     ";image_spp=" + std::to_string(image.spp) +
                     ";caustic_photons=" + std::to_string(spec.caustic_photons) +
-                    ";seed=" + std::to_string(spec.seed) + ";frame=v2";
+                    ";seed=" + std::to_string(spec.seed) + ";frame=v3";
     // Paths read base-colour textures per hit (HitTextures): a textured level gets a new
     // entry; an untextured one keeps its cached frame.
     if (scene.textured()) {

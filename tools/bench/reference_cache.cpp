@@ -112,11 +112,12 @@ ReferenceMaps reference_for(const std::filesystem::path& cache_dir, const std::s
     ReferenceMaps maps;
     // The version names the reference's algorithms: v2, caustic photons from its own
     // CausticDiscEmitter instead of the real-time CausticEmitter; v3, texel areas counting only
-    // the part no object rests on (ReferenceTexel::area).
+    // the part no object rests on (ReferenceTexel::area); v4, glass and water enclose nothing (a
+    // pool's floor under its water sheet is open).
     maps.key = pose + ";indirect_photons=" + std::to_string(spec.indirect_photons) +
                ";caustic_photons=" + std::to_string(spec.caustic_photons) +
                ";spp=" + std::to_string(spec.spp) + ";seed=" + std::to_string(spec.seed) +
-               ";texels=" + std::to_string(scene.texel_count()) + ";reference=v3";
+               ";texels=" + std::to_string(scene.texel_count()) + ";reference=v4";
     // Area lights' and skies' direct light counts as indirect (reference_settings): a level
     // that has them gets a new entry; one lit by delta lights alone keeps its reference.
     const auto lights = scene.lights();
