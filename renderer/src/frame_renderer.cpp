@@ -103,6 +103,9 @@ struct FrameRenderer::Impl {
     /// FrameSettings::sky_edge_coverage, while the frame has a sky.
     std::optional<SkyCoverage> sky_edges;
     bool sky_masked = false;  ///< this frame has sky_edges' mask
+    /// This frame's caustics come from the own pass (not set_caustics or a stage): only then
+    /// may FrameSettings::caustic_layer_in_view replace them on light-mapped pixels.
+    bool own_caustics_shown = false;
     PassTimer timer;
     FrameTimings timings;
     FrameCounters counters;
@@ -304,6 +307,15 @@ struct FrameRenderer::Impl {
                                                    caustic ? 1.0f : 0.0f, specular ? 1.0f : 0.0f));
         composite_program.set("u_emission_on", terms.emission ? 1.0f : 0.0f);
         composite_program.set("u_caustics_irradiance", caustics.irradiance ? 1 : 0);
+        // Light-mapped pixels from the caustic layer (FrameSettings::caustic_layer_in_view).
+        const bool layer = caustic && own_caustics_shown && settings.caustic_layer_in_view &&
+                           caustic_light_maps && !caustic_light_maps->empty();
+        composite_program.set("u_caustic_layer", layer ? 1 : 0);
+        if (layer) {
+            lightmaps.bind();  // the page sizes
+            glBindTextureUnit(3, targets.lightmap.id());
+            caustic_light_maps->bind();
+        }
         const bool sky_on = sky.present();  // synced by render()
         composite_program.set("u_sky_on", sky_on ? 1 : 0);
         composite_program.set("u_inverse_view_projection",
@@ -338,10 +350,12 @@ struct FrameRenderer::Impl {
     }
 
     /// The caustic layer of the light maps for the cube maps' faces (they see surfaces the
-    /// camera's caustic splat cannot reach): kept while the own caustic pass and the specular
-    /// pass both run. Returns whether the layer changed this frame.
+    /// camera's caustic splat cannot reach) and, with FrameSettings::caustic_layer_in_view, the
+    /// camera: kept while the own caustic pass and one of those runs. Returns whether the layer
+    /// changed this frame.
     bool sync_caustic_light_maps(bool specular_pass) {
-        if (!specular_pass || !own_caustics || !terms.caustics) {
+        const bool wanted = specular_pass || settings.caustic_layer_in_view;
+        if (!wanted || !own_caustics || !terms.caustics) {
             caustic_light_maps.reset();
             return false;
         }
@@ -450,7 +464,7 @@ struct FrameRenderer::Impl {
             timer.end(RenderPass::Specular);
         } else {
             cube_maps.clear();
-            caustic_light_maps.reset();
+            sync_caustic_light_maps(false);
         }
         if (!specular) {
             clear_colour(targets.specular_target.id());
@@ -462,6 +476,7 @@ struct FrameRenderer::Impl {
         counters.draws_over_fill_budget =
             shadows.skipped_casters() + cube_maps.skipped_draws() + gbuffer_skipped;
         const CausticInput external = caustics;
+        own_caustics_shown = !caustic_stage && caustics.texture == 0 && own_caustics;
         if (terms.caustics && (caustic_stage || (caustics.texture == 0 && own_caustics))) {
             // The stage draws with its own state and timers: outside the composite's query.
             caustics = caustic_stage ? caustic_stage(camera, targets.depth.id())

@@ -18,9 +18,6 @@
 namespace luxel::renderer {
 namespace {
 
-/// shaders/render/caustic_light_map.glsl's u_caustic_light_map.
-constexpr GLuint kCausticLightMapUnit = 20;
-
 /// How far a face draws: twice the level's diagonal, so a probe anywhere in it sees all of it.
 float face_reach(const DrawList& draws) {
     return std::max(glm::length(draws.bounds.hi - draws.bounds.lo) * 2.0f, 1.0f);
@@ -199,7 +196,7 @@ bool SpecularCubeMaps::render(const DrawList& draws, const std::vector<FrameLigh
     const bool caustic_layer = caustics != nullptr && !caustics->empty();
     face_program_.set("u_caustic_layer", caustic_layer ? 1 : 0);
     if (caustic_layer) {
-        glBindTextureUnit(kCausticLightMapUnit, caustics->texture());
+        caustics->bind();
     }
     for (auto& [entity, cube_map] : cube_maps_) {
         // A new cube_map fills every face at once so it never shows black; afterwards the budget

@@ -5,7 +5,8 @@
 // empty texel beside it (the IIM pages fill theirs by dilation; this layer is rebuilt too
 // often for that to pay).
 
-layout(binding = 20) uniform sampler2DArray u_caustic_light_map;  // clear of 17 (sky), 18-19 (probes)
+// Unit 20: CausticLightMaps::kTextureUnit, clear of 17 (sky), 18-19 (probes).
+layout(binding = 20) uniform sampler2DArray u_caustic_light_map;
 uniform bool u_caustic_layer = false;  // false: no layer bound, no caustic term
 
 // L_caustic = albedo / pi * E at light-map `uv` of page `layer_value` (< 0: none).

@@ -2,13 +2,19 @@
 // The frame in linear HDR radiance (docs/METHOD.md §8.1):
 //     L = L_indirect + L_caustics + L_specular + sum_i L_direct(i) * shadow(i)   (+ L_emitted)
 // each term weighted 0 or 1 by its toggle. The caustic input is either irradiance (multiplied
-// by albedo / pi here) or radiance. Tone mapping happens later, for display only.
+// by albedo / pi here) or radiance; with u_caustic_layer, light-mapped pixels read the caustic
+// layer of the light maps instead (FrameSettings::caustic_layer_in_view). Tone mapping happens
+// later, for display only.
 
 #include "common/radiometry.glsl"
 #include "common/sky.glsl"
+// iim.glsl for the page sizes the caustic layer is read with.
+#include "render/iim.glsl"
+#include "render/caustic_light_map.glsl"
 
 layout(binding = 0) uniform sampler2D u_albedo;
 layout(binding = 2) uniform sampler2D u_position;
+layout(binding = 3) uniform sampler2D u_lightmap;  // light-map uv, page layer, content
 layout(binding = 4) uniform sampler2D u_emission;
 layout(binding = 5) uniform sampler2D u_direct;
 layout(binding = 6) uniform sampler2D u_indirect;
@@ -41,11 +47,16 @@ vec3 surface_radiance(ivec2 pixel) {
         l += texelFetch(u_indirect, pixel, 0).rgb;
     }
     if (u_terms.z > 0.0) {
-        vec3 caustic = texelFetch(u_caustics, pixel, 0).rgb;
-        if (u_caustics_irradiance != 0) {
-            caustic = lambert_radiance(texelFetch(u_albedo, pixel, 0).rgb, caustic);
+        vec4 lookup = u_caustic_layer ? texelFetch(u_lightmap, pixel, 0) : vec4(-1.0);
+        if (lookup.z >= 0.0) {
+            l += caustic_light_map_radiance(lookup.xy, lookup.z, texelFetch(u_albedo, pixel, 0).rgb);
+        } else {
+            vec3 caustic = texelFetch(u_caustics, pixel, 0).rgb;
+            if (u_caustics_irradiance != 0) {
+                caustic = lambert_radiance(texelFetch(u_albedo, pixel, 0).rgb, caustic);
+            }
+            l += caustic;
         }
-        l += caustic;
     }
     if (u_terms.w > 0.0) {
         l += texelFetch(u_specular, pixel, 0).rgb;

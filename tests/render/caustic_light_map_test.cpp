@@ -186,4 +186,40 @@ TEST(CausticLightMaps, TheWaterShowsThePoolFloorsCaustics) {
     EXPECT_TRUE(std::isfinite(with.r) && std::isfinite(with.g) && std::isfinite(with.b));
 }
 
+/// The mean caustic radiance over the frame (frame with caustics minus without), with the
+/// camera's caustics from the screen-space splat or from the caustic layer.
+double caustic_mean(CausticsLevel& level, bool layer_in_view) {
+    renderer::FrameSettings settings;
+    settings.width = 160;
+    settings.height = 90;
+    settings.specular_cube_size = 32;
+    settings.caustic_layer_in_view = layer_in_view;
+    const renderer::FrameCamera camera = test::level_camera(level.world.registry, 160.0f / 90.0f);
+    const auto mean_green = [&](bool caustics) {
+        renderer::FrameRenderer renderer(level.world.registry, *level.world.lighting, settings);
+        renderer.set_terms({.caustics = caustics, .specular = false});
+        renderer.render(camera, level.world.time);
+        const Image frame = renderer.read(renderer::FrameImage::Frame);
+        double sum = 0.0;
+        for (int y = 0; y < frame.height; ++y) {
+            for (int x = 0; x < frame.width; ++x) {
+                sum += static_cast<double>(frame.pixel(x, y).g);
+            }
+        }
+        return sum / (static_cast<double>(frame.width) * frame.height);
+    };
+    return mean_green(true) - mean_green(false);
+}
+
+TEST(CausticLightMaps, TheCamerasCausticsFromTheLayerMatchTheSplatsInTheMean) {
+    // Two estimators of the same photons' irradiance: binned per light-map texel, or splatted
+    // per pixel and filtered. Over the frame they must agree (both keep the photons' power);
+    // pixel for pixel they differ by their noise and blur.
+    CausticsLevel level;
+    const double splat = caustic_mean(level, false);
+    const double layer = caustic_mean(level, true);
+    ASSERT_GT(splat, 1e-3) << "the level's caustics are in view";
+    EXPECT_NEAR(layer / splat, 1.0, 0.1) << splat << " vs " << layer;
+}
+
 }  // namespace

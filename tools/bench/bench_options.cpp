@@ -77,9 +77,10 @@ Sweep parse_sweep(const std::string& text) {
                             "' is not a gather backend (cpu, gpu, gpu-plane, gpu-turn)");
             }
         } else if (sweep.knob == "kernel") {
-            if (value != "larsen" && value != "box" && value != "cone" && value != "world") {
+            if (value != "larsen" && value != "box" && value != "cone" && value != "world" &&
+                value != "layer") {
                 throw Error(what + ": '" + value +
-                            "' is not a caustic kernel (larsen, box, cone, world)");
+                            "' is not a caustic kernel (larsen, box, cone, world, layer)");
             }
         } else if (sweep.knob == "aa" || sweep.knob == "sky_edges") {
             if (value != "on" && value != "off") {

@@ -78,7 +78,7 @@ struct Options {
 };
 
 /// Parses KNOB=V1,V2,... (knobs: budget, photons GxM, aim_n, rays, texels_per_unit, filter,
-/// caustics NxK, backend cpu|gpu, kernel larsen|box|cone|world). Throws luxel::Error naming
+/// caustics NxK, backend cpu|gpu, kernel larsen|box|cone|world|layer). Throws luxel::Error naming
 /// the flag and what is wrong.
 [[nodiscard]] Sweep parse_sweep(const std::string& text);
 /// Parses NODE:dx,dy,dz. Throws luxel::Error.

@@ -194,8 +194,11 @@ ConfigRun::ConfigRun(const LevelRunContext& context, const BenchConfig& config)
         if (!camera_) {
             camera_ = ref::default_camera(options_.image.width, options_.image.height);
         }
-        const FrameChoices choices{parse_kernel(config.kernel), config.aa == "on",
-                                   config.lightmap == "bicubic", config.sky_edges == "on"};
+        // kernel=layer: the caustic layer where a pixel has a light map, Larsen's splat elsewhere.
+        const bool layer = config.kernel == "layer";
+        const FrameChoices choices{
+            layer ? lighting::CausticKernel::Larsen : parse_kernel(config.kernel),
+            config.aa == "on", config.lightmap == "bicubic", config.sky_edges == "on", layer};
         view_ =
             std::make_unique<FrameView>(registry_, *lighting_, *camera_, choices, *context.shaders);
     }

@@ -18,6 +18,7 @@ renderer::FrameSettings frame_settings(const lighting::reference::ReferenceCamer
     settings.sky_edge_coverage = choices.sky_edge_coverage;
     settings.caustics = lighting::CausticPassSettings{};
     settings.caustics->kernel = choices.kernel;
+    settings.caustic_layer_in_view = choices.caustic_layer;
     settings.width = camera.width;
     settings.height = camera.height;
     // The timings reported are this frame's, not a frame still in flight.

@@ -49,6 +49,9 @@ struct FrameChoices {
     bool anti_aliasing = true;
     bool bicubic_light_maps = false;
     bool sky_edge_coverage = true;
+    /// kernel=layer: light-mapped pixels read the caustic layer of the light maps
+    /// (FrameSettings::caustic_layer_in_view), the others `kernel`'s splat.
+    bool caustic_layer = false;
 };
 
 /// One run's renderer. Needs the context current for its whole life.

@@ -101,7 +101,7 @@ int run(int argc, char** argv) {
         "keep SIGMAS, "
         "caustics NxK, caustic_refine PHOTONS, "
         "backend cpu|gpu|gpu-turn|gpu-plane, kernel "
-        "larsen|box|cone|world, aa on|off, lightmap bilinear|bicubic, sky_edges "
+        "larsen|box|cone|world|layer, aa on|off, lightmap bilinear|bicubic, sky_edges "
         "on|off); repeatable, "
         "each varies one knob from the paper's configuration");
     app.add_option("--image", image_size,

@@ -106,6 +106,12 @@ void CausticLightMaps::draw(const CausticPass& caustics) {
     gl::check_error("CausticLightMaps draw");
 }
 
+void CausticLightMaps::bind() const {
+    if (!empty()) {
+        glBindTextureUnit(kTextureUnit, texture_.id());
+    }
+}
+
 bool CausticLightMaps::sync(const CausticPass& caustics, const IlluminationMaps& maps) {
     bool redraw = !drawn_;
     const std::span<const IimPage> pages = maps.iim_pages();

@@ -43,6 +43,12 @@ class CausticLightMaps {
     /// call; returns whether it did.
     bool sync(const CausticPass& caustics, const IlluminationMaps& maps);
 
+    /// The texture unit shaders/render/caustic_light_map.glsl reads the layer at (clear of the
+    /// units the cube maps' faces and the composite bind otherwise).
+    static constexpr GLuint kTextureUnit = 20;
+    /// Binds the layer at kTextureUnit (nothing while empty()).
+    void bind() const;
+
     /// No page: nothing to sample (texture() is 0).
     [[nodiscard]] bool empty() const { return layers_ == 0; }
     [[nodiscard]] GLuint texture() const { return texture_.id(); }
