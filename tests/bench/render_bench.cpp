@@ -12,6 +12,11 @@
 //                     in the vertex stage: the G-buffer, shadow maps and probes skin it
 //   Frame/skinned-cpu the same, each pose's vertices skinned on the CPU and uploaded
 //                     (FrameSettings::gpu_skinning false): the baseline of the row above
+//   Frame/caustics    the caustics level (water, glass, brass) lit a frame before every frame
+//                     (outside the timing), so its caustic photons change and the caustic
+//                     layer of the light maps is redrawn; the specular pass includes that
+//   Frame/caustics-no-layer the same without the renderer's caustic pass (no layer, no
+//                     splat): the baseline of the row above
 // Counters: milliseconds per frame of each pass (GPU), averaged over the iterations; for the
 // skinned rows also the bytes a frame sends for the figure (vertices or joint matrices).
 
@@ -44,6 +49,8 @@ struct Variant {
     bool sky_edges = true;
     bool skinned = false;  ///< the skinned figure level, posed every frame
     bool gpu_skinning = true;
+    bool caustics_level = false;  ///< the caustics level, lit before every frame
+    bool caustic_pass = true;     ///< FrameSettings::caustics set
 };
 
 /// Vertices of every skinned mesh's bind pose in the registry.
@@ -65,7 +72,9 @@ void frame(benchmark::State& state, const Variant& variant) {
     world::instantiate(
         world.registry,
         std::make_shared<scene::Scene>(
-            scene::load_gltf(test::prepared_level(variant.skinned ? "skinned-figure" : "cornell"))),
+            scene::load_gltf(test::prepared_level(variant.skinned          ? "skinned-figure"
+                                                  : variant.caustics_level ? "caustics"
+                                                                           : "cornell"))),
         world::InstantiateOptions{
             .play_animations = variant.skinned,
             .sky = variant.sky ? std::optional<scene::SkySpec>(scene::parse_sky("uniform:1,1,1"))
@@ -91,6 +100,9 @@ void frame(benchmark::State& state, const Variant& variant) {
     settings.bicubic_light_maps = variant.bicubic;
     settings.sky_edge_coverage = variant.sky_edges;
     settings.gpu_skinning = variant.gpu_skinning;
+    if (!variant.caustic_pass) {
+        settings.caustics.reset();
+    }
     renderer::FrameRenderer renderer(world.registry, *world.lighting, settings);
     renderer.render(camera, world.time);  // allocations and first shadow maps out of the loop
 
@@ -104,6 +116,11 @@ void frame(benchmark::State& state, const Variant& variant) {
             world::update_animations(world.registry, 1.0 / 60.0);
             world.transforms.update();
             world::update_skins(world.registry);
+            state.ResumeTiming();
+        }
+        if (variant.caustics_level) {
+            state.PauseTiming();
+            world.update(4.0);  // a 4 ms frame of lighting: caustic slices land
             state.ResumeTiming();
         }
         if (moving) {
@@ -145,6 +162,13 @@ void BM_FrameSkinnedGpu(benchmark::State& state) {
 }
 void BM_FrameSkinnedCpu(benchmark::State& state) {
     frame(state, {.skinned = true, .gpu_skinning = false});
+}
+
+void BM_FrameCaustics(benchmark::State& state) {
+    frame(state, {.caustics_level = true});
+}
+void BM_FrameCausticsNoLayer(benchmark::State& state) {
+    frame(state, {.caustics_level = true, .caustic_pass = false});
 }
 
 void BM_FrameStatic(benchmark::State& state) {
@@ -196,6 +220,16 @@ BENCHMARK(BM_FrameSkinnedGpu)
     ->MinTime(2.0);
 BENCHMARK(BM_FrameSkinnedCpu)
     ->Name("Frame/skinned-cpu")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_FrameCaustics)
+    ->Name("Frame/caustics")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_FrameCausticsNoLayer)
+    ->Name("Frame/caustics-no-layer")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);
