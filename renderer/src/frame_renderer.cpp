@@ -17,7 +17,6 @@
 #include "luxel/ecs/observer.hpp"
 #include "luxel/ecs/transform.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
-#include "luxel/lighting/gpu/caustic_light_maps.hpp"
 #include "luxel/lighting/gpu/irradiance_probe_textures.hpp"
 #include "luxel/lighting/gpu/lightmap_textures.hpp"
 #include "luxel/lighting/gpu/sky_texture.hpp"
@@ -27,6 +26,7 @@
 #include "luxel/runtime/render_target.hpp"
 #include "luxel/runtime/shader_library.hpp"
 #include "mesh_cache.hpp"
+#include "own_caustics.hpp"
 #include "pass_timer.hpp"
 #include "scene_draws.hpp"
 #include "shadow_maps.hpp"
@@ -112,11 +112,8 @@ struct FrameRenderer::Impl {
     FrameTerms terms;
     CausticInput caustics;  ///< set_caustics(): a caustic term made elsewhere
     CausticStage caustic_stage;
-    ShaderLibrary shader_library;  ///< for the passes made later (the caustic pass)
-    std::optional<lighting::CausticPass>
-        own_caustics;  ///< FrameSettings::caustics, while the plan has data
-    /// The caustic layer the cube maps' faces sample, while own_caustics and a cube map exist.
-    std::optional<lighting::CausticLightMaps> caustic_light_maps;
+    ShaderLibrary shader_library;              ///< for the passes made later (the caustic pass)
+    OwnCaustics own_caustics{shader_library};  ///< FrameSettings::caustics
     LightBatches batches;
     gl::Texture black = gl::Texture::create_2d(GL_RGBA16F, 1, 1);
     ecs::Observer<scene::MeshInstance> mesh_changes;
@@ -308,13 +305,14 @@ struct FrameRenderer::Impl {
         composite_program.set("u_emission_on", terms.emission ? 1.0f : 0.0f);
         composite_program.set("u_caustics_irradiance", caustics.irradiance ? 1 : 0);
         // Light-mapped pixels from the caustic layer (FrameSettings::caustic_layer_in_view).
-        const bool layer = caustic && own_caustics_shown && settings.caustic_layer_in_view &&
-                           caustic_light_maps && !caustic_light_maps->empty();
-        composite_program.set("u_caustic_layer", layer ? 1 : 0);
-        if (layer) {
+        const lighting::CausticLightMaps* layer =
+            caustic && own_caustics_shown && settings.caustic_layer_in_view ? own_caustics.layer()
+                                                                            : nullptr;
+        composite_program.set("u_caustic_layer", layer != nullptr ? 1 : 0);
+        if (layer != nullptr) {
             lightmaps.bind();  // the page sizes
             glBindTextureUnit(3, targets.lightmap.id());
-            caustic_light_maps->bind();
+            layer->bind();
         }
         const bool sky_on = sky.present();  // synced by render()
         composite_program.set("u_sky_on", sky_on ? 1 : 0);
@@ -335,47 +333,6 @@ struct FrameRenderer::Impl {
         glBindTextureUnit(7, caustic ? caustics.texture : black.id());
         glBindTextureUnit(8, specular ? targets.specular_term.id() : black.id());
         draw_fullscreen();
-    }
-
-    /// The caustic pass exists exactly while the FeaturePlan has caustic data (and the
-    /// settings ask for one): created on the first frame that needs it, freed when none does.
-    void sync_own_caustics() {
-        const bool wanted = settings.caustics.has_value() && lighting.plan().caustic_data();
-        if (wanted && !own_caustics) {
-            own_caustics.emplace(*settings.caustics, glm::ivec2(settings.width, settings.height),
-                                 shader_library);
-        } else if (!wanted && own_caustics) {
-            own_caustics.reset();
-        }
-    }
-
-    /// The caustic layer of the light maps for the cube maps' faces (they see surfaces the
-    /// camera's caustic splat cannot reach) and, with FrameSettings::caustic_layer_in_view, the
-    /// camera: kept while the own caustic pass and one of those runs. Returns whether the layer
-    /// changed this frame.
-    bool sync_caustic_light_maps(bool specular_pass) {
-        const bool wanted = specular_pass || settings.caustic_layer_in_view;
-        if (!wanted || !own_caustics || !terms.caustics) {
-            caustic_light_maps.reset();
-            return false;
-        }
-        own_caustics->upload(lighting.photons().caustics());
-        if (!caustic_light_maps) {
-            caustic_light_maps.emplace(shader_library);
-        }
-        return caustic_light_maps->sync(*own_caustics, lighting.maps());
-    }
-
-    /// The caustic stage the renderer runs itself: this frame's photons, splatted against this
-    /// frame's depth from this frame's camera.
-    CausticInput own_caustic_stage(const FrameCamera& camera) {
-        own_caustics->upload(lighting.photons().caustics());
-        lighting::CausticCamera caustic_camera;
-        caustic_camera.view = camera.view;
-        caustic_camera.projection = camera.projection;
-        caustic_camera.viewport = {settings.width, settings.height};
-        own_caustics->render(caustic_camera, targets.depth.id());
-        return CausticInput{own_caustics->irradiance_texture(), true};
     }
 
     void render(const FrameCamera& camera, double now_seconds) {
@@ -450,21 +407,25 @@ struct FrameRenderer::Impl {
         const bool sky_on = sky.sync(lighting.maps().aim());
         const bool sky_changed = sky.changes() != sky_before;
         bool specular = false;
-        sync_own_caustics();
+        const glm::ivec2 viewport(settings.width, settings.height);
+        own_caustics.sync_pass(settings.caustics, lighting, viewport);
+        // The caustic layer, for the cube maps' faces and, by default, the camera; its redraw is
+        // timed with the faces when there are any.
+        const bool caustic_layer =
+            terms.caustics && (specular_pass || settings.caustic_layer_in_view);
         if (specular_pass) {
             timer.begin(RenderPass::Specular);
-            const bool caustics_changed = sync_caustic_light_maps(specular_pass);
+            const bool caustics_changed = own_caustics.sync_layer(caustic_layer, lighting);
             const bool changed =
                 counters.shadow_maps_drawn > 0 || lights.size() != previous_light_count ||
                 lightmaps.uploads() != previous_page_uploads || sky_changed || caustics_changed;
-            specular = cube_maps.render(draws, lights, shadows, batches, lightmaps,
-                                        caustic_light_maps ? &*caustic_light_maps : nullptr,
-                                        targets, camera, sky_on ? sky.id() : 0, now_seconds,
-                                        changed, terms.specular);
+            specular = cube_maps.render(
+                draws, lights, shadows, batches, lightmaps, own_caustics.layer(), targets, camera,
+                sky_on ? sky.id() : 0, now_seconds, changed, terms.specular);
             timer.end(RenderPass::Specular);
         } else {
             cube_maps.clear();
-            sync_caustic_light_maps(false);
+            own_caustics.sync_layer(caustic_layer, lighting);
         }
         if (!specular) {
             clear_colour(targets.specular_target.id());
@@ -476,11 +437,12 @@ struct FrameRenderer::Impl {
         counters.draws_over_fill_budget =
             shadows.skipped_casters() + cube_maps.skipped_draws() + gbuffer_skipped;
         const CausticInput external = caustics;
-        own_caustics_shown = !caustic_stage && caustics.texture == 0 && own_caustics;
-        if (terms.caustics && (caustic_stage || (caustics.texture == 0 && own_caustics))) {
+        own_caustics_shown = !caustic_stage && caustics.texture == 0 && own_caustics.has_pass();
+        if (terms.caustics && (caustic_stage || own_caustics_shown)) {
             // The stage draws with its own state and timers: outside the composite's query.
-            caustics = caustic_stage ? caustic_stage(camera, targets.depth.id())
-                                     : own_caustic_stage(camera);
+            caustics = caustic_stage
+                           ? caustic_stage(camera, targets.depth.id())
+                           : own_caustics.render(camera, viewport, targets.depth.id(), lighting);
             glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
             glDisable(GL_DEPTH_TEST);
             glDisable(GL_BLEND);
@@ -562,11 +524,11 @@ void FrameRenderer::resize(int width, int height) {
     validate(settings);
     impl_->targets = FrameTargets(width, height, settings.anti_aliasing);
     impl_->settings = settings;
-    impl_->own_caustics.reset();  // made again at the new size by the next frame that needs it
+    impl_->own_caustics.drop_pass();  // made again at the new size by the next frame
 }
 
 lighting::CausticPass* FrameRenderer::caustic_pass() {
-    return impl_->own_caustics ? &*impl_->own_caustics : nullptr;
+    return impl_->own_caustics.pass();
 }
 
 GLuint FrameRenderer::frame_texture() const {
