@@ -101,7 +101,13 @@ void main() {
         vec3 t = refract(v, n, 1.0 / max(u_ior, 1e-3));
         if (dot(t, t) > 0.0) {
             vec3 passed = pow(1.0 - fresnel, vec3(u_transmittance.a));
-            l += passed * transmission * u_transmittance.rgb * probe_along(origin, normalize(t));
+            // Through a sheet (one surface: water, a pane) the refracted ray goes on straight
+            // and is marched; through a closed solid it bends again where it leaves, which the
+            // march cannot follow, and the direction alone was measured closer (cornell's glass
+            // sphere, docs/RESULTS.md).
+            t = normalize(t);
+            vec3 seen = u_transmittance.a < 1.5 ? probe_along(origin, t) : texture(u_probe, t).rgb;
+            l += passed * transmission * u_transmittance.rgb * seen;
         }
     }
     out_radiance = vec4(max(l, vec3(0.0)), 1.0);
