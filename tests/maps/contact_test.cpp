@@ -36,6 +36,25 @@ constexpr float kHalf = 0.5f;  // the box's half edge
 constexpr float kTurnDegrees = 30.0f;
 constexpr float kSkyRadiance = 1.0f;
 
+/// The light-mapped plane, 4 x 4 m at 10 cm texels, albedo 0.5, from the origin along +x, +z.
+void add_plane(ecs::Registry& registry) {
+    const ecs::Entity plane = registry.create();
+    registry.emplace<scene::MeshInstance>(
+        plane, luxel::testing::lightmapped_plane(kSide, 8, kTexel, 64, glm::vec3(0.5f)), 0);
+    registry.emplace<lighting::LightmappedSurface>(plane,
+                                                   luxel::testing::plane_layout(kSide, kTexel, 64));
+    registry.emplace<ecs::Transform>(plane, ecs::Transform{});
+}
+
+/// A uniform sky of radiance kSkyRadiance.
+void add_uniform_sky(ecs::Registry& registry) {
+    const ecs::Entity sky = registry.create();
+    registry.emplace<lighting::SkyLight>(
+        sky, lighting::SkyLight{std::make_shared<const lighting::SkyRadiance>(
+                                    lighting::SkyRadiance::uniform(glm::vec3(kSkyRadiance))),
+                                1.0f, true});
+}
+
 /// The plane (4 x 4 m at 10 cm texels, albedo 0.5) under a uniform sky, a 1 m box of albedo 0.5
 /// resting on its middle turned 30 degrees about the vertical, and the lighting system.
 struct BoxOnPlane {
@@ -46,12 +65,7 @@ struct BoxOnPlane {
     double time = 0.0;
 
     explicit BoxOnPlane(bool contact_texels) {
-        const ecs::Entity plane = registry.create();
-        registry.emplace<scene::MeshInstance>(
-            plane, luxel::testing::lightmapped_plane(kSide, 8, kTexel, 64, glm::vec3(0.5f)), 0);
-        registry.emplace<lighting::LightmappedSurface>(
-            plane, luxel::testing::plane_layout(kSide, kTexel, 64));
-        registry.emplace<ecs::Transform>(plane, ecs::Transform{});
+        add_plane(registry);
 
         const ecs::Entity box = registry.create();
         registry.emplace<scene::MeshInstance>(
@@ -61,11 +75,7 @@ struct BoxOnPlane {
         placed.rotation = glm::angleAxis(glm::radians(kTurnDegrees), glm::vec3(0.0f, 1.0f, 0.0f));
         registry.emplace<ecs::Transform>(box, placed);
 
-        const ecs::Entity sky = registry.create();
-        registry.emplace<lighting::SkyLight>(
-            sky, lighting::SkyLight{std::make_shared<const lighting::SkyRadiance>(
-                                        lighting::SkyRadiance::uniform(glm::vec3(kSkyRadiance))),
-                                    1.0f, true});
+        add_uniform_sky(registry);
         transforms.update();
         lighting::LightingConfig config = luxel::testing::closed_form_config(256, 32);
         config.maps.contact_texels = contact_texels;
@@ -185,12 +195,7 @@ std::uint64_t enclosed_under_sheet(bool glass) {
     ecs::Registry registry;
     ecs::TransformSystem transforms{registry};
     JobSystem jobs{2};
-    const ecs::Entity plane = registry.create();
-    registry.emplace<scene::MeshInstance>(
-        plane, luxel::testing::lightmapped_plane(kSide, 8, kTexel, 64, glm::vec3(0.5f)), 0);
-    registry.emplace<lighting::LightmappedSurface>(plane,
-                                                   luxel::testing::plane_layout(kSide, kTexel, 64));
-    registry.emplace<ecs::Transform>(plane, ecs::Transform{});
+    add_plane(registry);
     auto sheet = std::make_shared<scene::Scene>();
     scene::Material material = luxel::testing::diffuse_material(0.5f);
     if (glass) {
@@ -205,11 +210,7 @@ std::uint64_t enclosed_under_sheet(bool glass) {
     const ecs::Entity sheet_entity = registry.create();
     registry.emplace<scene::MeshInstance>(sheet_entity, sheet, 0);
     registry.emplace<ecs::Transform>(sheet_entity, ecs::Transform{});
-    const ecs::Entity sky = registry.create();
-    registry.emplace<lighting::SkyLight>(
-        sky, lighting::SkyLight{std::make_shared<const lighting::SkyRadiance>(
-                                    lighting::SkyRadiance::uniform(glm::vec3(kSkyRadiance))),
-                                1.0f, true});
+    add_uniform_sky(registry);
     transforms.update();
     lighting::LightingSystem lighting(registry, jobs, luxel::testing::closed_form_config(64, 16));
     double time = 0.0;
