@@ -37,6 +37,39 @@ layout(location = 0) out vec4 out_radiance;
 layout(binding = 10) uniform sampler2D u_coverage;
 uniform int u_coverage_scale;
 
+// How many caustic-layer texels one pixel steps over at `pixel` (whose G-buffer light-map entry
+// is `lookup`, on a page): per screen axis the smaller step to a neighbour on the same page (the
+// other side may lie across a chart seam), the larger of the two axes; 1 where no neighbour
+// tells.
+float layer_texels_per_pixel(ivec2 pixel, vec4 lookup) {
+    int layer = int(lookup.z);
+    if (layer >= u_page_size.length()) {
+        return 1.0;
+    }
+    float size = float(u_page_size[layer]);
+    ivec2 viewport = ivec2(u_viewport);
+    float texels = 0.0;
+    bool found = false;
+    for (int axis = 0; axis < 2; ++axis) {
+        float along = 1e30;
+        for (int side = -1; side <= 1; side += 2) {
+            ivec2 q = pixel + (axis == 0 ? ivec2(side, 0) : ivec2(0, side));
+            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, viewport))) {
+                continue;
+            }
+            vec4 other = texelFetch(u_lightmap, q, 0);
+            if (other.z == lookup.z) {
+                along = min(along, length(other.xy - lookup.xy) * size);
+            }
+        }
+        if (along < 1e30) {
+            texels = max(texels, along);
+            found = true;
+        }
+    }
+    return found ? texels : 1.0;
+}
+
 // The surfaces' radiance at a covered pixel.
 vec3 surface_radiance(ivec2 pixel) {
     vec3 l = vec3(0.0);
@@ -47,16 +80,21 @@ vec3 surface_radiance(ivec2 pixel) {
         l += texelFetch(u_indirect, pixel, 0).rgb;
     }
     if (u_terms.z > 0.0) {
+        vec3 caustic = texelFetch(u_caustics, pixel, 0).rgb;
+        if (u_caustics_irradiance != 0) {
+            caustic = lambert_radiance(texelFetch(u_albedo, pixel, 0).rgb, caustic);
+        }
         vec4 lookup = u_caustic_layer ? texelFetch(u_lightmap, pixel, 0) : vec4(-1.0);
         if (lookup.z >= 0.0) {
-            l += caustic_light_map_radiance(lookup.xy, lookup.z, texelFetch(u_albedo, pixel, 0).rgb);
-        } else {
-            vec3 caustic = texelFetch(u_caustics, pixel, 0).rgb;
-            if (u_caustics_irradiance != 0) {
-                caustic = lambert_radiance(texelFetch(u_albedo, pixel, 0).rgb, caustic);
-            }
-            l += caustic;
+            // Where a layer texel covers a pixel or less the layer is shown; where the camera is
+            // so close that a texel spans two pixels or more, the splat, which keeps a pixel's
+            // detail (the layer would show its texels as blocks); a blend between.
+            float weight = smoothstep(0.5, 1.0, layer_texels_per_pixel(pixel, lookup));
+            vec3 layer = caustic_light_map_radiance(lookup.xy, lookup.z,
+                                                    texelFetch(u_albedo, pixel, 0).rgb);
+            caustic = mix(caustic, layer, weight);
         }
+        l += caustic;
     }
     if (u_terms.w > 0.0) {
         l += texelFetch(u_specular, pixel, 0).rgb;
