@@ -256,6 +256,33 @@ TEST(Scheduler, AShareCapsAKind) {
     EXPECT_EQ(r.kinds[index(WorkKind::IimGather)].units_done, 4U);
 }
 
+TEST(Scheduler, AShareChangedBetweenFramesAppliesFromTheNextRun) {
+    ManualClock clock;
+    SchedulerSettings settings = priors_of(1.0);
+    settings.max_share[index(WorkKind::CausticSlice)] = 0.25;
+    Scheduler s(clock, settings);
+    const auto fill = [&] {
+        for (std::uint64_t i = 0; i < 10; ++i) {
+            s.enqueue({WorkKind::CausticSlice, i, 1.0, costs(clock, 1.0)});
+            s.enqueue({WorkKind::IimGather, i, 0.1, costs(clock, 1.0)});
+        }
+    };
+    fill();
+    EXPECT_EQ(s.run(8.0).kinds[index(WorkKind::CausticSlice)].units_done, 2U);
+    s.set_max_share(WorkKind::CausticSlice, 0.5);  // catching up after a change
+    EXPECT_DOUBLE_EQ(s.max_share(WorkKind::CausticSlice), 0.5);
+    fill();
+    EXPECT_EQ(s.run(8.0).kinds[index(WorkKind::CausticSlice)].units_done, 4U);
+    // Outside (0, 1), and not finite: no cap.
+    for (const double none : {0.0, 1.0, -1.0, std::numeric_limits<double>::quiet_NaN()}) {
+        s.set_max_share(WorkKind::CausticSlice, none);
+        EXPECT_EQ(s.max_share(WorkKind::CausticSlice), 0.0);
+    }
+    s.clear();
+    fill();
+    EXPECT_EQ(s.run(8.0).kinds[index(WorkKind::CausticSlice)].units_done, 8U);
+}
+
 TEST(Scheduler, AgingLiftsOldLowPriorityUnits) {
     ManualClock clock;
     SchedulerSettings settings = priors_of(1.0);

@@ -78,13 +78,17 @@ Scheduler::Scheduler(const Clock& clock, SchedulerSettings settings)
     for (std::size_t k = 0; k < kWorkKindCount; ++k) {
         settings_.weight[k] =
             clamp_finite(settings_.weight[k], 0.0, kMaxWeight, defaults.weight[k]);
-        // Outside (0, 1) a share is no cap at all.
-        const double share = settings_.max_share[k];
-        settings_.max_share[k] = std::isfinite(share) && share > 0.0 && share < 1.0 ? share : 0.0;
+        set_max_share(static_cast<WorkKind>(k), settings_.max_share[k]);
     }
     settings_.aging_per_frame =
         clamp_finite(settings_.aging_per_frame, 0.0, kMaxPriority, defaults.aging_per_frame);
     settings_.cost = cost_.settings();
+}
+
+void Scheduler::set_max_share(WorkKind kind, double share) {
+    // Outside (0, 1) a share is no cap at all.
+    settings_.max_share[index(kind)] =
+        std::isfinite(share) && share > 0.0 && share < 1.0 ? share : 0.0;
 }
 
 void Scheduler::enqueue(WorkUnit unit) {

@@ -139,6 +139,10 @@ class Scheduler {
     bool cancel(WorkKind kind, std::uint64_t key);
     /// Removes every queued unit of every kind.
     void clear();
+    /// Changes a kind's SchedulerSettings::max_share from the next run() on (outside (0, 1): no
+    /// cap), e.g. a larger share for work that is catching up after a change.
+    void set_max_share(WorkKind kind, double share);
+    [[nodiscard]] double max_share(WorkKind kind) const { return settings_.max_share[index(kind)]; }
 
     [[nodiscard]] bool queued(WorkKind kind, std::uint64_t key) const;
     [[nodiscard]] std::size_t pending(WorkKind kind) const;
