@@ -7,6 +7,8 @@
 #include <cstring>
 #include <optional>
 #include <set>
+#include <span>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -674,7 +676,8 @@ TEST(CausticRefraction, TotalInternalReflectionTurnsTheBeamInAPrism) {
 
 // --- The slice schedule -------------------------------------------------------------------
 
-TEST(CausticSlices, DirtySlicesAreRetracedOncePerFrameInRoundRobinOrder) {
+/// The slice tests' scene: a floor, and a mirror that throws a light's caustic onto it.
+CausticWorld mirror_world() {
     CausticWorld world;
     world.materials = {{Scattering::Diffuse, glm::vec3(0.5f), glm::vec3(1.0f), 1.5f},
                        {Scattering::Mirror, glm::vec3(0.0f), glm::vec3(1.0f), 1.5f}};
@@ -684,12 +687,27 @@ TEST(CausticSlices, DirtySlicesAreRetracedOncePerFrameInRoundRobinOrder) {
         luxel::testing::quad_mesh({0.0f, 0.4f, 0.5f}, {0, 0, -1}, {0, 1, 0}, -1, 1),
         glm::mat4(1.0f), false);
     world.scene.commit();
+    return world;
+}
+
+CausticPhotonList mirror_list(const CausticWorld& world) {
     LightSource light;
     light.position = {0.8f, 1.2f, 0.15f};
     light.power = glm::vec3(50.0f);
     CausticPhotonList list(1'000, 8, 1);
-    EXPECT_TRUE(list.needs_retrace());  // a new list has never been traced
     list.set_emitter(CausticEmitter(light, {{0.0f, 0.9f, 0.0f}, 0.71f}, world.bounds()));
+    return list;
+}
+
+bool same_bits(std::span<const CausticPhoton> a, std::span<const CausticPhoton> b) {
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(CausticPhoton)) == 0);
+}
+
+TEST(CausticSlices, DirtySlicesAreRetracedOncePerFrameInRoundRobinOrder) {
+    const CausticWorld world = mirror_world();
+    CausticPhotonList list = mirror_list(world);
+    EXPECT_TRUE(list.needs_retrace());  // a new list has never been traced
     JobSystem jobs(1);
     for (std::uint64_t frame = 0; frame < 8; ++frame) {
         const auto slice = list.slice_for_frame(frame);
@@ -719,6 +737,133 @@ TEST(CausticSlices, DirtySlicesAreRetracedOncePerFrameInRoundRobinOrder) {
     ASSERT_EQ(before.size(), list.slice(3).size());
     ASSERT_FALSE(before.empty());
     EXPECT_EQ(std::memcmp(before.data(), list.slice(3).data(), before.size() * 32), 0);
+    EXPECT_GE(list.bytes_used(), list.stored_count() * sizeof(CausticPhoton));
+}
+
+TEST(CausticSlices, FreshSlicesStandInForStaleOnesAfterAChangeToASettledList) {
+    const CausticWorld world = mirror_world();
+    CausticPhotonList list = mirror_list(world);
+    JobSystem jobs(1);
+    trace_every_slice(world, list, jobs);  // a new list builds up without stand-ins
+    ASSERT_FALSE(list.needs_retrace());
+    EXPECT_FALSE(list.standing_in());
+    std::vector<std::vector<CausticPhoton>> before;
+    std::vector<std::uint64_t> retraces;
+    for (std::uint32_t k = 0; k < 8; ++k) {
+        before.emplace_back(list.slice(k).begin(), list.slice(k).end());
+        ASSERT_FALSE(before.back().empty());
+        retraces.push_back(list.slice_retraces(k));
+    }
+    const glm::dvec3 settled = list.stored_power();
+
+    // A change meets the settled list: until a slice is retraced the stale photons show.
+    list.invalidate();
+    EXPECT_FALSE(list.standing_in());
+    EXPECT_EQ(list.stored_count(), all_photons(list).size());
+    EXPECT_NEAR(list.stored_power().x, settled.x, 1e-9 * settled.x);
+    // One retraced slice shows beside the seven stale ones, as traced.
+    list.retrace_slice(world.scene, world.materials, 5, kMaxSpecular, jobs);
+    EXPECT_FALSE(list.standing_in());
+    EXPECT_TRUE(list.catching_up());
+    EXPECT_TRUE(same_bits(list.slice(5), before[5])) << "an unchanged scene's photons";
+    EXPECT_TRUE(same_bits(list.slice(0), before[0])) << "a stale slice in view";
+    // With a quarter of them retraced the fresh slices hide the stale ones and carry the
+    // pair's power alone.
+    list.retrace_slice(world.scene, world.materials, 6, kMaxSpecular, jobs);
+    EXPECT_TRUE(list.standing_in());
+    for (std::uint32_t k = 0; k < 8; ++k) {
+        EXPECT_GT(list.slice_retraces(k), retraces[k]) << "slice " << k << " is re-read";
+        if (k != 5 && k != 6) {
+            EXPECT_TRUE(list.slice(k).empty()) << "stale slice " << k;
+        }
+    }
+    for (const std::uint32_t k : {5u, 6u}) {
+        ASSERT_EQ(list.slice(k).size(), before[k].size());
+        for (std::size_t i = 0; i < before[k].size(); ++i) {
+            EXPECT_EQ(list.slice(k)[i].position, before[k][i].position);
+            EXPECT_EQ(list.slice(k)[i].power, before[k][i].power * 4.0f);  // x4 is exact
+        }
+    }
+    // A quarter of the photons, each slice covering the whole cone: the same power within
+    // the slices' spread (the mirror's patch is a fixed share of the cone).
+    EXPECT_NEAR(list.stored_power().x, settled.x, 0.05 * settled.x);
+    // One more: three slices, each photon at 8/3 of its traced power.
+    list.retrace_slice(world.scene, world.materials, 7, kMaxSpecular, jobs);
+    for (const std::uint32_t k : {5u, 6u, 7u}) {
+        ASSERT_EQ(list.slice(k).size(), before[k].size());
+        EXPECT_FLOAT_EQ(list.slice(k)[0].power.y, before[k][0].power.y * (8.0f / 3.0f));
+    }
+    EXPECT_TRUE(list.slice(0).empty());
+    EXPECT_NEAR(list.stored_power().x, settled.x, 0.03 * settled.x);
+    // The last stale slice retraced: every slice as traced, bit for bit (the stored photons
+    // were never scaled in place), and the settled power exactly.
+    for (const std::uint32_t k : {0u, 1u, 2u, 3u, 4u}) {
+        list.retrace_slice(world.scene, world.materials, k, kMaxSpecular, jobs);
+    }
+    EXPECT_FALSE(list.needs_retrace());
+    EXPECT_FALSE(list.standing_in());
+    for (std::uint32_t k = 0; k < 8; ++k) {
+        EXPECT_TRUE(same_bits(list.slice(k), before[k])) << "slice " << k;
+    }
+    EXPECT_EQ(list.stored_power(), settled);
+}
+
+TEST(CausticSlices, AListCatchesUpUntilItHoldsTheGenerationsItHadBeforeTheChange) {
+    const CausticWorld world = mirror_world();
+    CausticPhotonList list = mirror_list(world);
+    JobSystem jobs(1);
+    EXPECT_FALSE(list.catching_up()) << "a new list builds up; it had nothing to catch up to";
+    trace_every_slice(world, list, jobs);
+    list.set_generation_limit(2);
+    const auto trace_until = [&](auto done) {
+        for (int part = 0; part < 100 && !done(); ++part) {
+            list.trace_part(world.scene, world.materials, 50, kMaxSpecular, jobs);
+        }
+    };
+    trace_until([&] { return list.generations() == 2; });
+    ASSERT_EQ(list.generations(), 2u);
+    EXPECT_FALSE(list.catching_up());
+
+    list.invalidate();
+    EXPECT_TRUE(list.catching_up());
+    trace_until([&] { return !list.needs_retrace(); });
+    EXPECT_EQ(list.generations(), 1u);
+    EXPECT_TRUE(list.catching_up()) << "one generation of the two it held";
+    trace_until([&] { return list.generations() == 2; });
+    EXPECT_FALSE(list.catching_up());
+    // Hit while still retracing (something keeps moving): no catching up.
+    list.invalidate();
+    list.trace_part(world.scene, world.materials, 50, kMaxSpecular, jobs);
+    list.invalidate();
+    EXPECT_FALSE(list.catching_up());
+}
+
+TEST(CausticSlices, AListHitAgainWhileRetracingKeepsItsStaleSlicesInView) {
+    const CausticWorld world = mirror_world();
+    CausticPhotonList list = mirror_list(world);
+    JobSystem jobs(1);
+    trace_every_slice(world, list, jobs);
+    std::vector<std::vector<CausticPhoton>> before;
+    for (std::uint32_t k = 0; k < 8; ++k) {
+        before.emplace_back(list.slice(k).begin(), list.slice(k).end());
+    }
+    list.invalidate();
+    list.retrace_slice(world.scene, world.materials, 2, kMaxSpecular, jobs);
+    list.retrace_slice(world.scene, world.materials, 3, kMaxSpecular, jobs);
+    ASSERT_TRUE(list.standing_in());
+    // Something keeps moving: hit again before the list was current. The hidden slices come
+    // back and the fresh one carries its own share again; no stand-in while it keeps moving.
+    list.invalidate();
+    EXPECT_FALSE(list.standing_in());
+    for (std::uint32_t k = 0; k < 8; ++k) {
+        EXPECT_TRUE(same_bits(list.slice(k), before[k])) << "slice " << k;
+    }
+    list.retrace_slice(world.scene, world.materials, 4, kMaxSpecular, jobs);
+    EXPECT_FALSE(list.standing_in());
+    for (std::uint32_t k = 0; k < 8; ++k) {
+        EXPECT_TRUE(same_bits(list.slice(k), before[k])) << "slice " << k;
+    }
+    EXPECT_EQ(list.stored_count(), all_photons(list).size());
     EXPECT_GE(list.bytes_used(), list.stored_count() * sizeof(CausticPhoton));
 }
 

@@ -91,9 +91,9 @@ std::vector<std::uint8_t> CausticLists::merge_pairs(
             next.push_back(std::move(*existing));
             ++existing;
         } else {
-            next.push_back(
-                {generator, light,
-                 CausticPhotonList(settings_.photons_per_pair, settings_.slices, next_seed_++)});
+            next.push_back({generator, light,
+                            CausticPhotonList(settings_.photons_per_pair, settings_.slices,
+                                              next_seed_++, settings_.stand_in)});
             fresh[i] = 1;
         }
     }
@@ -211,6 +211,11 @@ bool CausticLists::pending() const {
                        [](const CausticPair& pair) { return pair.photons.needs_retrace(); });
 }
 
+bool CausticLists::catching_up() const {
+    return std::any_of(pairs_.begin(), pairs_.end(),
+                       [](const CausticPair& pair) { return pair.photons.catching_up(); });
+}
+
 bool CausticLists::refining() const {
     return std::any_of(pairs_.begin(), pairs_.end(), [](const CausticPair& pair) {
         return pair.photons.refinement_slice().has_value();
@@ -244,7 +249,8 @@ void CausticLists::apportion_photons() {
         if (target == current || (target != full && ratio > 0.8 && ratio < 1.25)) {
             continue;
         }
-        CausticPhotonList resized(target, settings_.slices, pair.photons.seed());
+        CausticPhotonList resized(target, settings_.slices, pair.photons.seed(),
+                                  settings_.stand_in);
         resized.set_emitter(pair.photons.emitter(), pair.photons.path_cells().region());
         pair.photons = std::move(resized);
     }

@@ -39,6 +39,8 @@ class CausticLists {
     [[nodiscard]] std::span<const CausticPair> pairs() const { return pairs_; }
     [[nodiscard]] CausticTotals totals() const;
     [[nodiscard]] bool pending() const;
+    /// Whether some list is catching up after a change (CausticPhotonList::catching_up).
+    [[nodiscard]] bool catching_up() const;
     /// Whether some list, current, may trace a further generation (progressive caustics).
     [[nodiscard]] bool refining() const;
     /// PhotonWorld::trace_caustic_unit.

@@ -110,15 +110,17 @@ std::optional<CausticPhoton> trace_caustic_photon(
 }
 
 CausticPhotonList::CausticPhotonList(std::uint32_t photon_count, std::uint32_t slices,
-                                     std::uint32_t seed)
+                                     std::uint32_t seed, bool stand_in)
     : photon_count_(photon_count),
       seed_(seed),
       slices_per_generation_(slices),
       slice_stride_(slices == 0 ? 0 : (photon_count + slices - 1) / slices),
       slices_(slices),
       dirty_(slices, 1),
+      hidden_(slices, 0),
       slice_retraces_(slices, 0),
-      dirty_count_(slices) {
+      dirty_count_(slices),
+      stand_in_enabled_(stand_in) {
     if (slices == 0) {
         throw Error("CausticPhotonList: need at least one slice");
     }
@@ -140,6 +142,13 @@ bool CausticPhotonList::paths_meet(std::span<const AxisBox> boxes) const {
 }
 
 void CausticPhotonList::invalidate() {
+    // A settled list that a change meets: its stale photons belong to a scene that is gone, so
+    // fresh slices will stand in for them. A list still retracing is being hit by something
+    // that keeps moving: its stale photons are a few frames old and stay in view.
+    const bool was_current = dirty_count_ == 0;
+    end_stand_in();
+    stand_in_allowed_ = stand_in_enabled_ && was_current;
+    catch_up_generations_ = stand_in_allowed_ ? generations_ : 0;
     path_cells_.clear();  // every photon that stays in use is traced again, and recorded then
     std::fill(dirty_.begin(), dirty_.end(), std::uint8_t{1});
     dirty_count_ = slices_per_generation_;
@@ -162,6 +171,13 @@ void CausticPhotonList::invalidate() {
         }
         generations_ = 1;
     }
+}
+
+bool CausticPhotonList::catching_up() const {
+    if (catch_up_generations_ == 0) {
+        return false;
+    }
+    return dirty_count_ > 0 || generations_ < std::min(catch_up_generations_, generation_limit_);
 }
 
 std::optional<std::uint32_t> CausticPhotonList::slice_for_frame(std::uint64_t frame) const {
@@ -248,6 +264,56 @@ void CausticPhotonList::commit_slice(std::uint32_t slice, std::vector<CausticPho
         --dirty_count_;
     }
     ++slice_retraces_[slice];
+    hidden_[slice] = 0;
+    update_stand_in();
+}
+
+void CausticPhotonList::update_stand_in() {
+    if (!stand_in_allowed_) {
+        return;
+    }
+    if (dirty_count_ == 0) {
+        end_stand_in();
+        stand_in_allowed_ = false;
+        return;
+    }
+    const std::uint32_t fresh = slices_per_generation_ - dirty_count_;
+    // Until a quarter of the slices are fresh they show beside the stale ones: one slice of
+    // eight alone, eight times as bright, was measured noisier than the stale ones beside it
+    // (docs/RESULTS.md, "After a change").
+    if (!standing_in_ && 4 * fresh < slices_per_generation_) {
+        return;
+    }
+    const float scale = static_cast<float>(slices_per_generation_) / static_cast<float>(fresh);
+    stand_ins_.resize(slices_per_generation_);
+    for (std::uint32_t k = 0; k < slices_per_generation_; ++k) {
+        if (dirty_[k] != 0) {
+            if (hidden_[k] == 0) {
+                hidden_[k] = 1;
+                ++slice_retraces_[k];
+            }
+            continue;
+        }
+        stand_ins_[k] = slices_[k];
+        for (CausticPhoton& photon : stand_ins_[k]) {
+            photon.power *= scale;
+        }
+        ++slice_retraces_[k];
+    }
+    standing_in_ = true;
+}
+
+void CausticPhotonList::end_stand_in() {
+    if (!standing_in_) {
+        return;
+    }
+    // Every first-generation slice was hidden or shown scaled: readers re-read them all.
+    for (std::uint32_t k = 0; k < slices_per_generation_; ++k) {
+        hidden_[k] = 0;
+        ++slice_retraces_[k];
+    }
+    stand_ins_.clear();
+    standing_in_ = false;
 }
 
 std::uint32_t CausticPhotonList::part_photons_left() const {
@@ -430,16 +496,16 @@ CausticTraceCounters CausticPhotonList::retrace(const RayScene& scene,
 
 std::size_t CausticPhotonList::stored_count() const {
     std::size_t count = 0;
-    for (const auto& photons : slices_) {
-        count += photons.size();
+    for (std::uint32_t k = 0; k < slice_count(); ++k) {
+        count += slice(k).size();
     }
     return count;
 }
 
 glm::dvec3 CausticPhotonList::stored_power() const {
     glm::dvec3 sum(0.0);
-    for (const auto& photons : slices_) {
-        for (const CausticPhoton& photon : photons) {
+    for (std::uint32_t k = 0; k < slice_count(); ++k) {
+        for (const CausticPhoton& photon : slice(k)) {
             sum += glm::dvec3(photon.power);
         }
     }
@@ -457,7 +523,10 @@ std::size_t CausticPhotonList::bytes_used() const {
     bytes += staged_.capacity() * sizeof(CausticPhoton);
     bytes += (slices_.capacity() + refined_.capacity()) * sizeof(std::vector<CausticPhoton>);
     bytes += refined_done_.capacity() * sizeof(std::uint8_t);
-    bytes += dirty_.capacity() * sizeof(std::uint8_t);
+    bytes += (dirty_.capacity() + hidden_.capacity()) * sizeof(std::uint8_t);
+    for (const auto& photons : stand_ins_) {
+        bytes += photons.capacity() * sizeof(CausticPhoton);
+    }
     bytes += slice_retraces_.capacity() * sizeof(std::uint64_t);
     return bytes;
 }

@@ -22,7 +22,20 @@ double rank_priority(std::size_t rank, std::size_t count) {
            static_cast<double>(count - rank) / static_cast<double>(std::max<std::size_t>(count, 1));
 }
 
+bool caps(double share) {
+    return std::isfinite(share) && share > 0.0 && share < 1.0;
+}
+
 }  // namespace
+
+double LightingSystem::caustic_share(bool catching_up) const {
+    const double base = config_.scheduler.max_share[index(WorkKind::CausticSlice)];
+    if (!catching_up || !caps(base)) {
+        return base;  // an uncapped kind stays uncapped
+    }
+    const double more = config_.caustic_catch_up_share;
+    return caps(more) ? std::max(base, more) : 0.0;
+}
 
 LightingSystem::LightingSystem(ecs::Registry& registry, JobSystem& jobs, LightingConfig config,
                                const Clock& clock)
@@ -385,6 +398,10 @@ void LightingSystem::queue_photon_units() {
         caustic_units = static_cast<std::size_t>(
             std::min(kMaxCausticUnits, (left + photons_per_unit - 1) / photons_per_unit));
     }
+    // A caustic catching up after a change to a settled scene is shown from fewer photons until
+    // its lists are retraced (METHOD 7.6): those frames give the caustic slices a larger share.
+    scheduler_.set_max_share(WorkKind::CausticSlice,
+                             caustic_share(photons_->caustics_catching_up()));
     for (std::size_t unit = 0; unit < caustic_units; ++unit) {
         scheduler_.enqueue({WorkKind::CausticSlice, unit, rank_priority(unit, caustic_units),
                             [this, photons_per_unit, refine] {

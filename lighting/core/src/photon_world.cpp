@@ -223,6 +223,10 @@ bool PhotonWorld::caustics_pending() const {
     return caustics_->pending();
 }
 
+bool PhotonWorld::caustics_catching_up() const {
+    return caustics_->catching_up();
+}
+
 bool PhotonWorld::caustics_refining() const {
     return caustics_->refining();
 }

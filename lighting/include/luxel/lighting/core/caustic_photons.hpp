@@ -71,6 +71,10 @@ struct CausticSettings {
     std::uint32_t refinement_photons = 320'000;
     /// At most this many generations per pair, the first included.
     std::uint32_t max_generations = 32;
+    /// After a change to a settled list, its retraced slices stand in for the stale ones
+    /// (CausticPhotonList; METHOD 7.6); false: the stale ones stay in view until retraced, as
+    /// in [LC04].
+    bool stand_in = true;
 };
 
 /// Counters of caustic tracing.
@@ -114,13 +118,25 @@ struct CausticTraceCounters {
 /// Retracing is driven by dirty slices of the first generation: invalidate() marks all K
 /// (something moved) and drops the later generations, and each frame slice_for_frame() names
 /// the slice to retrace: frame mod K if dirty, else the next dirty one. While things keep
-/// moving every slice is retraced exactly once per K frames. When nothing is dirty and the list
-/// may hold more generations (set_generation_limit), refinement_slice() names the next slice of
-/// the generation being traced; it is kept aside until its K slices are done, then every
-/// stored photon's power is scaled so the G generations together carry the pair's power once.
+/// moving every slice is retraced exactly once per K frames.
+///
+/// Fresh slices stand in for stale ones after a change to a settled list (METHOD 7.6): when
+/// the list was current as invalidate() hit it, once a quarter of its slices are retraced
+/// (at least one) they hide the stale ones (photons of a scene that no longer exists: a moved
+/// sphere's caustic where the sphere was), and the c retraced slices carry the pair's power,
+/// each photon scaled by K / c, until the last one is retraced. (One slice of eight shown
+/// eight times as bright was measured noisier than the stale ones beside it.) A list invalidated
+/// again before it was current (an object that keeps moving) shows its stale slices beside the
+/// fresh ones as before: they are a frame or a few old, and hiding them would show one slice's
+/// photons K times as bright. When nothing is dirty and the list may hold more generations
+/// (set_generation_limit), refinement_slice() names the next slice of the generation being traced;
+/// it is kept aside until its K slices are done, then every stored photon's power is scaled so the
+/// G generations together carry the pair's power once.
 class CausticPhotonList {
   public:
-    CausticPhotonList(std::uint32_t photon_count, std::uint32_t slices, std::uint32_t seed);
+    /// `stand_in`: CausticSettings::stand_in.
+    CausticPhotonList(std::uint32_t photon_count, std::uint32_t slices, std::uint32_t seed,
+                      bool stand_in = true);
 
     /// Replaces the emission (the light or the generator moved or changed) and marks every
     /// slice for retrace. `path_region`: the box the list records its photons' paths over
@@ -210,17 +226,28 @@ class CausticPhotonList {
 
     /// The stored photons of one slice, in photon order, with their share of the pair's power
     /// over the generations stored.
+    /// Empty while a fresh slice stands in for it (the class comment).
     [[nodiscard]] std::span<const CausticPhoton> slice(std::uint32_t k) const {
-        return slices_.at(k);
+        if (k < hidden_.size() && hidden_[k] != 0) {
+            return {};
+        }
+        return standing_in_ && k < stand_ins_.size() ? stand_ins_[k] : slices_.at(k);
     }
+    /// Whether retraced slices stand in for stale ones now (the class comment).
+    [[nodiscard]] bool standing_in() const { return standing_in_; }
+    /// Whether the list is catching up after a change to it while it was settled: it was
+    /// current when invalidated and has stale slices left (standing in, or about to), or has
+    /// not yet refined back to the generations it held then (within its limit).
+    [[nodiscard]] bool catching_up() const;
     /// How many times slice k has been written (retraced, or rescaled as a generation was
     /// averaged in): a renderer re-uploads the slices whose count changed, and tests check the
     /// schedule with it.
     [[nodiscard]] std::uint64_t slice_retraces(std::uint32_t k) const {
         return slice_retraces_.at(k);
     }
+    /// Photons slice() shows, over all slices.
     [[nodiscard]] std::size_t stored_count() const;
-    /// Sum of the stored photons' power per channel.
+    /// Sum of the power of the photons slice() shows, per channel.
     [[nodiscard]] glm::dvec3 stored_power() const;
     /// Bytes held: photon capacity (the generation being refined included) plus the per-slice
     /// bookkeeping.
@@ -239,6 +266,12 @@ class CausticPhotonList {
     /// Averages the refined generation in: every stored photon's power times G / (G + 1), the
     /// new ones' times 1 / (G + 1), appended as slices G K .. G K + K - 1.
     void complete_generation();
+    /// After a first-generation slice was committed: while a list that was current when it was
+    /// invalidated still has stale slices, hides them and scales the retraced ones to carry the
+    /// pair's power; once none is stale, back to scale 1 (the class comment).
+    void update_stand_in();
+    /// Ends a stand-in: the hidden slices shown again, the stored photons as traced.
+    void end_stand_in();
 
     CausticEmitter emitter_;
     PathCells path_cells_;  ///< where the photons traced since the last invalidation went
@@ -248,8 +281,20 @@ class CausticPhotonList {
     std::uint32_t slice_stride_;           ///< ceil(N / K): Halton indices per slice
     std::vector<std::vector<CausticPhoton>> slices_;
     std::vector<std::uint8_t> dirty_;  ///< one per slice of the first generation
+    /// Stand-ins: per first-generation slice, whether it is hidden (stale), and the fresh
+    /// slices' photons with their power times K / c, which slice() shows while standing in.
+    /// Scaled copies, not the stored photons scaled in place, so that the stored ones stay
+    /// exactly as traced (a retrace of an unchanged scene reproduces them bit for bit).
+    std::vector<std::uint8_t> hidden_;
+    std::vector<std::vector<CausticPhoton>> stand_ins_;
+    bool standing_in_ = false;
+    /// The list was current when the last invalidate() hit it: its fresh slices may stand in.
+    bool stand_in_allowed_ = false;
+    /// The generations it held then (0: it was not current); catching_up() until it is back.
+    std::uint32_t catch_up_generations_ = 0;
     std::vector<std::uint64_t> slice_retraces_;
     std::uint32_t dirty_count_ = 0;
+    bool stand_in_enabled_ = true;  ///< CausticSettings::stand_in
     std::uint32_t generations_ = 1;
     std::uint32_t generation_limit_ = 1;
     /// The generation being refined: its K slices as they are traced, with the power each

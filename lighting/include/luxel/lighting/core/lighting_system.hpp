@@ -49,6 +49,12 @@ struct LightingConfig {
     /// Caustic photons per unit: a slice is traced in parts this large (staged until the
     /// slice is complete), so a frame spends its caustic share in units that fit it.
     std::uint32_t caustic_photons_per_unit = 256;
+    /// The caustic slices' share of the budget (SchedulerSettings::max_share) while a caustic
+    /// list catches up after a change to a settled scene (CausticPhotonList::catching_up): the
+    /// moved caustic is shown from fewer photons until its list is retraced and refined back
+    /// to the generations it held, so those frames buy more of them. Outside (0, 1): no cap then;
+    /// at or under the scheduler's own share: no change.
+    double caustic_catch_up_share = 0.5;
     /// The irradiance probes (for receivers without a light map, when the FeaturePlan has them)
     /// and probes per unit of their passes.
     IrradianceProbeSettings probes;
@@ -167,6 +173,9 @@ class LightingSystem {
 
   private:
     SceneCensus take_census() const;
+    /// The caustic slices' max_share this frame: the scheduler's, or
+    /// LightingConfig::caustic_catch_up_share while a caustic list catches up.
+    [[nodiscard]] double caustic_share(bool catching_up) const;
     /// Counts the diffuse mesh objects without a light map (SceneCensus::unmapped_receivers)
     /// when meshes or surfaces changed.
     void count_unmapped_receivers();

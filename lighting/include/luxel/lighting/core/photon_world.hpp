@@ -112,6 +112,9 @@ class PhotonWorld {
     [[nodiscard]] CausticTotals caustic_totals() const;
     /// Whether some caustic list has slices waiting for a retrace.
     [[nodiscard]] bool caustics_pending() const;
+    /// Whether some caustic list is catching up after a change to a settled scene
+    /// (CausticPhotonList::catching_up): the lighting system gives caustics a larger share then.
+    [[nodiscard]] bool caustics_catching_up() const;
     /// Whether some current caustic list may trace a further generation (progressive
     /// caustics, CausticSettings::refinement_photons): work for a still frame's spare budget.
     [[nodiscard]] bool caustics_refining() const;
