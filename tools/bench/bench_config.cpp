@@ -25,6 +25,8 @@ lighting::LightingConfig BenchConfig::lighting() const {
     config.photons.caustics.photons_per_pair = caustic_photons;
     config.photons.caustics.slices = caustic_slices;
     config.photons.caustics.refinement_photons = caustic_refine;
+    config.photons.caustics.stand_in = stand_in != 0;
+    config.caustic_catch_up_share = catch_up;
     config.maps.density.nearest = aim_n;
     config.gather.rays_per_texel = rays;
     config.texels_per_gather_unit = texels_per_unit;
@@ -81,6 +83,12 @@ std::string BenchConfig::knobs() const {
     if (caustic_refine != lighting::CausticSettings{}.refinement_photons) {
         out << " caustic_refine=" << caustic_refine;
     }
+    if (stand_in != 1) {
+        out << " stand_in=" << stand_in;
+    }
+    if (catch_up != lighting::LightingConfig{}.caustic_catch_up_share) {
+        out << " catch_up=" << catch_up;
+    }
     return out.str();
 }
 
@@ -122,6 +130,10 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.exact = whole(value);
             } else if (sweep.knob == "local_order") {
                 c.local_order = whole(value);
+            } else if (sweep.knob == "stand_in") {
+                c.stand_in = whole(value);
+            } else if (sweep.knob == "catch_up") {
+                c.catch_up = std::stod(value);
             } else if (sweep.knob == "aim_power") {
                 c.aim_power = whole(value);
             } else if (sweep.knob == "contact") {

@@ -56,6 +56,10 @@ struct BenchConfig {
     /// Photons all progressive caustic generations may hold together
     /// (CausticSettings::refinement_photons; 0: none, the paper's caustics).
     std::uint32_t caustic_refine = lighting::CausticSettings{}.refinement_photons;
+    /// Fresh caustic slices stand in for stale ones after a change (CausticSettings::stand_in).
+    std::uint32_t stand_in = 1;
+    /// The caustic share while a caustic catches up (LightingConfig::caustic_catch_up_share).
+    double catch_up = lighting::LightingConfig{}.caustic_catch_up_share;
     /// The final-gather backend: "cpu" (Embree rays, `rays` per texel) or the hemi-plane
     /// (HemiPlaneGatherer, in the bench's GL context; `rays` does not apply): "gpu" as luxel
     /// runs it (turned each pass, the band it misses and the light behind mirrors and glass

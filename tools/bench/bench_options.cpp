@@ -108,9 +108,14 @@ Sweep parse_sweep(const std::string& text) {
             }
         } else if (sweep.knob == "local" || sweep.knob == "exact" || sweep.knob == "contact" ||
                    sweep.knob == "stitch" || sweep.knob == "probes" || sweep.knob == "aim_power" ||
-                   sweep.knob == "local_order") {
+                   sweep.knob == "local_order" || sweep.knob == "stand_in") {
             if (value != "0" && value != "1") {
                 throw Error(what + ": '" + value + "' is not 0 (off) or 1 (on)");
+            }
+        } else if (sweep.knob == "catch_up") {
+            const double v = number(value, what);
+            if (!(v >= 0.0 && v <= 1.0)) {
+                throw Error(what + ": '" + value + "' is not a share of the budget in 0..1");
             }
         } else if (sweep.knob == "probe_spacing") {
             const double v = number(value, what);
@@ -140,7 +145,7 @@ Sweep parse_sweep(const std::string& text) {
                         "local_order, probes, "
                         "probe_spacing, "
                         "probe_basis, keep, "
-                        "caustics, backend, "
+                        "caustics, caustic_refine, stand_in, catch_up, backend, "
                         "kernel, "
                         "aa, lightmap, sky_edges)");
         }

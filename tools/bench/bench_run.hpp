@@ -64,6 +64,9 @@ struct RunResult {
     double p99_after = 0.0;
     std::vector<double> after_region;
     std::vector<double> after_p99;
+    /// The caustic light maps' error per frame after the change (frame 1 first): how fast the
+    /// moved caustic is back.
+    std::vector<double> after_caustic;
     /// Frames after the change until the global, the worst-region and the 99th-percentile
     /// errors are all under twice their converged values (a dark patch the global error
     /// dilutes holds this back); -1: not within the frames run.

@@ -391,6 +391,7 @@ void ConfigRun::change_phase() {
         result_.after_indirect.push_back(errors.indirect);
         result_.after_region.push_back(errors.indirect_region);
         result_.after_p99.push_back(errors.indirect_p99);
+        result_.after_caustic.push_back(errors.caustic);
         result_.indirect_after = errors.indirect;
         result_.region_after = errors.indirect_region;
         result_.p99_after = errors.indirect_p99;
@@ -422,6 +423,10 @@ void ConfigRun::change_phase() {
     if (result_.image_measured) {
         std::fprintf(stderr, "; image %.4f at the end (reference noise %.4f)", result_.image_after,
                      result_.reference_se_image_after);
+    }
+    if (at_change.caustic > 0.0 && !result_.after_caustic.empty()) {
+        std::fprintf(stderr, "; caustic %.4f -> %.4f", at_change.caustic,
+                     result_.after_caustic.back());
     }
     std::fprintf(stderr, "\n");
 }

@@ -322,6 +322,7 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
         }
         run["frame_ms"] = r.frame_ms;
         run["after_indirect"] = r.after_indirect;
+        run["after_caustic"] = r.after_caustic;
         run["after_worst_region"] = r.after_region;
         run["after_p99_texel"] = r.after_p99;
         for (const Checkpoint& c : r.checkpoints) {
@@ -345,7 +346,7 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
         for (std::size_t f = 0; f < r.after_indirect.size(); ++f) {
             after.push_back({r.config.method, number(r.config.budget_ms, 2), std::to_string(f + 1),
                              number(r.after_indirect[f]), number(r.after_region[f]),
-                             number(r.after_p99[f])});
+                             number(r.after_p99[f]), number(r.after_caustic[f])});
         }
         json["runs"].push_back(run);
     }
@@ -356,7 +357,7 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
               checkpoints);
     write_csv(out / "after_change.csv",
               {"method", "budget_ms", "frame", "indirect_relrmse", "indirect_worst_region",
-               "indirect_p99_texel"},
+               "indirect_p99_texel", "caustic_relrmse"},
               after);
     {
         std::ofstream file(out / "results.json");
