@@ -102,7 +102,8 @@ TEST_F(CausticSplat, ListsUploadOnlyRetracedSlices) {
     light.position = {0.8f, 1.2f, 0.15f};
     light.power = glm::vec3(100.0f);
     std::vector<CausticPair> pairs;
-    pairs.push_back({ecs::Entity{}, ecs::Entity{}, CausticPhotonList(4000, 4, 2)});
+    // Without stand-ins (CausticSettings::stand_in), which rewrite slices they did not retrace.
+    pairs.push_back({ecs::Entity{}, ecs::Entity{}, CausticPhotonList(4000, 4, 2, false)});
     pairs[0].photons.set_emitter(
         CausticEmitter(light, luxel::testing::bounding_sphere(mirror), {{0, 0, 0}, 15.0f}));
     JobSystem jobs(2);
