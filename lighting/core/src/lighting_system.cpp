@@ -399,7 +399,8 @@ void LightingSystem::queue_photon_units() {
             std::min(kMaxCausticUnits, (left + photons_per_unit - 1) / photons_per_unit));
     }
     // A caustic catching up after a change to a settled scene is shown from fewer photons until
-    // its lists are retraced (METHOD 7.6): those frames give the caustic slices a larger share.
+    // its lists are retraced and refined back (METHOD 7.6): those frames give the caustic
+    // slices a larger share.
     scheduler_.set_max_share(WorkKind::CausticSlice,
                              caustic_share(photons_->caustics_catching_up()));
     for (std::size_t unit = 0; unit < caustic_units; ++unit) {
