@@ -118,7 +118,10 @@ struct CausticTraceCounters {
 /// Retracing is driven by dirty slices of the first generation: invalidate() marks all K
 /// (something moved) and drops the later generations, and each frame slice_for_frame() names
 /// the slice to retrace: frame mod K if dirty, else the next dirty one. While things keep
-/// moving every slice is retraced exactly once per K frames.
+/// moving every slice is retraced exactly once per K frames. When nothing is dirty and the list
+/// may hold more generations (set_generation_limit), refinement_slice() names the next slice of
+/// the generation being traced; it is kept aside until its K slices are done, then every
+/// stored photon's power is scaled so the G generations together carry the pair's power once.
 ///
 /// Fresh slices stand in for stale ones after a change to a settled list (METHOD 7.6): when
 /// the list was current as invalidate() hit it, once a quarter of its slices are retraced
@@ -128,10 +131,7 @@ struct CausticTraceCounters {
 /// eight times as bright was measured noisier than the stale ones beside it.) A list invalidated
 /// again before it was current (an object that keeps moving) shows its stale slices beside the
 /// fresh ones as before: they are a frame or a few old, and hiding them would show one slice's
-/// photons K times as bright. When nothing is dirty and the list may hold more generations
-/// (set_generation_limit), refinement_slice() names the next slice of the generation being traced;
-/// it is kept aside until its K slices are done, then every stored photon's power is scaled so the
-/// G generations together carry the pair's power once.
+/// photons K times as bright.
 class CausticPhotonList {
   public:
     /// `stand_in`: CausticSettings::stand_in.
