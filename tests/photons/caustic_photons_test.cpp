@@ -838,6 +838,78 @@ TEST(CausticSlices, AListCatchesUpUntilItHoldsTheGenerationsItHadBeforeTheChange
     EXPECT_FALSE(list.catching_up());
 }
 
+/// Power of a photon relative to `reference`'s, for photons traced from the same sample.
+float power_ratio(const CausticPhoton& photon, const CausticPhoton& reference) {
+    return photon.power.y / reference.power.y;
+}
+
+TEST(CausticSlices, ACatchingUpListShowsEachRefinementSliceAsItIsTraced) {
+    const CausticWorld world = mirror_world();
+    JobSystem jobs(1);
+    const auto refine_to = [&](CausticPhotonList& list, std::uint32_t generations) {
+        for (int part = 0; part < 200 && list.generations() < generations; ++part) {
+            list.trace_part(world.scene, world.materials, 1'000, kMaxSpecular, jobs);
+        }
+        ASSERT_EQ(list.generations(), generations);
+    };
+    // The same photons refined a generation at a time, as a still list is: slices 8-15 are
+    // the second generation's, each photon at 1/2 of its traced power.
+    CausticPhotonList still = mirror_list(world);
+    trace_every_slice(world, still, jobs);
+    still.set_generation_limit(2);
+    refine_to(still, 2);
+
+    CausticPhotonList list = mirror_list(world);
+    trace_every_slice(world, list, jobs);
+    list.set_generation_limit(3);
+    refine_to(list, 3);
+    const glm::dvec3 settled = list.stored_power();
+    list.invalidate();
+    EXPECT_EQ(list.catch_up_photons_left(), 24u * 125u) << "eight dirty slices, then sixteen";
+    for (int frame = 0; frame < 8; ++frame) {
+        list.trace_part(world.scene, world.materials, 1'000, kMaxSpecular, jobs);
+    }
+    ASSERT_FALSE(list.needs_retrace());
+    ASSERT_TRUE(list.catching_up());
+    ASSERT_EQ(list.slice_count(), 8u);
+    EXPECT_EQ(list.catch_up_photons_left(), 16u * 125u) << "two generations to refine back";
+
+    // Each refinement slice shows as it completes: with m slices shown, every photon carries
+    // K / m of its traced power, and the slices together the pair's power.
+    for (std::uint32_t m = 9; m <= 16; ++m) {
+        const std::uint64_t first_reads = list.slice_retraces(0);
+        list.trace_part(world.scene, world.materials, 1'000, kMaxSpecular, jobs);
+        ASSERT_EQ(list.slice_count(), m);
+        EXPECT_GT(list.slice_retraces(0), first_reads) << "rescaled, so re-read";
+        const float share = 8.0f / static_cast<float>(m);
+        ASSERT_FALSE(list.slice(0).empty());
+        EXPECT_NEAR(power_ratio(list.slice(0)[0], still.slice(0)[0]), share / 0.5f, 1e-5f);
+        const std::span<const CausticPhoton> fresh = list.slice(m - 1);
+        ASSERT_EQ(fresh.size(), still.slice(m - 1).size());
+        ASSERT_FALSE(fresh.empty());
+        EXPECT_EQ(fresh[0].position, still.slice(m - 1)[0].position) << "the same sample";
+        EXPECT_NEAR(power_ratio(fresh[0], still.slice(m - 1)[0]), share / 0.5f, 1e-5f);
+        EXPECT_NEAR(list.stored_power().y, settled.y, 0.05 * settled.y) << m << " slices";
+    }
+    EXPECT_EQ(list.generations(), 2u);
+    EXPECT_TRUE(list.catching_up()) << "two generations of the three it held";
+    EXPECT_EQ(list.catch_up_photons_left(), 8u * 125u);
+    refine_to(list, 3);
+    EXPECT_FALSE(list.catching_up());
+    EXPECT_EQ(list.catch_up_photons_left(), 0u);
+    EXPECT_NEAR(list.stored_power().y, settled.y, 1e-5 * settled.y) << "back where it was";
+
+    // Caught up, the list refines a generation at a time again: nothing shows until the
+    // fourth is complete.
+    list.set_generation_limit(4);
+    list.trace_part(world.scene, world.materials, 1'000, kMaxSpecular, jobs);
+    EXPECT_EQ(list.slice_count(), 24u);
+    // A change from a partly refined state: the first generation alone carries the power again.
+    list.invalidate();
+    ASSERT_EQ(list.slice_count(), 8u);
+    EXPECT_NEAR(power_ratio(list.slice(0)[0], still.slice(0)[0]), 2.0f, 1e-5f);
+}
+
 TEST(CausticSlices, AListHitAgainWhileRetracingKeepsItsStaleSlicesInView) {
     const CausticWorld world = mirror_world();
     CausticPhotonList list = mirror_list(world);

@@ -706,6 +706,33 @@ TEST(CausticWorld, ASliceTracedInPartsIsTheSliceTracedWholeAndShowsOnlyWhenCompl
     EXPECT_EQ(parts.photons->caustic_photons_left(false), 250u) << "the part was dropped";
 }
 
+TEST(CausticWorld, ACatchingUpCausticOffersAllItNeedsAndAUnitTakesItAcrossSlices) {
+    // 2,000 photons in slices of 250, up to three generations (4,000 refinement photons).
+    CausticLevel level("cornell", 2, 2'000, 4'000);
+    const lighting::CausticPhotonList& list = level.only_list();
+    for (int unit = 0;
+         unit < 100 && (level.photons->caustics_pending() || level.photons->caustics_refining());
+         ++unit) {
+        level.photons->trace_caustic_unit(1'000, true, level.jobs);
+    }
+    ASSERT_EQ(list.generations(), 3u);
+    EXPECT_EQ(level.photons->caustic_photons_left(true), 0u) << "settled";
+
+    move_node(level, "glass sphere", glm::vec3(0.2f, 0.0f, 0.0f));
+    ASSERT_TRUE(list.catching_up());
+    // The warm-up's estimate stays a slice; a frame may take all 24 slices back to three
+    // generations, as far as its caustic share has room.
+    EXPECT_EQ(level.photons->caustic_photons_left(false), 250u);
+    EXPECT_EQ(level.photons->caustic_photons_left(true), 24u * 250u);
+    const lighting::CausticFrameStats stats =
+        level.photons->trace_caustic_unit(24 * 250, true, level.jobs);
+    EXPECT_EQ(stats.slices_retraced, 8u);
+    EXPECT_EQ(stats.slices_refined, 16u);
+    EXPECT_EQ(list.generations(), 3u);
+    EXPECT_FALSE(list.catching_up());
+    EXPECT_EQ(level.photons->caustic_photons_left(true), 0u);
+}
+
 TEST(CausticWorld, OneAndTwoThreadsStoreIdenticalCausticPhotons) {
     auto run = [](int threads) {
         CausticLevel level("caustics", threads, 3'000);

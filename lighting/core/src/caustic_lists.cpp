@@ -309,15 +309,22 @@ CausticFrameStats CausticLists::trace_unit(const PhotonGeometry& geometry,
     // one list's slice of 1,250 photons takes five of them.
     std::uint32_t left = std::max<std::uint32_t>(max_photons, 1);
     while (left > 0) {
-        // Retraces before refinement: a list that needs one shows the old scene.
+        // Retraces before refinement: a list that needs one shows the old scene. Then the
+        // refinement of lists catching up after a change, whose error a player has just seen
+        // jump, before that of still lists, which only lowers noise further.
         std::optional<std::size_t> chosen;
-        for (int pass = 0; pass < (refine ? 2 : 1) && !chosen; ++pass) {
-            for (std::size_t n = 0; n < count; ++n) {
+        for (std::size_t n = 0; n < count && !chosen; ++n) {
+            const std::size_t i = (unit_cursor_ + n) % count;
+            if (pairs_[i].photons.needs_retrace()) {
+                chosen = i;
+            }
+        }
+        for (int pass = 0; pass < 2 && !chosen && refine; ++pass) {
+            for (std::size_t n = 0; n < count && !chosen; ++n) {
                 const std::size_t i = (unit_cursor_ + n) % count;
                 const CausticPhotonList& list = pairs_[i].photons;
-                if (pass == 0 ? list.needs_retrace() : list.has_work()) {
+                if (list.has_work() && (pass == 1 || list.catching_up())) {
                     chosen = i;
-                    break;
                 }
             }
         }
@@ -348,7 +355,11 @@ CausticFrameStats CausticLists::trace_unit(const PhotonGeometry& geometry,
 std::uint64_t CausticLists::photons_left(bool refine) const {
     std::uint64_t left = 0;
     for (const CausticPair& pair : pairs_) {
-        if (refine || pair.photons.needs_retrace()) {
+        if (refine) {
+            // A list catching up may take several slices in a frame whose share has room.
+            left += std::max<std::uint64_t>(pair.photons.part_photons_left(),
+                                            pair.photons.catch_up_photons_left());
+        } else if (pair.photons.needs_retrace()) {
             left += pair.photons.part_photons_left();
         }
     }

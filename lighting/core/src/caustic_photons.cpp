@@ -157,10 +157,11 @@ void CausticPhotonList::invalidate() {
     refined_.clear();
     refined_done_.clear();
     refined_count_ = 0;
-    if (generations_ > 1) {
+    if (slice_count() > slices_per_generation_) {
         // Back to the first generation, whose photons carry the pair's power alone again until
-        // their retrace replaces them.
-        const auto scale = static_cast<float>(generations_);
+        // their retrace replaces them: each of the m slices shown carried 1 / m of it.
+        const auto scale = static_cast<float>(static_cast<double>(slice_count()) /
+                                              static_cast<double>(slices_per_generation_));
         slices_.resize(slices_per_generation_);
         slice_retraces_.resize(slices_per_generation_);
         for (std::uint32_t k = 0; k < slices_per_generation_; ++k) {
@@ -244,8 +245,14 @@ void CausticPhotonList::store_slice(std::uint32_t slice,
 }
 
 void CausticPhotonList::commit_slice(std::uint32_t slice, std::vector<CausticPhoton> photons) {
-    if (slice >= slice_count()) {
+    // Dirty slices are the first generation's; any later index is a refinement slice.
+    if (slice >= slices_per_generation_) {
         const std::uint32_t k = slice % slices_per_generation_;
+        const std::uint32_t appended = slice_count() - generations_ * slices_per_generation_;
+        if (appended > 0 || (refined_count_ == 0 && catching_up())) {
+            append_refined_slice(slice, std::move(photons));
+            return;
+        }
         refined_.resize(slices_per_generation_);
         refined_done_.resize(slices_per_generation_, 0);
         refined_[k] = std::move(photons);
@@ -327,6 +334,60 @@ std::uint32_t CausticPhotonList::part_photons_left() const {
         return slice_size(*slice);
     }
     return 0;
+}
+
+void CausticPhotonList::append_refined_slice(std::uint32_t slice,
+                                             std::vector<CausticPhoton> photons) {
+    // In order: the slices a catching-up list shows are its first generation's and then
+    // refinement slices 0, 1, ... of each generation since.
+    if (slice != slice_count()) {
+        throw Error("CausticPhotonList: a catching-up list's refinement slices come in order");
+    }
+    // m slices shown: each carries 1 / m of the pair's power, each photon K / m of the power it
+    // was emitted with (a complete generation's G K slices: 1 / G, as complete_generation
+    // leaves them).
+    const double before = slice_count();
+    const double after = before + 1.0;
+    const auto keep = static_cast<float>(before / after);
+    const auto add = static_cast<float>(static_cast<double>(slices_per_generation_) / after);
+    for (std::uint32_t s = 0; s < slice_count(); ++s) {
+        for (CausticPhoton& photon : slices_[s]) {
+            photon.power *= keep;
+        }
+        ++slice_retraces_[s];
+    }
+    for (CausticPhoton& photon : photons) {
+        photon.power *= add;
+    }
+    slices_.push_back(std::move(photons));
+    slice_retraces_.push_back(1);
+    const std::uint32_t k = slice % slices_per_generation_;
+    refined_done_.resize(slices_per_generation_, 0);
+    refined_done_[k] = 1;
+    ++refined_count_;
+    if (refined_count_ == slices_per_generation_) {
+        refined_.clear();
+        refined_done_.clear();
+        refined_count_ = 0;
+        ++generations_;
+    }
+}
+
+std::uint64_t CausticPhotonList::catch_up_photons_left() const {
+    if (!catching_up()) {
+        return 0;
+    }
+    const std::uint64_t target =
+        static_cast<std::uint64_t>(std::min(catch_up_generations_, generation_limit_)) *
+        slices_per_generation_;
+    // Dirty slices are the first generation's; the refinement slices shown count (they are
+    // appended as they are traced while catching up).
+    std::uint64_t slices = dirty_count_;
+    if (target > slice_count()) {
+        slices += target - slice_count();
+    }
+    const std::uint64_t left = slices * slice_stride_;
+    return tracing_ ? left - std::min<std::uint64_t>(left, tracing_next_) : left;
 }
 
 void CausticPhotonList::complete_generation() {

@@ -132,6 +132,13 @@ struct CausticTraceCounters {
 /// again before it was current (an object that keeps moving) shows its stale slices beside the
 /// fresh ones as before: they are a frame or a few old, and hiding them would show one slice's
 /// photons K times as bright.
+///
+/// While such a list catches up (catching_up()), its refinement slices are shown as each is
+/// traced rather than a generation at a time: the m slices shown carry the pair's power
+/// together, each photon K / m of the power it was emitted with, so the error after a change
+/// falls with every slice (a generation of K slices waits K frames or more at the catch-up
+/// share). Every stored photon is rescaled at each such slice, which a still list, refining a
+/// generation at a time, does not pay.
 class CausticPhotonList {
   public:
     /// `stand_in`: CausticSettings::stand_in.
@@ -178,6 +185,11 @@ class CausticPhotonList {
     /// The photons trace_part still has to trace before the list is current and at its
     /// generation limit, at most one slice's worth (an estimate for the scheduler).
     [[nodiscard]] std::uint32_t part_photons_left() const;
+    /// While catching_up(): about how many photons the list still has to trace to be caught
+    /// up (its dirty slices, and its refinement slices until it holds the generations it held
+    /// before the change); 0 otherwise. An estimate for the scheduler, which may then give a
+    /// catching-up caustic several slices in a frame where its share has room.
+    [[nodiscard]] std::uint64_t catch_up_photons_left() const;
     /// Traces up to `max_photons` photons of one slice in parallel: the slice in progress, else
     /// the next dirty slice, else the next refinement slice. The slice's photons are staged
     /// until all are traced, then replace it (or complete the generation being refined), so a
@@ -266,6 +278,9 @@ class CausticPhotonList {
     /// Averages the refined generation in: every stored photon's power times G / (G + 1), the
     /// new ones' times 1 / (G + 1), appended as slices G K .. G K + K - 1.
     void complete_generation();
+    /// A catching-up list's refinement slice, shown at once (the class comment): the m slices
+    /// shown before it keep m / (m + 1) of their power, its photons get K / (m + 1) of theirs.
+    void append_refined_slice(std::uint32_t slice, std::vector<CausticPhoton> photons);
     /// After a first-generation slice was committed: while a list that was current when it was
     /// invalidated still has stale slices, hides them and scales the retraced ones to carry the
     /// pair's power; once none is stale, back to scale 1 (the class comment).

@@ -125,7 +125,8 @@ class PhotonWorld {
     /// slice until its photons are spent.
     CausticFrameStats trace_caustic_unit(std::uint32_t max_photons, bool refine, JobSystem& jobs);
     /// The photons the lists' current slices have left (each list's slice in progress or next
-    /// one; refinement slices only when `refine`): what the caustic units are sized by.
+    /// one; refinement slices only when `refine`, and then all a catching-up list needs to
+    /// catch up): what the caustic units are sized by.
     [[nodiscard]] std::uint64_t caustic_photons_left(bool refine) const;
     [[nodiscard]] const PhotonSyncStats& last_sync() const { return last_sync_; }
     /// The boxes where geometry changed in the last sync() (empty when nothing moved).
