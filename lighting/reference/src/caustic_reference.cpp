@@ -97,6 +97,10 @@ void CausticReference::trace(const Pair& pair, std::uint64_t index, Deposit& dep
                 ++counters.absorbed;
                 return;
             }
+            deposit.stored = true;
+            deposit.flux = glm::dvec3(power) * weight;
+            deposit.position = hit->position;
+            deposit.normal = normals.geometric;
             const std::int64_t texel = scene_->open_texel_at(hit->surface, hit->lightmap_uv);
             const double area =
                 texel >= 0 ? scene_->texel(static_cast<std::size_t>(texel)).area : 0.0;
@@ -105,7 +109,7 @@ void CausticReference::trace(const Pair& pair, std::uint64_t index, Deposit& dep
                 return;
             }
             deposit.texel = texel;
-            deposit.value = glm::dvec3(power) * weight / area;
+            deposit.value = deposit.flux / area;
             ++counters.stored;
             return;
         }
@@ -150,6 +154,9 @@ void CausticReference::run_pass(JobSystem& jobs) {
             }
             // Binned in photon order: the sums are the same for any thread count.
             for (const Deposit& deposit : deposits) {
+                if (deposit.stored && footprints_) {
+                    footprints_->add(deposit.position, deposit.normal, deposit.flux);
+                }
                 if (deposit.texel >= 0) {
                     const auto t = static_cast<std::size_t>(deposit.texel);
                     sum_[t] += deposit.value;
@@ -196,6 +203,31 @@ glm::dvec3 CausticReference::stored_power() const {
         power += irradiance(t) * scene_->texel(t).area;
     }
     return power;
+}
+
+void CausticReference::set_footprints(std::vector<CausticFootprint> footprints) {
+    footprints_.emplace(std::move(footprints));
+}
+
+glm::dvec3 CausticReference::footprint_irradiance(std::size_t i) const {
+    if (!footprints_ || per_pair_ == 0 || i >= footprints_->size()) {
+        return glm::dvec3(0.0);
+    }
+    return footprints_->flux(i) / (static_cast<double>(per_pair_) * footprints_->area(i));
+}
+
+glm::dvec3 CausticReference::footprint_standard_error(std::size_t i) const {
+    if (!footprints_ || per_pair_ == 0 || i >= footprints_->size()) {
+        return glm::dvec3(0.0);
+    }
+    // As standard_error, with the disc's area in place of the texel's.
+    const double pairs = static_cast<double>(pairs_.size());
+    const double n = static_cast<double>(per_pair_);
+    const double area = footprints_->area(i);
+    const glm::dvec3 mean = footprints_->flux(i) / (n * area);
+    const glm::dvec3 second = pairs * footprints_->flux_squares(i) / (n * area * area);
+    const glm::dvec3 variance = glm::max(second - mean * mean, glm::dvec3(0.0)) / (pairs * n);
+    return glm::sqrt(variance);
 }
 
 }  // namespace luxel::lighting::reference

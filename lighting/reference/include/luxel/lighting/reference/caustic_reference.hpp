@@ -1,11 +1,13 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "luxel/lighting/reference/caustic_disc_emitter.hpp"
+#include "luxel/lighting/reference/caustic_footprints.hpp"
 #include "luxel/lighting/reference/reference_scene.hpp"
 #include "luxel/runtime/jobs.hpp"
 
@@ -73,6 +75,18 @@ class CausticReference {
     /// Total power binned so far, W per channel (the sum over texels of E * area).
     [[nodiscard]] glm::dvec3 stored_power() const;
 
+    /// Also collects every caustic photon into the footprints that hold it (pixel resolution:
+    /// CausticFootprints), from the next pass on; call before the first pass, or the passes
+    /// before it are missing from them. Photons on surfaces without a light map count there too.
+    void set_footprints(std::vector<CausticFootprint> footprints);
+    [[nodiscard]] std::size_t footprint_count() const {
+        return footprints_ ? footprints_->size() : 0;
+    }
+    /// Mean caustic irradiance over footprint i (W/m^2 per channel), and its standard error
+    /// (as standard_error's); zero before the first pass.
+    [[nodiscard]] glm::dvec3 footprint_irradiance(std::size_t i) const;
+    [[nodiscard]] glm::dvec3 footprint_standard_error(std::size_t i) const;
+
   private:
     struct Pair {
         std::uint32_t light = 0;
@@ -81,10 +95,14 @@ class CausticReference {
         CausticDiscEmitter emitter;
     };
     struct Deposit {
+        bool stored = false;  ///< a caustic photon at its first diffuse hit
         std::int64_t texel = -1;
         glm::dvec3 value{0.0};  ///< photon power (as the only photon) / texel area
+        glm::dvec3 flux{0.0};   ///< photon power (as the only photon)
+        glm::vec3 position{0.0f};
+        glm::vec3 normal{0.0f};  ///< the surface's, facing the photon
     };
-    /// Traces one photon of `pair`; fills `deposit` when it makes a caustic on a texel.
+    /// Traces one photon of `pair`; fills `deposit` when it makes a caustic.
     void trace(const Pair& pair, std::uint64_t index, Deposit& deposit,
                CausticReferenceCounters& counters) const;
 
@@ -94,6 +112,7 @@ class CausticReference {
     std::uint64_t per_pair_ = 0;
     std::vector<glm::dvec3> sum_;          ///< per texel: sum of deposits
     std::vector<glm::dvec3> sum_squares_;  ///< per texel: sum of squared deposits
+    std::optional<CausticFootprints> footprints_;
     CausticReferenceCounters counters_;
 };
 

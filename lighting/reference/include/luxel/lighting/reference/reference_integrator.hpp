@@ -63,6 +63,10 @@ class ReferenceIntegrator {
     [[nodiscard]] std::uint64_t samples() const { return samples_; }
     [[nodiscard]] const ReferenceScene& scene() const { return *scene_; }
     [[nodiscard]] const CausticReference& caustics() const { return caustics_; }
+    /// CausticReference::set_footprints: the caustic photons also at pixel resolution.
+    void set_caustic_footprints(std::vector<CausticFootprint> footprints) {
+        caustics_.set_footprints(std::move(footprints));
+    }
     [[nodiscard]] const IndirectPhotons& indirect_photons() const { return indirect_; }
     [[nodiscard]] const ReferenceSettings& settings() const { return settings_; }
     [[nodiscard]] const PathCounters& path_counters() const { return counters_; }
