@@ -1,6 +1,7 @@
 // The luxel-ref executable: errors that name the flag or file at fault, and a tiny run that
 // writes a valid EXR frame and JSON light maps.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -114,6 +115,38 @@ TEST(RefCli, ATinyRunWritesAFrameAndLightMaps) {
     }
     EXPECT_EQ(json["samples_per_texel"], 2);
     EXPECT_TRUE(json["relative_standard_error"].contains("indirect"));
+}
+
+TEST(RefCli, CausticPixelsAreWrittenAtPixelResolution) {
+    luxel::testing::TempDir dir("luxel-ref-cli");
+    const auto out = dir / "caustics.exr";
+    CommandResult run = luxel_ref("--level caustics --caustic-pixels " + quoted(dir / "c.png"));
+    EXPECT_EQ(run.exit_code, 2) << run.output;
+    EXPECT_NE(run.output.find("--caustic-pixels"), std::string::npos) << run.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "c.png"));
+
+    // The level's own camera, the caustics alone: no -o frame is traced.
+    run = luxel_ref(
+        "--level caustics --width 40 --height 30 --photons 2000000 --passes 1 "
+        "--threads 2 --caustic-pixels " +
+        quoted(out));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_NE(run.output.find("footprints"), std::string::npos) << run.output;
+    const Image image = read_exr(out);
+    ASSERT_EQ(image.width, 40);
+    ASSERT_EQ(image.height, 30);
+    int lit = 0;
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            const glm::vec4 p = image.pixel(x, y);
+            ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+            ASSERT_GE(std::min({p.x, p.y, p.z}), 0.0f);
+            lit += p.x + p.y + p.z > 0.0f ? 1 : 0;
+        }
+    }
+    // The ring's, the sphere's and the pool's caustics cover part of the view, not all of it.
+    EXPECT_GT(lit, 10) << "the level's caustics are in view";
+    EXPECT_LT(lit, 40 * 30);
 }
 
 }  // namespace

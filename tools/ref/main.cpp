@@ -17,6 +17,7 @@
 
 #include "level.hpp"
 #include "lightmap_output.hpp"
+#include "luxel/lighting/reference/caustic_pixels.hpp"
 #include "luxel/lighting/reference/reference_frame.hpp"
 #include "luxel/lighting/reference/reference_integrator.hpp"
 #include "luxel/runtime/cli.hpp"
@@ -79,6 +80,10 @@ void add_flags(CLI::App& app, ref::Options& options, std::string& camera_text) {
     app.add_option("--png", options.preview, "also a tone-mapped PNG preview of the frame");
     app.add_flag("--no-caustic-bounce", options.no_caustic_bounce,
                  "leave out delta-light caustics reflected onward by diffuse surfaces");
+    app.add_option("--caustic-pixels", options.caustic_pixels,
+                   "the camera's caustics from point, spot and directional lights alone, at pixel "
+                   "resolution (each pixel: albedo / pi times the caustic irradiance over the "
+                   "patch it sees), as OpenEXR; -o's frame shows them at light-map texels");
     app.add_option("--lightmaps", options.lightmaps,
                    "per-texel irradiance: .json, or .exr (one file per page and component)");
 }
@@ -86,7 +91,7 @@ void add_flags(CLI::App& app, ref::Options& options, std::string& camera_text) {
 /// The frame's camera: --camera, else the level's first; none when no frame is asked for.
 std::optional<ReferenceCamera> frame_camera(const ref::Options& options,
                                             const ref::LoadedLevel& level) {
-    if (options.image.empty()) {
+    if (options.image.empty() && options.caustic_pixels.empty()) {
         return std::nullopt;
     }
     if (options.camera) {
@@ -152,7 +157,17 @@ void run_passes(const ref::Options& options, ReferenceIntegrator& integrator,
 }
 
 void write_outputs(const ref::Options& options, const ReferenceIntegrator& integrator,
-                   const std::optional<ReferenceFrame>& frame, double seconds) {
+                   const std::optional<ReferenceFrame>& frame,
+                   const std::optional<CausticPixels>& pixels, double seconds) {
+    if (pixels) {
+        const Image image = caustic_pixel_image(*pixels, integrator.caustics());
+        write_exr(options.caustic_pixels, image);
+        std::fprintf(stderr,
+                     "luxel-ref: wrote %s (%dx%d, caustics at %zu pixels' footprints, %" PRIu64
+                     " photons per pair)\n",
+                     options.caustic_pixels.string().c_str(), image.width, image.height,
+                     pixels->footprints.size(), integrator.caustics().photons_per_pair());
+    }
     if (frame) {
         const Image image = frame->image();
         write_exr(options.image, image);
@@ -200,7 +215,8 @@ int run(int argc, char** argv) {
     // What the level lacks, in luxel-sandbox's words (only a frame without --camera is seen
     // through the level's camera), and the level prepared at load if luxel-prep never did.
     prep::PlayableLevel playable{options.load_limits, {}, options.auto_prep};
-    playable.check.uses_camera = !options.image.empty() && !options.camera;
+    playable.check.uses_camera =
+        (!options.image.empty() || !options.caustic_pixels.empty()) && !options.camera;
     const auto level = ref::load_level(file, options.time, options.sky, playable, jobs);
     const ReferenceScene& scene = *level->scene;
     std::fprintf(stderr,
@@ -216,11 +232,16 @@ int run(int argc, char** argv) {
     frame_settings.seed = options.seed;
     frame_settings.paths = integrator_settings(options).paths;
     std::optional<ReferenceFrame> frame;
-    if (camera) {
+    if (camera && !options.image.empty()) {
         frame.emplace(scene, *camera, frame_settings);
     }
+    std::optional<CausticPixels> pixels;
+    if (camera && !options.caustic_pixels.empty()) {
+        pixels = caustic_pixels(scene, *camera);
+        integrator.set_caustic_footprints(pixels->footprints);
+    }
     run_passes(options, integrator, frame, jobs);
-    write_outputs(options, integrator, frame, clock.elapsed_ms() / 1000.0);
+    write_outputs(options, integrator, frame, pixels, clock.elapsed_ms() / 1000.0);
     std::fprintf(stderr, "luxel-ref: done in %.1f s\n", clock.elapsed_ms() / 1000.0);
     return 0;
 }

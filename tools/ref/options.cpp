@@ -66,8 +66,14 @@ CameraSpec parse_camera(const std::string& text) {
 }
 
 void validate(const Options& options) {
-    if (options.image.empty() && options.lightmaps.empty()) {
-        throw Error("nothing to do: give -o OUT.exr (a frame) and/or --lightmaps OUT.json|.exr");
+    if (options.image.empty() && options.lightmaps.empty() && options.caustic_pixels.empty()) {
+        throw Error(
+            "nothing to do: give -o OUT.exr (a frame), --lightmaps OUT.json|.exr and/or "
+            "--caustic-pixels OUT.exr");
+    }
+    if (!options.caustic_pixels.empty() && options.caustic_pixels.extension() != ".exr") {
+        throw Error("--caustic-pixels " + options.caustic_pixels.string() +
+                    ": the caustic frame is written as OpenEXR (.exr)");
     }
     if (!options.image.empty() && options.image.extension() != ".exr") {
         throw Error("-o " + options.image.string() + ": the frame is written as OpenEXR (.exr)");

@@ -36,6 +36,8 @@ struct Options {
     std::filesystem::path image;      ///< -o: EXR of the camera
     std::filesystem::path lightmaps;  ///< --lightmaps: .json, or .exr pages
     std::filesystem::path preview;    ///< --png: tone-mapped preview of the frame
+    /// --caustic-pixels: EXR of the camera's caustic term alone, at pixel resolution.
+    std::filesystem::path caustic_pixels;
     bool no_caustic_bounce = false;
     /// --indirect: "photons" (IndirectPhotons, texel-binned) or "paths" (NEE at every vertex).
     std::string indirect = "photons";
