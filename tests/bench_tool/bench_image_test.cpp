@@ -160,6 +160,40 @@ TEST(BenchImage, TheCameraFlagPlacesBothFrames) {
     }
 }
 
+TEST(BenchImage, TheCausticTermIsMeasuredAtPixelResolution) {
+    CommandResult run = luxel_bench("--level cornell --frames 1 --no-image --caustic-pixels");
+    EXPECT_EQ(run.exit_code, 2) << run.output;
+    EXPECT_NE(run.output.find("--caustic-pixels"), std::string::npos) << run.output;
+
+    // Cornell's glass sphere throws its caustic on the floor the camera sees.
+    luxel::testing::TempDir dir("luxel-bench-caustic-pixels");
+    const std::filesystem::path out = dir / "out";
+    run = luxel_bench(
+        "--level cornell --budgets 8 --frames 16 --after 1 --checkpoint 8 --change none "
+        "--ref-photons 100000 --ref-caustic-photons 2000000 --ref-spp 1 --image 32x24 "
+        "--image-spp 4 --threads 2 --caustic-pixels --out " +
+        quoted(out));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_NE(run.output.find("caustic at pixel resolution"), std::string::npos) << run.output;
+    const nlohmann::json json = read_json(out / "results.json");
+    const auto& result = json["runs"][0];
+    ASSERT_TRUE(result.contains("caustic_pixels_relrmse")) << result.dump();
+    const double error = result["caustic_pixels_relrmse"].get<double>();
+    EXPECT_TRUE(std::isfinite(error));
+    EXPECT_GT(error, 0.0);
+    EXPECT_LT(error, 2.0) << "the real-time caustic lands where the reference's does";
+    EXPECT_GT(result["ref_se_caustic_pixels"].get<double>(), 0.0);
+    const luxel::Image caustics = luxel::read_exr(out / "frames/paper_8ms_static_caustics.exr");
+    double sum = 0.0;
+    for (int y = 0; y < caustics.height; ++y) {
+        for (int x = 0; x < caustics.width; ++x) {
+            sum += caustics.pixel(x, y).g;
+        }
+    }
+    EXPECT_GT(sum, 0.0) << "the caustic term alone is drawn";
+    EXPECT_TRUE(std::filesystem::exists(out / "frames/paper_8ms_static_caustics.png"));
+}
+
 TEST(BenchImage, PixelsWithoutALightMapAreMeasuredOnTheirOwn) {
     // The skinned figure has no light map: the irradiance probes light it, and the error over
     // its pixels is reported apart from the frame's. Without probes (probes=0) the figure

@@ -51,6 +51,10 @@ struct ImageSpec {
     std::uint32_t spp = 128;  ///< the reference frame's path samples per pixel
     /// --camera (luxel-ref's syntax): both frames from here instead of the level's first camera.
     std::optional<ref::CameraSpec> camera;
+    /// --caustic-pixels: also the frame's caustic term alone against the reference's caustic
+    /// at pixel resolution (luxel-ref --caustic-pixels), over the pixels that see a diffuse
+    /// surface directly: the error a close-up shows.
+    bool caustic_pixels = false;
 };
 
 struct Options {

@@ -92,6 +92,11 @@ struct RunResult {
     std::size_t unmapped_interior_pixels = 0;
     double image_after = 0.0;
     double reference_se_image = 0.0;
+    /// --caustic-pixels: the caustic term's relRMSE over the pixels that see a diffuse surface
+    /// directly, against the reference's pixel-resolution caustic, at the last static
+    /// checkpoint (-1: not measured), and that reference's own expected relRMSE.
+    double caustic_pixels = -1.0;
+    double reference_se_caustic_pixels = 0.0;
     double reference_se_image_after = 0.0;
     /// Median over the static checkpoints' renders: FrameRenderer's passes, the caustic pass.
     double frame_gpu_ms = 0.0;

@@ -117,6 +117,27 @@ struct UnmappedError {
     std::size_t pixels = 0;
 };
 
+/// relRMSE over RGB of `image` against `reference` on the pixels whose reference alpha is
+/// above one half (the caustic reference's pixels that see a diffuse surface directly);
+/// 0 where they hold nothing.
+double masked_relative_rmse(const Image& image, const Image& reference) {
+    double error = 0.0;
+    double signal = 0.0;
+    for (int y = 0; y < reference.height && y < image.height; ++y) {
+        for (int x = 0; x < reference.width && x < image.width; ++x) {
+            const glm::vec4 want = reference.pixel(x, y);
+            if (!(want.a > 0.5f)) {
+                continue;
+            }
+            const glm::dvec3 d =
+                glm::dvec3(glm::vec3(image.pixel(x, y))) - glm::dvec3(glm::vec3(want));
+            error += glm::dot(d, d);
+            signal += glm::dot(glm::dvec3(glm::vec3(want)), glm::dvec3(glm::vec3(want)));
+        }
+    }
+    return signal > 0.0 ? std::sqrt(error / signal) : 0.0;
+}
+
 UnmappedError unmapped_error(const FrameShot& shot, const Image& reference, int margin) {
     const int w = shot.image.width;
     const int h = shot.image.height;
@@ -273,6 +294,16 @@ double ConfigRun::image_error(const ReferenceImage& reference, bool last, bool a
         result_.unmapped_interior_pixels = interior.pixels;
         result_.image_unmapped_interior = interior.relrmse;
     }
+    if (options_.image.caustic_pixels && !after) {
+        const Image caustics = view_->render_caustics(now_);
+        result_.caustic_pixels = masked_relative_rmse(caustics, reference.caustic_pixels);
+        result_.reference_se_caustic_pixels = reference.caustic_pixels_se;
+        if (last) {
+            write_side_by_side(options_.out / "frames" / file_name("static_caustics", ".png"),
+                               caustics, reference.caustic_pixels);
+            write_exr(options_.out / "frames" / file_name("static_caustics", ".exr"), caustics);
+        }
+    }
     if (last) {
         const char* phase = after ? "after" : "static";
         write_side_by_side(options_.out / "frames" / file_name(phase, ".png"), shot.image,
@@ -350,6 +381,10 @@ void ConfigRun::static_phase() {
     if (result_.image_measured) {
         std::fprintf(stderr, ", image %.4f (%.4f net of the reference's noise %.4f)", result_.image,
                      result_.image_net, result_.reference_se_image);
+        if (result_.caustic_pixels >= 0.0) {
+            std::fprintf(stderr, ", caustic at pixel resolution %.4f (reference noise %.4f)",
+                         result_.caustic_pixels, result_.reference_se_caustic_pixels);
+        }
         if (result_.unmapped_pixels > 0) {
             std::fprintf(stderr,
                          ", pixels without a light map %.4f (%zu pixels; interior %.4f, %zu)",

@@ -88,6 +88,15 @@ FrameView::FrameView(ecs::Registry& registry, const lighting::LightingSystem& li
     : camera_(frame_camera(camera)),
       renderer_(registry, lighting, frame_settings(camera, choices), shaders) {}
 
+Image FrameView::render_caustics(double now_seconds) {
+    const renderer::FrameTerms all = renderer_.terms();
+    renderer_.set_terms({false, false, true, false, false});
+    static_cast<void>(renderer_.render(camera_, now_seconds));
+    Image image = renderer_.read(renderer::FrameImage::Frame);
+    renderer_.set_terms(all);
+    return image;
+}
+
 FrameShot FrameView::render(double now_seconds) {
     // As the sandbox: the renderer's own caustic pass runs between its G-buffer and its
     // composite while the FeaturePlan has caustic data, so this frame's caustics are in it.

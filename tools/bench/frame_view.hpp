@@ -66,6 +66,9 @@ class FrameView {
     /// The frame at `now_seconds` (the clock given to LightingSystem::update) with this
     /// frame's caustics (FrameRenderer's caustic stage: not one frame late).
     [[nodiscard]] FrameShot render(double now_seconds);
+    /// The same frame with the caustic term alone (FrameTerms: caustics only), linear, rows
+    /// top first: what --caustic-pixels compares with the reference's pixel-resolution caustic.
+    [[nodiscard]] Image render_caustics(double now_seconds);
 
   private:
     renderer::FrameCamera camera_;

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "luxel/lighting/reference/caustic_pixels.hpp"
 #include "luxel/lighting/reference/reference_integrator.hpp"
 #include "luxel/runtime/clock.hpp"
 #include "luxel/runtime/error.hpp"
@@ -37,13 +38,17 @@ bool load(const std::filesystem::path& stem, ReferenceImage& reference, int widt
         }
         reference.seconds = json.at("seconds").get<double>();
         reference.relative_standard_error = json.at("relative_standard_error").get<double>();
+        reference.caustic_pixels_se =
+            json.at("caustic_pixels_relative_standard_error").get<double>();
         reference.image = read_exr(stem.string() + ".exr");
+        reference.caustic_pixels = read_exr(stem.string() + ".caustic.exr");
     } catch (const nlohmann::json::exception&) {
         return false;  // unreadable: computed again and overwritten
     } catch (const Error&) {
         return false;  // the EXR is missing or damaged: the same
     }
-    return reference.image.width == width && reference.image.height == height;
+    return reference.image.width == width && reference.image.height == height &&
+           reference.caustic_pixels.width == width && reference.caustic_pixels.height == height;
 }
 
 void save(const std::filesystem::path& stem, const ReferenceImage& reference) {
@@ -55,10 +60,13 @@ void save(const std::filesystem::path& stem, const ReferenceImage& reference) {
     const std::filesystem::path partial_exr = stem.string() + ".partial.exr";
     write_exr(partial_exr, reference.image);
     std::filesystem::rename(partial_exr, exr);
+    write_exr(partial_exr, reference.caustic_pixels);
+    std::filesystem::rename(partial_exr, stem.string() + ".caustic.exr");
     nlohmann::json json;
     json["key"] = reference.key;
     json["seconds"] = reference.seconds;
     json["relative_standard_error"] = reference.relative_standard_error;
+    json["caustic_pixels_relative_standard_error"] = reference.caustic_pixels_se;
     const std::filesystem::path partial_json = stem.string() + ".partial.json";
     {
         std::ofstream out(partial_json);
@@ -96,11 +104,11 @@ ReferenceImage reference_image_for(const std::filesystem::path& cache_dir, const
                                    JobSystem& jobs) {
     ReferenceImage reference;
     // frame=v3: glass and water enclose nothing (ReferenceScene's hidden points), so a pool's
-    // floor seen through its water is lit.
+    // floor seen through its water is lit. v4: the caustic term at pixel resolution beside it.
     reference.key = pose + ";" + describe_camera(camera) +
                     ";image_spp=" + std::to_string(image.spp) +
                     ";caustic_photons=" + std::to_string(spec.caustic_photons) +
-                    ";seed=" + std::to_string(spec.seed) + ";frame=v3";
+                    ";seed=" + std::to_string(spec.seed) + ";frame=v4";
     // Paths read base-colour textures per hit (HitTextures): a textured level gets a new
     // entry; an untextured one keeps its cached frame.
     if (scene.textured()) {
@@ -127,6 +135,10 @@ ReferenceImage reference_image_for(const std::filesystem::path& cache_dir, const
     frame_settings.seed = spec.seed;
     frame_settings.paths = settings.paths;
     ReferenceFrame frame(scene, camera, frame_settings);
+    // The same photons at pixel resolution (the close-up error, --caustic-pixels): a hash
+    // lookup per caustic photon beside its texel.
+    const CausticPixels pixels = caustic_pixels(scene, camera);
+    integrator.set_caustic_footprints(pixels.footprints);
     for (std::uint32_t pass = 0; pass < kPasses; ++pass) {
         integrator.set_pass_size(0, share(spec.caustic_photons, pass));
         integrator.set_indirect_photons_per_pass(0);
@@ -140,6 +152,9 @@ ReferenceImage reference_image_for(const std::filesystem::path& cache_dir, const
     reference.seconds = clock.elapsed_ms() / 1000.0;
     reference.image = frame.image();
     reference.relative_standard_error = frame.relative_standard_error();
+    reference.caustic_pixels = caustic_pixel_image(pixels, integrator.caustics());
+    reference.caustic_pixels_se =
+        caustic_pixels_relative_standard_error(pixels, integrator.caustics());
     save(stem, reference);
     std::fprintf(stderr,
                  "luxel-bench: reference frame %s computed in %.1f s (rel. std. error %.4f)\n",

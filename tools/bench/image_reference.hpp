@@ -21,6 +21,11 @@ struct ReferenceImage {
     Image image;       ///< linear radiance W/(m^2 sr), rows top first
     /// The frame's own expected image relRMSE (ReferenceFrame::relative_standard_error).
     double relative_standard_error = 0.0;
+    /// The caustic term alone at pixel resolution (caustic_pixel_image: alpha 1 on the pixels
+    /// that see a diffuse surface directly), from the same caustic photons, and its expected
+    /// relRMSE over those pixels.
+    Image caustic_pixels;
+    double caustic_pixels_se = 0.0;
     double seconds = 0.0;  ///< to compute it
     bool from_cache = false;
 };

@@ -3,6 +3,7 @@
 //   luxel-bench --level NAME|PATH [--budgets 1,2,4,8] [--frames N] [--after N] [--out DIR]
 //               [--sweep KNOB=V1,V2 ...] [--change NODE:dx,dy,dz|auto|none] [--ref-* ...]
 //               [--image WxH] [--image-spp N] [--camera x,y,z:tx,ty,tz:fov] [--no-image]
+//               [--caustic-pixels]
 // Writes CSV, JSON, PNG plots, frames and summary.md into DIR; references are cached in
 // DIR/cache.
 
@@ -114,6 +115,10 @@ int run(int argc, char** argv) {
     app.add_option("--image-spp", options.image.spp,
                    "path samples per pixel of the reference frame")
         ->capture_default_str();
+    app.add_flag("--caustic-pixels", options.image.caustic_pixels,
+                 "also the frame's caustic term alone against the reference's caustic at pixel "
+                 "resolution (luxel-ref --caustic-pixels), over the pixels that see a diffuse "
+                 "surface directly: the error a camera close to a caustic shows");
     app.add_flag("--no-image", no_image,
                  "leave the image error out (no frames rendered, no GL context unless "
                  "backend=gpu is swept)");
@@ -155,6 +160,9 @@ int run(int argc, char** argv) {
             bench::parse_image_size(image_size, options.image);
         }
         options.image.enabled = !no_image;
+        if (no_image && options.image.caustic_pixels) {
+            throw Error("--caustic-pixels and --no-image: the caustic frame is an image");
+        }
         if (!camera_text.empty()) {
             if (no_image) {
                 throw Error("--camera and --no-image: the camera is the compared frames'");

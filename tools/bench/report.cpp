@@ -325,6 +325,10 @@ std::vector<std::filesystem::path> write_report(const ReportInfo& info,
         run["after_caustic"] = r.after_caustic;
         run["after_worst_region"] = r.after_region;
         run["after_p99_texel"] = r.after_p99;
+        if (r.caustic_pixels >= 0.0) {
+            run["caustic_pixels_relrmse"] = r.caustic_pixels;
+            run["ref_se_caustic_pixels"] = r.reference_se_caustic_pixels;
+        }
         for (const Checkpoint& c : r.checkpoints) {
             const char* phase = c.animated ? "animated" : c.after_change ? "after" : "static";
             checkpoints.push_back({r.config.method, number(r.config.budget_ms, 2), phase,
