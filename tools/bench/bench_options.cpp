@@ -78,9 +78,9 @@ Sweep parse_sweep(const std::string& text) {
             }
         } else if (sweep.knob == "kernel") {
             if (value != "larsen" && value != "box" && value != "cone" && value != "world" &&
-                value != "layer") {
+                value != "mip" && value != "layer") {
                 throw Error(what + ": '" + value +
-                            "' is not a caustic kernel (larsen, box, cone, world, layer)");
+                            "' is not a caustic kernel (larsen, box, cone, world, mip, layer)");
             }
         } else if (sweep.knob == "aa" || sweep.knob == "sky_edges") {
             if (value != "on" && value != "off") {

@@ -64,7 +64,10 @@ lighting::CausticKernel parse_kernel(const std::string& name) {
     if (name == "world") {
         return lighting::CausticKernel::WorldCone;
     }
-    throw Error("kernel '" + name + "': expected larsen, box, cone or world");
+    if (name == "mip") {
+        return lighting::CausticKernel::MipLevels;
+    }
+    throw Error("kernel '" + name + "': expected larsen, box, cone, world or mip");
 }
 
 renderer::FrameCamera frame_camera(const lighting::reference::ReferenceCamera& camera) {

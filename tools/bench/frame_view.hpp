@@ -25,7 +25,8 @@ namespace luxel::bench {
 /// window). Throws GlContextError listing both attempts.
 [[nodiscard]] std::unique_ptr<GlContext> make_headless_context();
 
-/// "larsen", "box", "cone", "world" as CausticPass kernels. Throws luxel::Error otherwise.
+/// "larsen", "box", "cone", "world", "mip" as CausticPass kernels. Throws luxel::Error
+/// otherwise.
 [[nodiscard]] lighting::CausticKernel parse_kernel(const std::string& name);
 
 /// The renderer's camera with exactly the reference camera's view and projection (so both

@@ -18,6 +18,8 @@ const char* kernel_name(CausticKernel kernel) {
             return "round_cone";
         case CausticKernel::WorldCone:
             return "world_cone";
+        case CausticKernel::MipLevels:
+            return "mip_levels";
     }
     return "unknown";
 }
@@ -27,8 +29,9 @@ std::vector<float> caustic_kernel_weights(CausticKernel kernel, int k) {
         throw Error("caustic kernel radius must be in [0, " +
                     std::to_string(kMaxCausticKernelRadius) + "], got " + std::to_string(k));
     }
-    if (kernel == CausticKernel::WorldCone) {
-        throw Error("the world-space caustic kernel has no fixed weights");
+    if (kernel == CausticKernel::WorldCone || kernel == CausticKernel::MipLevels) {
+        throw Error(std::string("the ") + kernel_name(kernel) +
+                    " caustic kernel has no fixed weights");
     }
     const int size = 2 * k + 1;
     std::vector<double> w(static_cast<std::size_t>(size * size));

@@ -64,9 +64,13 @@ void validate(const CausticPassSettings& s) {
                     std::to_string(kMaxCausticKernelRadius) + "], got " +
                     std::to_string(s.kernel_radius));
     }
-    if (s.kernel == CausticKernel::WorldCone &&
+    if ((s.kernel == CausticKernel::WorldCone || s.kernel == CausticKernel::MipLevels) &&
         (!(s.world_radius > 0.0f) || !std::isfinite(s.world_radius))) {
         throw Error("CausticPassSettings.world_radius must be positive and finite");
+    }
+    if (s.kernel == CausticKernel::MipLevels &&
+        (!(s.mip_min_photons >= 1.0f) || !std::isfinite(s.mip_min_photons))) {
+        throw Error("CausticPassSettings.mip_min_photons must be at least 1 and finite");
     }
     if (!(s.min_cos > 0.0f) || !(s.min_cos <= 1.0f)) {
         throw Error("CausticPassSettings.min_cos must be in (0, 1]");
@@ -172,7 +176,26 @@ struct CausticPass::Impl {
     [[nodiscard]] int reach_pixels() const { return settings.kernel_radius; }
     [[nodiscard]] int reach_tiles() const { return tiles_for(reach_pixels()); }
 
+    [[nodiscard]] bool mip() const { return settings.kernel == CausticKernel::MipLevels; }
+    /// Levels of the splat's mip chain: down to 1 x 1 for the mip kernel, else level 0 alone.
+    [[nodiscard]] int splat_levels() const {
+        if (!mip()) {
+            return 1;
+        }
+        int levels = 1;
+        for (int s = std::max(size.x, size.y); s > 1; s /= 2) {  // floor(log2) + 1 levels
+            ++levels;
+        }
+        return levels;
+    }
+
     void build_filter() {
+        if (mip()) {
+            filter_program = shaders.build({{ShaderStage::Compute, "caustics/mip_filter.comp"}});
+            const float one = 1.0f;
+            weights = gl::Buffer::create(sizeof(float), &one, 0);
+            return;
+        }
         const int mode = settings.tile_mode == CausticTileMode::Full       ? 0
                          : settings.tile_mode == CausticTileMode::EarlyOut ? 1
                                                                            : 2;
@@ -199,11 +222,18 @@ struct CausticPass::Impl {
         }
         size = viewport;
         tiles = {tiles_for(size.x), tiles_for(size.y)};
-        splat = gl::Texture::create_2d(GL_RGBA32F, size.x, size.y);
+        splat = gl::Texture::create_2d(GL_RGBA32F, size.x, size.y, splat_levels());
         output = gl::Texture::create_2d(GL_RGBA32F, size.x, size.y);
         for (const gl::Texture* t : {&splat, &output}) {
             glTextureParameteri(t->id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
             glTextureParameteri(t->id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        }
+        if (mip()) {
+            // The mip filter reads a level bilinearly at each pixel's centre (textureLod).
+            glTextureParameteri(splat.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
+            glTextureParameteri(splat.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+            glTextureParameteri(splat.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+            glTextureParameteri(splat.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
         }
         framebuffer = gl::Framebuffer::create();
         framebuffer.attach(GL_COLOR_ATTACHMENT0, splat);
@@ -239,7 +269,13 @@ struct CausticPass::Impl {
         splat_program.set("u_min_cos", settings.min_cos);
         splat_program.set("u_bias_relative", settings.depth_bias_relative);
         splat_program.set("u_bias_absolute", settings.depth_bias_absolute);
-        filter_program.set("u_world_radius", settings.world_radius);
+        if (mip()) {
+            filter_program.set("u_min_photons", settings.mip_min_photons);
+            filter_program.set("u_levels", splat_levels());
+            filter_program.set("u_max_radius", settings.world_radius);
+        } else {
+            filter_program.set("u_world_radius", settings.world_radius);
+        }
         filter_program.set("u_pixel_size_scale", std::sqrt(area_scale));
     }
 
@@ -300,14 +336,19 @@ struct CausticPass::Impl {
         glBeginQuery(GL_TIME_ELAPSED, timers[1].id());
         // The splat's flag and counter writes must be visible to the compute passes.
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-        if (settings.tile_mode != CausticTileMode::Full) {
+        if (mip()) {
+            // The chain of means the filter reads; every tile is filtered (a coarse level
+            // reaches any distance), so the output needs no clearing.
+            glGenerateTextureMipmap(splat.id());
+            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+        } else if (settings.tile_mode != CausticTileMode::Full) {
             // Tiles out of reach are not written this frame: they must read zero.
             const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
             glClearTexImage(output.id(), 0, GL_RGBA, GL_FLOAT, clear);
         }
         glBindTextureUnit(kSplatUnit, splat.id());
         glBindImageTexture(kOutputImage, output.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        if (settings.tile_mode == CausticTileMode::Indirect) {
+        if (settings.tile_mode == CausticTileMode::Indirect && !mip()) {
             tile_program.use();
             glDispatchCompute(static_cast<GLuint>((tiles.x + 7) / 8),
                               static_cast<GLuint>((tiles.y + 7) / 8), 1);
@@ -345,10 +386,10 @@ struct CausticPass::Impl {
             glGetNamedBufferSubData(control.id(), 0, sizeof(Control), &c);
             stats.photons_splatted = c.photons_splatted;
             stats.tiles_marked = c.tiles_marked;
-            stats.tiles_filtered = settings.tile_mode == CausticTileMode::Full ? stats.tiles_total
-                                   : settings.tile_mode == CausticTileMode::EarlyOut
-                                       ? c.tiles_filtered
-                                       : c.dispatch_x;
+            stats.tiles_filtered =
+                settings.tile_mode == CausticTileMode::Full || mip() ? stats.tiles_total
+                : settings.tile_mode == CausticTileMode::EarlyOut    ? c.tiles_filtered
+                                                                     : c.dispatch_x;
             stats_pending = false;
         }
         if (timers_pending) {
@@ -399,8 +440,12 @@ GLuint CausticPass::splat_texture() const {
 
 void CausticPass::set_settings(const CausticPassSettings& settings) {
     validate(settings);
+    const bool was_mip = impl_->mip();
     impl_->settings = settings;
     impl_->build_filter();
+    if (impl_->mip() != was_mip) {
+        impl_->resize(impl_->size);  // the splat gains or drops its mip chain
+    }
 }
 
 const CausticPassSettings& CausticPass::settings() const {

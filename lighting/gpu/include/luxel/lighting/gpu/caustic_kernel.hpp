@@ -20,6 +20,11 @@ enum class CausticKernel {
     /// differs from the centre's by more than that radius do not contribute, so a caustic does
     /// not bleed across a depth edge. Its weights are computed in the shader.
     WorldCone,
+    /// Level-adjusted mip-maps (S. Larsen 2006): per pixel the finest level of the splat
+    /// buffer's mip chain whose block holds CausticPassSettings::mip_min_photons photons, so
+    /// the kernel widens where photons are sparse (close-ups) and narrows where they are dense.
+    /// Computed in the shader (shaders/caustics/mip_filter.comp); no fixed weights.
+    MipLevels,
 };
 
 [[nodiscard]] const char* kernel_name(CausticKernel kernel);

@@ -31,8 +31,12 @@ struct CausticPassSettings {
     /// k: the screen-space kernel spans (2k + 1)^2 pixels (the paper: 3). For WorldCone, the
     /// largest radius in pixels a world radius may reach (nearer surfaces are clamped to it).
     int kernel_radius = 3;
-    /// WorldCone only: the cone's radius in metres.
+    /// WorldCone: the cone's radius in metres. MipLevels: the widest radius in metres an
+    /// estimate may reach (as a photon map's largest search radius).
     float world_radius = 0.05f;
+    /// MipLevels only: the photons a pixel's estimate needs; the level whose block holds them
+    /// is read (relative noise about 1 / sqrt of it).
+    float mip_min_photons = 16.0f;
     CausticTileMode tile_mode = CausticTileMode::Indirect;
     /// Divide each photon's power by the pixel's area on the surface (orientation from the
     /// depth buffer's slope: a pixel on a surface seen at angle theta covers 1 / cos(theta)
