@@ -39,12 +39,26 @@ struct MirrorRoom {
         light.position = {0.0f, 1.0f, 0.0f};
         light.power = glm::vec3(40.0f);
     }
+
+    /// The room with the ceiling's 8 x 8 texels, the only light-mapped surface.
+    [[nodiscard]] ReferenceScene scene() const {
+        return ReferenceScene(rays, materials, {light},
+                              {luxel::testing::quad_texels(0, 2.0f, 2.0f, false, 8)});
+    }
+
+    /// The closed form on the ceiling: the light's mirror image at y = -1 lights `point` with
+    /// E = I cos / d^2.
+    [[nodiscard]] static double ceiling_irradiance(const glm::dvec3& point) {
+        const double intensity = 40.0 / (4.0 * glm::pi<double>());
+        const glm::dvec3 to_image = glm::dvec3(0.0, -1.0, 0.0) - point;
+        const double d2 = glm::dot(to_image, to_image);
+        return intensity * (-to_image.y / std::sqrt(d2)) / d2;
+    }
 };
 
 TEST(Caustics, AFlatMirrorLightsTheCeilingLikeTheLightsMirrorImage) {
     MirrorRoom room;
-    ReferenceScene scene(room.rays, room.materials, {room.light},
-                         {luxel::testing::quad_texels(0, 2.0f, 2.0f, false, 8)});
+    const ReferenceScene scene = room.scene();
     ASSERT_EQ(scene.generator_spheres().size(), 1u);
     ReferenceSettings settings;
     settings.samples_per_pass = 1;
@@ -54,16 +68,12 @@ TEST(Caustics, AFlatMirrorLightsTheCeilingLikeTheLightsMirrorImage) {
     integrator.run_pass(jobs);
     const CausticReference& caustics = integrator.caustics();
     EXPECT_EQ(caustics.pair_count(), 1u);
-    const double intensity = 40.0 / (4.0 * glm::pi<double>());
-    const glm::dvec3 image(0.0, -1.0, 0.0);
     double sum = 0.0;
     double expected_sum = 0.0;
     double worst_sigma = 0.0;
     for (std::size_t t = 0; t < scene.texel_count(); ++t) {
-        const glm::dvec3 to_image = image - glm::dvec3(scene.texel(t).position);
-        const double d2 = glm::dot(to_image, to_image);
         // Every ceiling texel lies inside the mirror's reflected beam (|x|, |z| < 3 m at y = 2).
-        const double expected = intensity * (-to_image.y / std::sqrt(d2)) / d2;
+        const double expected = MirrorRoom::ceiling_irradiance(glm::dvec3(scene.texel(t).position));
         const double got = caustics.irradiance(t).x;
         const double se = caustics.standard_error(t).x;
         EXPECT_NEAR(got, expected, 3.0 * se + 0.02 * expected) << "texel " << t;
@@ -85,8 +95,7 @@ TEST(Caustics, PixelFootprintsMeasureTheCausticAtTheirOwnSize) {
     // chosen points read the closed form there, and discs that face the other way or float
     // off the ceiling read nothing.
     MirrorRoom room;
-    ReferenceScene scene(room.rays, room.materials, {room.light},
-                         {luxel::testing::quad_texels(0, 2.0f, 2.0f, false, 8)});
+    const ReferenceScene scene = room.scene();
     CausticReferenceSettings settings;
     settings.photons_per_pass = 4'000'000;
     CausticReference caustics(scene, settings);
@@ -106,12 +115,8 @@ TEST(Caustics, PixelFootprintsMeasureTheCausticAtTheirOwnSize) {
     JobSystem jobs(2);
     caustics.run_pass(jobs);
 
-    const double intensity = 40.0 / (4.0 * glm::pi<double>());
-    const glm::dvec3 image(0.0, -1.0, 0.0);
     for (std::size_t i = 0; i < checked; ++i) {
-        const glm::dvec3 to_image = image - glm::dvec3(footprints[i].centre);
-        const double d2 = glm::dot(to_image, to_image);
-        const double expected = intensity * (-to_image.y / std::sqrt(d2)) / d2;
+        const double expected = MirrorRoom::ceiling_irradiance(glm::dvec3(footprints[i].centre));
         const double got = caustics.footprint_irradiance(i).x;
         const double se = caustics.footprint_standard_error(i).x;
         EXPECT_GT(se, 0.0);
@@ -129,8 +134,7 @@ TEST(Caustics, ACameraSeesTheCausticAtPixelResolution) {
     // albedo / pi times the mirror image's irradiance at its centre (the field is smooth over a
     // 10 cm pixel), with a footprint the size of the patch the pixel covers.
     MirrorRoom room;
-    ReferenceScene scene(room.rays, room.materials, {room.light},
-                         {luxel::testing::quad_texels(0, 2.0f, 2.0f, false, 8)});
+    const ReferenceScene scene = room.scene();
     const float fov = glm::radians(40.0f);
     const ReferenceCamera camera = ReferenceCamera::look_at({0.3f, 0.2f, 0.0f}, {0.3f, 2.0f, 0.0f},
                                                             fov, 16, 12, {0.0f, 0.0f, -1.0f});
@@ -144,8 +148,6 @@ TEST(Caustics, ACameraSeesTheCausticAtPixelResolution) {
     caustics.run_pass(jobs);
     const Image image = caustic_pixel_image(pixels, caustics);
 
-    const double intensity = 40.0 / (4.0 * glm::pi<double>());
-    const glm::dvec3 image_of_light(0.0, -1.0, 0.0);
     const double side = 2.0 * 1.8 * std::tan(fov / 2.0) / 12.0;  // a pixel on the ceiling
     double worst = 0.0;
     for (int y = 0; y < 12; ++y) {
@@ -157,10 +159,8 @@ TEST(Caustics, ACameraSeesTheCausticAtPixelResolution) {
             const double area = glm::pi<double>() * footprint.radius * footprint.radius;
             EXPECT_GT(area, 0.98 * side * side);
             EXPECT_LT(area, 1.3 * side * side);
-            const glm::dvec3 to_image = image_of_light - glm::dvec3(footprint.centre);
-            const double d2 = glm::dot(to_image, to_image);
-            const double e = intensity * (-to_image.y / std::sqrt(d2)) / d2;
-            const double want = 0.5 / glm::pi<double>() * e;
+            const double want = 0.5 / glm::pi<double>() *
+                                MirrorRoom::ceiling_irradiance(glm::dvec3(footprint.centre));
             const double se = 0.5 / glm::pi<double>() * caustics.footprint_standard_error(f).x;
             const double got = image.pixel(x, y).x;
             EXPECT_NEAR(got, want, 3.0 * se + 0.01 * want) << "pixel " << x << "," << y;
@@ -192,8 +192,7 @@ TEST(Caustics, APixelsFootprintGrowsWithDistanceAndTilt) {
 
 TEST(Caustics, ASeedFixesThePhotonEstimate) {
     MirrorRoom room;
-    ReferenceScene scene(room.rays, room.materials, {room.light},
-                         {luxel::testing::quad_texels(0, 2.0f, 2.0f, false, 8)});
+    const ReferenceScene scene = room.scene();
     CausticReferenceSettings settings;
     settings.photons_per_pass = 100'000;
     CausticReference a(scene, settings);
