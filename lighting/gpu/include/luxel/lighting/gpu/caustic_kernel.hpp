@@ -23,7 +23,9 @@ enum class CausticKernel {
     /// Level-adjusted mip-maps (S. Larsen 2006): per pixel the finest level of the splat
     /// buffer's mip chain whose block holds CausticPassSettings::mip_min_photons photons, so
     /// the kernel widens where photons are sparse (close-ups) and narrows where they are dense.
-    /// Computed in the shader (shaders/caustics/mip_filter.comp); no fixed weights.
+    /// Computed in the shader (shaders/caustics/mip_filter.comp); no fixed weights. Beside a
+    /// small, very bright focus every widened pixel takes in the focus's power again (cornell's
+    /// sphere: far brighter than the reference, docs/RESULTS.md "Close-ups"): not the default.
     MipLevels,
 };
 
