@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "caustic_test_support.hpp"
+#include "luxel/lighting/gpu/caustic_kernel.hpp"
 
 namespace {
 
@@ -81,6 +82,37 @@ void CausticFilter(benchmark::State& state) {
 
 BENCHMARK(CausticFilter)
     ->ArgsProduct({{1, 5, 100}, {0, 1, 2}})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
+
+// CausticKernelCost/<coverage %>/<kernel>: the same frame through Larsen's kernel (0, the
+// baseline, in its default Indirect tile mode) and the level-adjusted mip-maps (1, every tile,
+// the mip chain's generation included); mip / Larsen is docs/PERFORMANCE.md's figure. One
+// render before timing: the first pays the driver's shader compilation (luxel-bench's
+// caustic_gpu_ms with one checkpoint measured that, not the filter).
+void CausticKernelCost(benchmark::State& state) {
+    Frame& f = frame();
+    CausticPassSettings settings;
+    settings.kernel = state.range(1) == 0 ? CausticKernel::Larsen : CausticKernel::MipLevels;
+    CausticPass pass(settings, kSize);
+    pass.upload(photons_covering(f.scene, static_cast<double>(state.range(0))));
+    pass.render(f.scene.camera(), f.scene.depth_texture().id());
+    glFinish();
+    double splat_ms = 0.0;
+    for (auto _ : state) {
+        pass.render(f.scene.camera(), f.scene.depth_texture().id());
+        glFinish();
+        const CausticPassStats& stats = pass.stats();
+        state.SetIterationTime(stats.filter_ms * 1e-3);
+        splat_ms += stats.splat_ms;
+    }
+    state.counters["splat_ms"] = splat_ms / static_cast<double>(state.iterations());
+    state.SetLabel(kernel_name(settings.kernel));
+}
+
+BENCHMARK(CausticKernelCost)
+    ->ArgsProduct({{5, 100}, {0, 1}})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->MinTime(1.0);
