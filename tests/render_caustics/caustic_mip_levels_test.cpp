@@ -63,7 +63,7 @@ std::vector<glm::vec4> filtered(const CausticPassSettings& settings, const test:
     return test::read_rgba(pass.irradiance_texture(), size);
 }
 
-TEST_F(CausticMipLevels, SparsePhotonsReadSmoothWhereAFixedKernelBreaksIntoDots) {
+TEST_F(CausticMipLevels, SparsePhotonsReadSmootherThroughTheMipLevelsThanLarsensKernel) {
     // A camera 0.6 m from a uniformly lit plane: about 0.12 photons a pixel, a close-up, where
     // Larsen's 7 x 7 kernel holds about 6 and the 5 cm radius the mip kernel may widen to
     // about 20.
