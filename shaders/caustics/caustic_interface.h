@@ -26,7 +26,10 @@
 // struct Photon (lighting::CausticPhoton on the C++ side), std430.
 #define CAUSTIC_PHOTON_SIZE 32
 #define CAUSTIC_PHOTON_POSITION 0      // vec3, world metres
-#define CAUSTIC_PHOTON_SURFACE 12      // int, light-mapped surface or -1
+// int: bits 0-23 the light-mapped surface or -1 (signed), bits 24-31 the footprint radius code
+// (lighting::encode_footprint_radius: CAUSTIC_FOOTPRINT_BASE * 2^((code - 1) / 16) m, 0 unknown)
+#define CAUSTIC_PHOTON_SURFACE 12
+#define CAUSTIC_FOOTPRINT_BASE 1e-4
 #define CAUSTIC_PHOTON_POWER 16        // vec3, watts per channel
 #define CAUSTIC_PHOTON_LIGHTMAP_UV 28  // uint, the hit's light-map UV (unpackUnorm2x16)
 
@@ -37,10 +40,20 @@
 #ifndef __cplusplus
 struct Photon {
     vec3 position;
-    int surface;
+    int surface_footprint;
     vec3 power;
     uint lightmap_uv_bits;
 };
+
+int photon_surface(Photon photon) {
+    return bitfieldExtract(photon.surface_footprint, 0, 24);  // sign-extended: -1 stays -1
+}
+
+// The footprint's radius in metres, 0 when unknown.
+float photon_footprint_radius(Photon photon) {
+    uint code = uint(photon.surface_footprint) >> 24;
+    return code == 0u ? 0.0 : CAUSTIC_FOOTPRINT_BASE * exp2((float(code) - 1.0) / 16.0);
+}
 #endif
 
 #endif

@@ -23,10 +23,11 @@ void main() {
     v_irradiance = vec3(0.0);
     v_layer = -1;
     gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
-    if (photon.surface < 0 || photon.surface >= surfaces.length()) {
+    int surface_index = photon_surface(photon);
+    if (surface_index < 0 || surface_index >= surfaces.length()) {
         return;
     }
-    vec4 surface = surfaces[photon.surface];
+    vec4 surface = surfaces[surface_index];
     if (surface.x < 0.0) {
         return;
     }

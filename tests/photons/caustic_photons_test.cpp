@@ -89,8 +89,9 @@ std::vector<DirectedPhoton> directed_photons(const CausticWorld& world,
         }
         DirectedPhoton directed;
         const std::optional<CausticPhoton> photon =
-            trace_caustic_photon(world.scene, world.materials, emitted, index, list.seed(),
-                                 kMaxSpecular, counters, nullptr, &directed.incident);
+            trace_caustic_photon(world.scene, world.materials, emitted,
+                                 list.emitter().differential(emitted, list.photon_count()), index,
+                                 list.seed(), kMaxSpecular, counters, nullptr, &directed.incident);
         if (photon) {
             directed.photon = *photon;
             out.push_back(directed);

@@ -312,4 +312,25 @@ EmittedPhoton CausticEmitter::emit_alone(const glm::dvec2& d, const glm::dvec2& 
     return photon;
 }
 
+PhotonDifferential CausticEmitter::differential(const EmittedPhoton& photon,
+                                                std::uint64_t photon_count) const {
+    const double n = static_cast<double>(std::max<std::uint64_t>(photon_count, 1));
+    const double disc = kPi * static_cast<double>(beam_radius_) * static_cast<double>(beam_radius_);
+    switch (kind_) {
+        case LightKind::Point:
+        case LightKind::Spot:
+            return emission_differential(photon.direction, 0.0, cone_.solid_angle() / n);
+        case LightKind::Directional:
+        case LightKind::Sky:
+            return emission_differential(photon.direction, disc / n, 0.0);
+        case LightKind::Area: {
+            const double root = std::sqrt(n);
+            const DirectionCone toward = cone_toward(photon.origin, generator_);
+            return emission_differential(photon.direction, area_.area() / root,
+                                         toward.solid_angle() / root);
+        }
+    }
+    return emission_differential(photon.direction, 0.0, 0.0);
+}
+
 }  // namespace luxel::lighting

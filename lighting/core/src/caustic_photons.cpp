@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/gtc/constants.hpp>
+
+#include "luxel/lighting/core/photon_differential.hpp"
 #include "luxel/runtime/error.hpp"
 
 namespace luxel::lighting {
@@ -12,8 +15,35 @@ namespace {
 /// per-chunk counters add up in the same order on any machine.
 constexpr std::size_t kPhotonsPerChunk = 64;
 
+/// The radius footprint code 1 stands for (encode_footprint_radius); CAUSTIC_FOOTPRINT_BASE
+/// in the shaders.
+constexpr double kFootprintRadiusBase = 1e-4;
+
 bool has_power(const glm::vec3& power) {
     return power.r > 0.0f || power.g > 0.0f || power.b > 0.0f;
+}
+
+/// Turns `differential` as scatter_specular turned the photon from `arriving` to `leaving`
+/// (which of reflection and refraction it chose is read from the sides the two lie on).
+void follow_differential(const RayScene& scene, const RayHit& hit, const FacingNormals& normals,
+                         const TraceMaterial& material, const glm::vec3& arriving,
+                         const glm::vec3& leaving, PhotonDifferential& differential) {
+    if (!differential.valid) {
+        return;
+    }
+    // The facing shading normal is the hit's, flipped on a back face, or the geometric one
+    // where the interpolated normal bends past the face (flat there: no change).
+    const float side = glm::dot(normals.shading, hit.shading_normal);
+    const glm::mat3 jacobian = side > 0.999f    ? shading_normal_jacobian(scene, hit)
+                               : side < -0.999f ? -shading_normal_jacobian(scene, hit)
+                                                : glm::mat3(0.0f);
+    const bool refracted = glm::dot(leaving, normals.geometric) < 0.0f;
+    if (!refracted) {
+        reflect(differential, arriving, normals.shading, jacobian);
+        return;
+    }
+    const float eta = normals.front ? 1.0f / material.ior : material.ior;
+    refract(differential, arriving, leaving, normals.shading, jacobian, eta);
 }
 
 }  // namespace
@@ -47,10 +77,27 @@ CausticTraceCounters& CausticTraceCounters::operator+=(const CausticTraceCounter
     return *this;
 }
 
+std::uint32_t encode_footprint_radius(float radius) {
+    if (!(radius > 0.0f) || !std::isfinite(radius)) {
+        return 0;
+    }
+    const double code = 1.0 + 16.0 * std::log2(static_cast<double>(radius) / kFootprintRadiusBase);
+    return static_cast<std::uint32_t>(std::clamp(std::lround(code), 1L, 255L));
+}
+
+float decode_footprint_radius(std::uint32_t code) {
+    if (code == 0) {
+        return 0.0f;
+    }
+    return static_cast<float>(kFootprintRadiusBase *
+                              std::exp2((static_cast<double>(std::min(code, 255u)) - 1.0) / 16.0));
+}
+
 std::optional<CausticPhoton> trace_caustic_photon(
     const RayScene& scene, std::span<const TraceMaterial> materials, const EmittedPhoton& photon,
-    std::uint64_t sample_index, std::uint32_t seed, std::uint32_t max_specular_interactions,
-    CausticTraceCounters& counters, PathCells* cells, glm::vec3* incident_direction) {
+    PhotonDifferential differential, std::uint64_t sample_index, std::uint32_t seed,
+    std::uint32_t max_specular_interactions, CausticTraceCounters& counters, PathCells* cells,
+    glm::vec3* incident_direction) {
     // An escaped segment is recorded out to here: beyond any region a list records over.
     constexpr float kEscape = 1e6f;
     glm::vec3 origin = photon.origin;
@@ -73,6 +120,7 @@ std::optional<CausticPhoton> trace_caustic_photon(
             hit->material < materials.size() ? materials[hit->material] : fallback;
         const FacingNormals normals = facing_normals(*hit, direction);
         const bool front = normals.front;
+        transfer(differential, direction, hit->distance, normals.geometric);
 
         if (material.scattering == Scattering::Diffuse) {
             if (specular == 0) {
@@ -88,8 +136,13 @@ std::optional<CausticPhoton> trace_caustic_photon(
             if (incident_direction != nullptr) {
                 *incident_direction = direction;
             }
-            const std::uint32_t uv = hit->surface >= 0 ? encode_lightmap_uv(hit->lightmap_uv) : 0;
-            return CausticPhoton{hit->position, hit->surface, power, uv};
+            const std::int32_t surface = hit->surface <= kMaxCausticSurface ? hit->surface : -1;
+            const std::uint32_t uv = surface >= 0 ? encode_lightmap_uv(hit->lightmap_uv) : 0;
+            // The disc of the patch's area; half its longer side was tried and blurred the
+            // ring's sharp caustic lines close up (caustic error 30% against 20% at 0.8 m).
+            const float radius = std::sqrt(footprint_area(differential) / glm::pi<float>());
+            return CausticPhoton{hit->position, surface, encode_footprint_radius(radius), power,
+                                 uv};
         }
 
         if (specular >= max_specular_interactions) {
@@ -100,7 +153,9 @@ std::optional<CausticPhoton> trace_caustic_photon(
         const double xi = material.scattering == Scattering::Dielectric
                               ? photon_sample(sample_index, dim++, seed)
                               : 0.0;
+        const glm::vec3 arriving = direction;
         scatter_specular(material, *hit, normals, xi, origin, direction, power);
+        follow_differential(scene, *hit, normals, material, arriving, direction, differential);
         // A black mirror or a black tint leaves nothing to carry.
         if (!has_power(power)) {
             ++counters.absorbed;
@@ -435,8 +490,9 @@ std::optional<CausticPhoton> CausticPhotonList::trace_photon(
         return std::nullopt;  // outside the spot's cone or behind the area light
     }
     ++counters.traced;
-    return trace_caustic_photon(scene, materials, emitted, index, seed_, max_specular_interactions,
-                                counters, cells);
+    return trace_caustic_photon(scene, materials, emitted,
+                                emitter_.differential(emitted, photon_count_), index, seed_,
+                                max_specular_interactions, counters, cells);
 }
 
 CausticTraceCounters CausticPhotonList::trace_part(const RayScene& scene,

@@ -43,7 +43,9 @@ static_assert(kPhotonsBinding < kWeightsBinding && kWeightsBinding - kPhotonsBin
 // The photon buffer holds CausticPhoton as it is: its layout must be std430's struct Photon.
 static_assert(sizeof(CausticPhoton) == CAUSTIC_PHOTON_SIZE);
 static_assert(offsetof(CausticPhoton, position) == CAUSTIC_PHOTON_POSITION);
-static_assert(offsetof(CausticPhoton, surface) == CAUSTIC_PHOTON_SURFACE);
+// `surface` and `footprint` are bitfields of the word at CAUSTIC_PHOTON_SURFACE (offsetof cannot
+// name them): position ends there and power starts after it; a test checks their bits.
+static_assert(offsetof(CausticPhoton, position) + sizeof(glm::vec3) == CAUSTIC_PHOTON_SURFACE);
 static_assert(offsetof(CausticPhoton, power) == CAUSTIC_PHOTON_POWER);
 static_assert(offsetof(CausticPhoton, lightmap_uv_bits) == CAUSTIC_PHOTON_LIGHTMAP_UV);
 

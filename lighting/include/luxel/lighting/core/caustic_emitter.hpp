@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "luxel/lighting/core/light_source.hpp"
+#include "luxel/lighting/core/photon_differential.hpp"
 
 /// Emission of caustic photons toward one caustic generator (docs/METHOD.md §7.1): a
 /// light spends its caustic photons only on the directions that can reach the generator's
@@ -90,6 +91,15 @@ class CausticEmitter {
     /// divided by sampling_pairs where siblings' cones overlap this pair's.
     [[nodiscard]] EmittedPhoton emit(const glm::dvec2& d, const glm::dvec2& p,
                                      std::uint64_t photon_count) const;
+
+    /// The photon differential `photon` (one of `photon_count` emitted by this pair) starts
+    /// with (docs/METHOD.md §7.4): the offsets that span its share of what the pair samples.
+    /// Point and spot lights: a solid angle of Omega / N; a directional beam: pi r^2 / N of its
+    /// disc; an area light samples area and direction together, so each offset takes the
+    /// square root of the photon's share of both, A / sqrt(N) and Omega(x) / sqrt(N); the sky
+    /// is treated as a beam (its directions' share is left out, which narrows its footprints).
+    [[nodiscard]] PhotonDifferential differential(const EmittedPhoton& photon,
+                                                  std::uint64_t photon_count) const;
 
   private:
     /// emit() before the siblings' share; `apex` is where the sampled cone starts.

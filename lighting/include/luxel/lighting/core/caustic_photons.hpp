@@ -25,8 +25,14 @@ namespace luxel::lighting {
 struct CausticPhoton {
     glm::vec3 position{0.0f};
     /// The light-mapped surface hit; -1 on a diffuse object without a light map (a moving
-    /// object), where the photon is still splatted.
-    std::int32_t surface = -1;
+    /// object), where the photon is still splatted. 24 bits (kMaxCausticSurface): the other
+    /// 8 of the word hold the footprint. Both share one 32-bit word the shaders split with
+    /// bitfieldExtract (shaders/caustics/caustic_interface.h), surface in the low bits, as the
+    /// x86-64 and AArch64 ABIs lay bitfields out (a test checks it).
+    std::int32_t surface : 24 = -1;
+    /// The radius of the patch the photon stands for at its hit, from its photon differential
+    /// (photon_differential.hpp), encoded by encode_footprint_radius; 0: unknown.
+    std::uint32_t footprint : 8 = 0;
     glm::vec3 power{0.0f};  ///< watts per channel
     /// The hit's light-map UV, two 16-bit unsigned fixed-point numbers (u in the low half, as
     /// GLSL's unpackUnorm2x16 reads them; 1/65535 of a page, under 1/30 texel on a 2048 page);
@@ -39,6 +45,18 @@ struct CausticPhoton {
     [[nodiscard]] glm::vec2 lightmap_uv() const;
 };
 static_assert(sizeof(CausticPhoton) == 32, "caustic photons are 32 bytes");
+
+/// Surfaces a caustic photon can name: its 24-bit field holds -2^23 .. 2^23 - 1. A photon on
+/// a surface beyond (a level of eight million light-mapped surfaces) is stored as on none.
+inline constexpr std::int32_t kMaxCausticSurface = (1 << 23) - 1;
+
+/// A footprint radius (metres) as 8 bits, logarithmically: code c >= 1 stands for
+/// 0.1 mm * 2^((c - 1) / 16), 16 codes an octave (steps of 4.4%, so at most 2.2% off), up to
+/// about 6 m; 0 stands for unknown (no radius, or not finite). Radii outside the range clamp
+/// to its ends. The shaders decode it with the same constants (caustic_interface.h).
+[[nodiscard]] std::uint32_t encode_footprint_radius(float radius);
+/// The radius code `code` stands for, 0 for code 0.
+[[nodiscard]] float decode_footprint_radius(std::uint32_t code);
 
 /// A light-map UV in [0, 1]^2 as two 16-bit fixed-point numbers, and back (GLSL's
 /// packUnorm2x16 layout; values outside [0, 1] are clamped, NaN reads 0).
@@ -97,13 +115,16 @@ struct CausticTraceCounters {
 /// otherwise, with total internal reflection where Snell has no solution. Power is never split:
 /// one photon, at most one stored hit. No Beer absorption: no luxel material has an absorption
 /// coefficient (TraceMaterial's tint scales a refracted photon once, at the interface).
-/// `incident_direction`, when given, receives a stored photon's direction of travel on arrival
-/// (unit; the photon does not keep it), for tests of the specular paths' geometry.
+/// `differential` is the photon's at emission (CausticEmitter::differential), followed through
+/// each specular interaction to give the stored photon its footprint (0, unknown, where it
+/// went invalid). `incident_direction`, when given, receives a stored photon's direction of
+/// travel on arrival (unit; the photon does not keep it), for tests of the specular paths'
+/// geometry.
 [[nodiscard]] std::optional<CausticPhoton> trace_caustic_photon(
     const RayScene& scene, std::span<const TraceMaterial> materials, const EmittedPhoton& photon,
-    std::uint64_t sample_index, std::uint32_t seed, std::uint32_t max_specular_interactions,
-    CausticTraceCounters& counters, PathCells* cells = nullptr,
-    glm::vec3* incident_direction = nullptr);
+    PhotonDifferential differential, std::uint64_t sample_index, std::uint32_t seed,
+    std::uint32_t max_specular_interactions, CausticTraceCounters& counters,
+    PathCells* cells = nullptr, glm::vec3* incident_direction = nullptr);
 
 /// The caustic photons of one (generator, light) pair: photon_count photons in K slices, and
 /// up to G - 1 further generations of as many (progressive caustics).
