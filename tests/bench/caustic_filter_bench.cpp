@@ -41,12 +41,20 @@ std::vector<CausticPhoton> photons_covering(const test::RectScene& scene, double
     const int lo = (kSize.x - side) / 2;
     std::mt19937 random(7);
     std::uniform_int_distribution<int> pick(lo, lo + side - 1);
+    // Each photon's footprint (the ray-differential kernel's disc) as the photon differential
+    // would give it: its share of the square's area on the plane.
+    constexpr int kPhotons = 20'000;
+    const double pixel_area = caustic_pixel_area(scene.camera(), 3.0);
+    const double share = static_cast<double>(side) * side * pixel_area / kPhotons;
+    const std::uint32_t footprint =
+        encode_footprint_radius(static_cast<float>(std::sqrt(share / 3.14159265358979)));
     std::vector<CausticPhoton> photons;
-    for (int i = 0; i < 20'000; ++i) {
+    for (int i = 0; i < kPhotons; ++i) {
         if (const auto p = scene.hit(pick(random), pick(random))) {
             CausticPhoton photon;
             photon.position = *p;
             photon.power = glm::vec3(1e-4f);
+            photon.footprint = footprint;
             photons.push_back(photon);
         }
     }
@@ -87,14 +95,18 @@ BENCHMARK(CausticFilter)
     ->MinTime(1.0);
 
 // CausticKernelCost/<coverage %>/<kernel>: the same frame through Larsen's kernel (0, the
-// baseline, in its default Indirect tile mode) and the level-adjusted mip-maps (1, every tile,
-// the mip chain's generation included); mip / Larsen is docs/PERFORMANCE.md's figure. One
-// render before timing: the first pays the driver's shader compilation (luxel-bench's
-// caustic_gpu_ms with one checkpoint measured that, not the filter).
+// baseline, in its default Indirect tile mode), the level-adjusted mip-maps (1, every tile,
+// the mip chain's generation included) and the ray-differential footprints (2: a quad per
+// photon, the work in the splat); the time is the whole pass's, splat and filter, and each
+// kernel / Larsen is docs/PERFORMANCE.md's figure. One render before timing: the first pays
+// the driver's shader compilation (luxel-bench's caustic_gpu_ms with one checkpoint measured
+// that, not the pass).
 void CausticKernelCost(benchmark::State& state) {
     Frame& f = frame();
     CausticPassSettings settings;
-    settings.kernel = state.range(1) == 0 ? CausticKernel::Larsen : CausticKernel::MipLevels;
+    constexpr CausticKernel kKernels[] = {CausticKernel::Larsen, CausticKernel::MipLevels,
+                                          CausticKernel::PhotonFootprints};
+    settings.kernel = kKernels[state.range(1)];
     CausticPass pass(settings, kSize);
     pass.upload(photons_covering(f.scene, static_cast<double>(state.range(0))));
     pass.render(f.scene.camera(), f.scene.depth_texture().id());
@@ -104,7 +116,7 @@ void CausticKernelCost(benchmark::State& state) {
         pass.render(f.scene.camera(), f.scene.depth_texture().id());
         glFinish();
         const CausticPassStats& stats = pass.stats();
-        state.SetIterationTime(stats.filter_ms * 1e-3);
+        state.SetIterationTime((stats.splat_ms + stats.filter_ms) * 1e-3);
         splat_ms += stats.splat_ms;
     }
     state.counters["splat_ms"] = splat_ms / static_cast<double>(state.iterations());
@@ -112,7 +124,7 @@ void CausticKernelCost(benchmark::State& state) {
 }
 
 BENCHMARK(CausticKernelCost)
-    ->ArgsProduct({{5, 100}, {0, 1}})
+    ->ArgsProduct({{5, 100}, {0, 1, 2}})
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->MinTime(1.0);

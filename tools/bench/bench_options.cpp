@@ -78,9 +78,11 @@ Sweep parse_sweep(const std::string& text) {
             }
         } else if (sweep.knob == "kernel") {
             if (value != "larsen" && value != "box" && value != "cone" && value != "world" &&
-                value != "mip" && value != "layer") {
+                value != "mip" && value != "footprints" && value != "layer" &&
+                value != "layer-footprints" && value != "layer-mip") {
                 throw Error(what + ": '" + value +
-                            "' is not a caustic kernel (larsen, box, cone, world, mip, layer)");
+                            "' is not a caustic kernel (larsen, box, cone, world, mip, "
+                            "footprints, layer)");
             }
         } else if (sweep.knob == "aa" || sweep.knob == "sky_edges") {
             if (value != "on" && value != "off") {

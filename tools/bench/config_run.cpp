@@ -216,10 +216,12 @@ ConfigRun::ConfigRun(const LevelRunContext& context, const BenchConfig& config)
             camera_ = ref::default_camera(options_.image.width, options_.image.height);
         }
         // kernel=layer: the caustic layer where a pixel has a light map, Larsen's splat elsewhere.
-        const bool layer = config.kernel == "layer";
-        const FrameChoices choices{
-            layer ? lighting::CausticKernel::Larsen : parse_kernel(config.kernel),
-            config.aa == "on", config.lightmap == "bicubic", config.sky_edges == "on", layer};
+        const bool layer = config.kernel.rfind("layer", 0) == 0;
+        const FrameChoices choices{config.kernel == "layer" ? lighting::CausticKernel::Larsen
+                                   : layer                  ? parse_kernel(config.kernel.substr(6))
+                                                            : parse_kernel(config.kernel),
+                                   config.aa == "on", config.lightmap == "bicubic",
+                                   config.sky_edges == "on", layer};
         view_ =
             std::make_unique<FrameView>(registry_, *lighting_, *camera_, choices, *context.shaders);
     }

@@ -67,7 +67,10 @@ lighting::CausticKernel parse_kernel(const std::string& name) {
     if (name == "mip") {
         return lighting::CausticKernel::MipLevels;
     }
-    throw Error("kernel '" + name + "': expected larsen, box, cone, world or mip");
+    if (name == "footprints") {
+        return lighting::CausticKernel::PhotonFootprints;
+    }
+    throw Error("kernel '" + name + "': expected larsen, box, cone, world, mip or footprints");
 }
 
 renderer::FrameCamera frame_camera(const lighting::reference::ReferenceCamera& camera) {

@@ -20,6 +20,8 @@ const char* kernel_name(CausticKernel kernel) {
             return "world_cone";
         case CausticKernel::MipLevels:
             return "mip_levels";
+        case CausticKernel::PhotonFootprints:
+            return "photon_footprints";
     }
     return "unknown";
 }
@@ -29,7 +31,8 @@ std::vector<float> caustic_kernel_weights(CausticKernel kernel, int k) {
         throw Error("caustic kernel radius must be in [0, " +
                     std::to_string(kMaxCausticKernelRadius) + "], got " + std::to_string(k));
     }
-    if (kernel == CausticKernel::WorldCone || kernel == CausticKernel::MipLevels) {
+    if (kernel == CausticKernel::WorldCone || kernel == CausticKernel::MipLevels ||
+        kernel == CausticKernel::PhotonFootprints) {
         throw Error(std::string("the ") + kernel_name(kernel) +
                     " caustic kernel has no fixed weights");
     }

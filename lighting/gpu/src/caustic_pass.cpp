@@ -66,13 +66,21 @@ void validate(const CausticPassSettings& s) {
                     std::to_string(kMaxCausticKernelRadius) + "], got " +
                     std::to_string(s.kernel_radius));
     }
-    if ((s.kernel == CausticKernel::WorldCone || s.kernel == CausticKernel::MipLevels) &&
+    if ((s.kernel == CausticKernel::WorldCone || s.kernel == CausticKernel::MipLevels ||
+         s.kernel == CausticKernel::PhotonFootprints) &&
         (!(s.world_radius > 0.0f) || !std::isfinite(s.world_radius))) {
         throw Error("CausticPassSettings.world_radius must be positive and finite");
     }
     if (s.kernel == CausticKernel::MipLevels &&
         (!(s.mip_min_photons >= 1.0f) || !std::isfinite(s.mip_min_photons))) {
         throw Error("CausticPassSettings.mip_min_photons must be at least 1 and finite");
+    }
+    if (s.kernel == CausticKernel::PhotonFootprints &&
+        (!(s.footprint_scale > 0.0f) || !std::isfinite(s.footprint_scale) ||
+         !(s.footprint_min_pixels >= 1.0f) || !std::isfinite(s.footprint_min_pixels))) {
+        throw Error(
+            "CausticPassSettings: footprint_scale must be positive and finite, "
+            "footprint_min_pixels at least 1 and finite");
     }
     if (!(s.min_cos > 0.0f) || !(s.min_cos <= 1.0f)) {
         throw Error("CausticPassSettings.min_cos must be in (0, 1]");
@@ -162,8 +170,7 @@ struct CausticPass::Impl {
     Impl(const CausticPassSettings& s, glm::ivec2 viewport, const ShaderLibrary& library)
         : settings(s), shaders(library) {
         validate(settings);
-        splat_program = library.build({{ShaderStage::Vertex, "caustics/splat.vert"},
-                                       {ShaderStage::Fragment, "caustics/splat.frag"}});
+        build_splat();
         tile_program = library.build({{ShaderStage::Compute, "caustics/tile_list.comp"}});
         build_filter();
         empty_vertex_array = gl::VertexArray::create();
@@ -175,10 +182,28 @@ struct CausticPass::Impl {
         gl::check_error("CausticPass setup");
     }
 
-    [[nodiscard]] int reach_pixels() const { return settings.kernel_radius; }
+    /// The footprint kernel spreads photons as it splats them: the filter only copies.
+    [[nodiscard]] int reach_pixels() const {
+        return photon_footprints() ? 0 : settings.kernel_radius;
+    }
     [[nodiscard]] int reach_tiles() const { return tiles_for(reach_pixels()); }
 
     [[nodiscard]] bool mip() const { return settings.kernel == CausticKernel::MipLevels; }
+    [[nodiscard]] bool photon_footprints() const {
+        return settings.kernel == CausticKernel::PhotonFootprints;
+    }
+
+    void build_splat() {
+        if (photon_footprints()) {
+            splat_program =
+                shaders.build({{ShaderStage::Vertex, "caustics/photon_footprints.vert"},
+                               {ShaderStage::Geometry, "caustics/photon_footprints.geom"},
+                               {ShaderStage::Fragment, "caustics/photon_footprints.frag"}});
+        } else {
+            splat_program = shaders.build({{ShaderStage::Vertex, "caustics/splat.vert"},
+                                           {ShaderStage::Fragment, "caustics/splat.frag"}});
+        }
+    }
     /// Levels of the splat's mip chain: down to 1 x 1 for the mip kernel, else level 0 alone.
     [[nodiscard]] int splat_levels() const {
         if (!mip()) {
@@ -202,11 +227,14 @@ struct CausticPass::Impl {
                          : settings.tile_mode == CausticTileMode::EarlyOut ? 1
                                                                            : 2;
         const bool world = settings.kernel == CausticKernel::WorldCone;
-        const std::string defines = "#define RADIUS " + std::to_string(settings.kernel_radius) +
+        const std::string defines = "#define RADIUS " + std::to_string(reach_pixels()) +
                                     "\n#define MODE " + std::to_string(mode) + "\n#define WORLD " +
                                     (world ? "1" : "0") + "\n";
         filter_program = shaders.build({{ShaderStage::Compute, "caustics/filter.comp"}}, defines);
-        if (!world) {
+        if (photon_footprints()) {
+            const float one = 1.0f;  // k = 0: the splat already holds irradiance
+            weights = gl::Buffer::create(sizeof(float), &one, 0);
+        } else if (!world) {
             const std::vector<float> w =
                 caustic_kernel_weights(settings.kernel, settings.kernel_radius);
             weights = gl::Buffer::create(w.size() * sizeof(float), w.data(), 0);
@@ -271,6 +299,12 @@ struct CausticPass::Impl {
         splat_program.set("u_min_cos", settings.min_cos);
         splat_program.set("u_bias_relative", settings.depth_bias_relative);
         splat_program.set("u_bias_absolute", settings.depth_bias_absolute);
+        if (photon_footprints()) {
+            splat_program.set("u_pixel_size_scale", std::sqrt(area_scale));
+            splat_program.set("u_footprint_scale", settings.footprint_scale);
+            splat_program.set("u_min_pixels", settings.footprint_min_pixels);
+            splat_program.set("u_max_radius", settings.world_radius);
+        }
         if (mip()) {
             filter_program.set("u_min_photons", settings.mip_min_photons);
             filter_program.set("u_levels", splat_levels());
@@ -443,7 +477,11 @@ GLuint CausticPass::splat_texture() const {
 void CausticPass::set_settings(const CausticPassSettings& settings) {
     validate(settings);
     const bool was_mip = impl_->mip();
+    const bool was_footprints = impl_->photon_footprints();
     impl_->settings = settings;
+    if (impl_->photon_footprints() != was_footprints) {
+        impl_->build_splat();
+    }
     impl_->build_filter();
     if (impl_->mip() != was_mip) {
         impl_->resize(impl_->size);  // the splat gains or drops its mip chain

@@ -27,6 +27,12 @@ enum class CausticKernel {
     /// small, very bright focus every widened pixel takes in the focus's power again (cornell's
     /// sphere: far brighter than the reference, docs/RESULTS.md "Close-ups"): not the default.
     MipLevels,
+    /// Ray-differential footprints (S. Larsen 2006 §4.4.5; docs/METHOD.md §7.4): each photon
+    /// spread over the disc its photon differential says it stands for (CausticPhoton::
+    /// footprint), with an Epanechnikov kernel normalised on that disc, so it keeps its power
+    /// however wide it is drawn; at least CausticPassSettings::footprint_min_pixels pixels and
+    /// at most world_radius. Drawn per photon, not filtered per pixel: no fixed weights.
+    PhotonFootprints,
 };
 
 [[nodiscard]] const char* kernel_name(CausticKernel kernel);

@@ -31,9 +31,19 @@ struct CausticPassSettings {
     /// k: the screen-space kernel spans (2k + 1)^2 pixels (the paper: 3). For WorldCone, the
     /// largest radius in pixels a world radius may reach (nearer surfaces are clamped to it).
     int kernel_radius = 3;
-    /// WorldCone: the cone's radius in metres. MipLevels: the widest radius in metres an
-    /// estimate may reach (as a photon map's largest search radius).
+    /// WorldCone: the cone's radius in metres. MipLevels and PhotonFootprints: the widest radius in
+    /// metres an estimate may reach (as a photon map's largest search radius).
     float world_radius = 0.05f;
+    /// PhotonFootprints only: the footprint radius is scaled by this (1: the patch the photon
+    /// differential spans among one generation's photons), then held to at least
+    /// footprint_min_pixels pixels at the photon's depth (a disc of one pixel's radius always
+    /// holds a pixel centre, so its power is kept on average over where it lands) and at most
+    /// world_radius. 2 and 1 had the lowest caustic error on the caustics level's four
+    /// close-up cameras of the 1-2 and 1-1.5 tried (docs/RESULTS.md, "Close-ups"): a still
+    /// caustic's refinements add photons the differential does not know of, and close up noise
+    /// costs more than blur.
+    float footprint_scale = 2.0f;
+    float footprint_min_pixels = 1.0f;
     /// MipLevels only: the photons a pixel's estimate needs; the level whose block holds them
     /// is read (relative noise about 1 / sqrt of it).
     float mip_min_photons = 16.0f;
