@@ -4,9 +4,9 @@
 // distance d from the photon (normalised over the disc of radius r on the photon's surface, so
 // each photon keeps its power). A scene point farther than r (an occluder in front, the
 // background, another wall) takes nothing: the depth test is the distance itself. Blend ONE,
-// ONE into RGBA32F; alpha sums the kernel's weight (1 at a photon's centre).
+// ONE into RGBA32F; alpha sums the kernel's weight (1 at a photon's centre). The result is the
+// irradiance as it is: no filter follows, so no tiles are marked.
 
-#include "caustic_tiles.glsl"
 #include "caustic_view.glsl"
 
 flat in vec3 g_view_centre;
@@ -26,7 +26,5 @@ void main() {
         discard;
     }
     float weight = 2.0 / (PI * g_radius * g_radius) * (1.0 - q);
-    ivec2 tile = pixel / CAUSTIC_TILE;
-    atomicOr(tile_flags[tile.y * u_tiles.x + tile.x], 1u);
     o_splat = vec4(g_power * weight, 1.0 - q);
 }

@@ -162,6 +162,20 @@ TEST_F(PhotonFootprintKernel, ABrightFocusKeepsItsPowerAndStaysWhereItIs) {
         "the field\n",
         total.g / (field_in_view + focus_power.g), ring / ring_pixels);
     EXPECT_NEAR(ring / ring_pixels, 1.0, 0.1);
+
+    // Switching kernels on a live pass gives the footprints' result back, and Larsen's its own.
+    CausticPass larsen_pass(CausticPassSettings{}, size);
+    larsen_pass.upload(photons);
+    larsen_pass.render(scene.camera(), scene.depth_texture().id());
+    const std::vector<glm::vec4> larsen = test::read_rgba(larsen_pass.irradiance_texture(), size);
+    settings.kernel = CausticKernel::Larsen;
+    pass.set_settings(settings);
+    pass.render(scene.camera(), scene.depth_texture().id());
+    EXPECT_EQ(test::read_rgba(pass.irradiance_texture(), size), larsen);
+    settings.kernel = CausticKernel::PhotonFootprints;
+    pass.set_settings(settings);
+    pass.render(scene.camera(), scene.depth_texture().id());
+    EXPECT_EQ(test::read_rgba(pass.irradiance_texture(), size), out);
 }
 
 TEST_F(PhotonFootprintKernel, ASurfaceInFrontOfThePhotonsTakesNoneOfTheirLight) {
