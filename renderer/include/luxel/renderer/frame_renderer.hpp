@@ -59,17 +59,23 @@ struct FrameSettings {
     /// frees when it has none), run on each frame's own depth between the G-buffer and the
     /// composite. nullopt: the renderer makes no caustics itself (set_caustics or
     /// set_caustic_stage may still supply them).
-    std::optional<lighting::CausticPassSettings> caustics = lighting::CausticPassSettings{};
+    /// The default kernel is the photon footprints (ray differentials): of the estimators
+    /// luxel-bench compares against the caustic at pixel resolution it had the lowest error on
+    /// the caustics level from 3 m to 0.8 m (a tie with the mip-maps at 6.3 m), the lowest
+    /// image error at the level's camera, and by far the lowest on cornell, whose small bright
+    /// foci every per-pixel widening spreads (docs/RESULTS.md, "Close-ups").
+    std::optional<lighting::CausticPassSettings> caustics =
+        lighting::CausticPassSettings{.kernel = lighting::CausticKernel::PhotonFootprints};
     /// The camera's caustics on light-mapped pixels read from the caustic layer of the light
     /// maps (docs/METHOD.md §7.7: photons binned per texel, read at the nearest texel) instead
     /// of the screen-space pass where a texel covers at most about a pixel (close up, where a
     /// texel spans two pixels or more, the pass keeps a pixel's detail); pixels without a
-    /// light map keep the pass. Needs `caustics`;
-    /// caustics from set_caustics or a stage are shown as they are. On by default: of the
-    /// estimators luxel-bench compares it had the lowest image error on the caustics level
-    /// (6.8% against Larsen's 7.8% and the world-space cone's 9.1%) and was within the
-    /// reference's noise of them on cornell (docs/RESULTS.md).
-    bool caustic_layer_in_view = true;
+    /// light map keep the pass. Needs `caustics`; caustics from set_caustics or a stage are
+    /// shown as they are. Off by default since the footprints kernel: the layer beat Larsen's
+    /// screen-space kernel (caustics level image 6.9% against 7.9%), but the footprints beat
+    /// the layer (6.8%; the caustic term 18.7% against 23.2%, cornell's 14.3% against 48%).
+    /// Views other than the camera's read the layer whatever this says.
+    bool caustic_layer_in_view = false;
 };
 
 /// Which terms of the composition go into the frame (the sandbox's keys, README pictures).
