@@ -37,32 +37,6 @@ std::vector<CausticPhoton> uniform_photons(int count, float watts) {
     return photons;
 }
 
-/// relRMSE of the filtered irradiance's green channel against `expected` over the pixels at
-/// least `margin` from the border, and their mean over `expected`.
-std::pair<double, double> error_against(const std::vector<glm::vec4>& image, glm::ivec2 size,
-                                        double expected, int margin) {
-    double squares = 0.0;
-    double sum = 0.0;
-    double n = 0.0;
-    for (int y = margin; y < size.y - margin; ++y) {
-        for (int x = margin; x < size.x - margin; ++x) {
-            const double e = image[static_cast<std::size_t>(y * size.x + x)].g;
-            squares += (e - expected) * (e - expected);
-            sum += e;
-            n += 1.0;
-        }
-    }
-    return {std::sqrt(squares / n) / expected, sum / n / expected};
-}
-
-std::vector<glm::vec4> filtered(const CausticPassSettings& settings, const test::RectScene& scene,
-                                glm::ivec2 size, const std::vector<CausticPhoton>& photons) {
-    CausticPass pass(settings, size);
-    pass.upload(photons);
-    pass.render(scene.camera(), scene.depth_texture().id());
-    return test::read_rgba(pass.irradiance_texture(), size);
-}
-
 TEST_F(CausticMipLevels, SparsePhotonsReadSmootherThroughTheMipLevelsThanLarsensKernel) {
     // A camera 0.6 m from a uniformly lit plane: about 0.12 photons a pixel, a close-up, where
     // Larsen's 7 x 7 kernel holds about 6 and the 5 cm radius the mip kernel may widen to
@@ -78,9 +52,9 @@ TEST_F(CausticMipLevels, SparsePhotonsReadSmootherThroughTheMipLevelsThanLarsens
     CausticPassSettings mip;
     mip.kernel = CausticKernel::MipLevels;
     const auto [larsen_error, larsen_mean] =
-        error_against(filtered(larsen, scene, size, photons), size, expected, 16);
+        test::uniform_error(test::filtered(larsen, scene, size, photons), size, expected, 16);
     const auto [mip_error, mip_mean] =
-        error_against(filtered(mip, scene, size, photons), size, expected, 16);
+        test::uniform_error(test::filtered(mip, scene, size, photons), size, expected, 16);
     std::printf(
         "[ figures  ] 0.12 photons a pixel: relRMSE Larsen k=3 %.1f%% (mean %.3f), "
         "mip levels (16 photons) %.1f%% (mean %.3f)\n",

@@ -145,4 +145,29 @@ std::vector<lighting::CausticPhoton> disc_photons(const glm::vec3& centre, const
     return photons;
 }
 
+std::vector<glm::vec4> filtered(const lighting::CausticPassSettings& settings,
+                                const RectScene& scene, glm::ivec2 size,
+                                const std::vector<lighting::CausticPhoton>& photons) {
+    lighting::CausticPass pass(settings, size);
+    pass.upload(photons);
+    pass.render(scene.camera(), scene.depth_texture().id());
+    return read_rgba(pass.irradiance_texture(), size);
+}
+
+std::pair<double, double> uniform_error(const std::vector<glm::vec4>& image, glm::ivec2 size,
+                                        double expected, int margin) {
+    double squares = 0.0;
+    double sum = 0.0;
+    double n = 0.0;
+    for (int y = margin; y < size.y - margin; ++y) {
+        for (int x = margin; x < size.x - margin; ++x) {
+            const double e = image[static_cast<std::size_t>(y * size.x + x)].g;
+            squares += (e - expected) * (e - expected);
+            sum += e;
+            n += 1.0;
+        }
+    }
+    return {std::sqrt(squares / n) / expected, sum / n / expected};
+}
+
 }  // namespace luxel::test

@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -62,6 +63,16 @@ class RectScene {
 
 /// sum over pixels of E * pixel_area (watts), per channel.
 [[nodiscard]] glm::dvec3 total_power(const std::vector<glm::vec4>& image, const RectScene& scene);
+
+/// The pass's irradiance for `photons` through a fresh CausticPass with `settings`.
+[[nodiscard]] std::vector<glm::vec4> filtered(const lighting::CausticPassSettings& settings,
+                                              const RectScene& scene, glm::ivec2 size,
+                                              const std::vector<lighting::CausticPhoton>& photons);
+
+/// relRMSE of an irradiance image's green channel against a uniform `expected` over the pixels
+/// at least `margin` from the border, and their mean over `expected`.
+[[nodiscard]] std::pair<double, double> uniform_error(const std::vector<glm::vec4>& image,
+                                                      glm::ivec2 size, double expected, int margin);
 
 /// `count` photons spread evenly (Fibonacci spiral) over a disc of `radius` around `centre`
 /// on the plane spanned by unit axes a and b, with total power `power`.

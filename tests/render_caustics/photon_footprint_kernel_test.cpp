@@ -55,32 +55,6 @@ std::vector<CausticPhoton> uniform_photons(int side, float watts) {
     return photons;
 }
 
-std::vector<glm::vec4> filtered(const CausticPassSettings& settings, const test::RectScene& scene,
-                                glm::ivec2 size, const std::vector<CausticPhoton>& photons) {
-    CausticPass pass(settings, size);
-    pass.upload(photons);
-    pass.render(scene.camera(), scene.depth_texture().id());
-    return test::read_rgba(pass.irradiance_texture(), size);
-}
-
-/// relRMSE of the green channel against `expected` over the pixels at least `margin` from the
-/// border, and their mean over `expected`.
-std::pair<double, double> error_against(const std::vector<glm::vec4>& image, glm::ivec2 size,
-                                        double expected, int margin) {
-    double squares = 0.0;
-    double sum = 0.0;
-    double n = 0.0;
-    for (int y = margin; y < size.y - margin; ++y) {
-        for (int x = margin; x < size.x - margin; ++x) {
-            const double e = image[static_cast<std::size_t>(y * size.x + x)].g;
-            squares += (e - expected) * (e - expected);
-            sum += e;
-            n += 1.0;
-        }
-    }
-    return {std::sqrt(squares / n) / expected, sum / n / expected};
-}
-
 TEST_F(PhotonFootprintKernel, SparsePhotonsReadSmootherThanThroughLarsensKernel) {
     // A camera 0.3 m from a uniformly lit plane: about 0.03 photons a pixel, a close-up where
     // Larsen's 7 x 7 kernel holds one or two photons; a footprint (twice the radius of the
@@ -98,9 +72,9 @@ TEST_F(PhotonFootprintKernel, SparsePhotonsReadSmootherThanThroughLarsensKernel)
     CausticPassSettings footprints;
     footprints.kernel = CausticKernel::PhotonFootprints;
     const auto [larsen_error, larsen_mean] =
-        error_against(filtered(larsen, scene, size, photons), size, expected, 16);
+        test::uniform_error(test::filtered(larsen, scene, size, photons), size, expected, 16);
     const auto [error, mean] =
-        error_against(filtered(footprints, scene, size, photons), size, expected, 16);
+        test::uniform_error(test::filtered(footprints, scene, size, photons), size, expected, 16);
     std::printf(
         "[ figures  ] 0.03 photons a pixel: relRMSE Larsen k=3 %.1f%% (mean %.3f), "
         "footprints %.1f%% (mean %.3f)\n",
@@ -191,7 +165,7 @@ TEST_F(PhotonFootprintKernel, ASurfaceInFrontOfThePhotonsTakesNoneOfTheirLight) 
     settings.kernel = CausticKernel::PhotonFootprints;
     settings.footprint_scale = 30.0f;  // discs far wider than the card's edge is from them
     settings.world_radius = 0.5f;
-    const std::vector<glm::vec4> out = filtered(settings, scene, size, photons);
+    const std::vector<glm::vec4> out = test::filtered(settings, scene, size, photons);
     int card = 0;
     double plane = 0.0;
     int plane_pixels = 0;
@@ -221,7 +195,7 @@ TEST_F(PhotonFootprintKernel, AnUnknownFootprintTakesTheWidestRadiusAndBadSettin
     photon.power = glm::vec3(1.0f);
     CausticPassSettings settings;
     settings.kernel = CausticKernel::PhotonFootprints;
-    const std::vector<glm::vec4> out = filtered(settings, scene, size, {photon});
+    const std::vector<glm::vec4> out = test::filtered(settings, scene, size, {photon});
     float reach = 0.0f;
     for (int y = 0; y < size.y; ++y) {
         for (int x = 0; x < size.x; ++x) {
