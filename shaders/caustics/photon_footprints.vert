@@ -3,8 +3,9 @@
 // from the photon buffer); the geometry shader turns it into the quad its footprint covers.
 //
 // r = clamp(scale * footprint, min_pixels pixels at the photon's depth, max_radius): at least
-// a few pixels, so the disc's sum over pixel centres holds its power; at most the widest
-// radius a photon map would search. An unknown footprint (0) takes the widest.
+// a pixel, so the disc's sum over pixel centres holds its power; at most the widest radius a
+// photon map would search, and at most max_pixels pixels (the cost of a camera right on a
+// caustic). An unknown footprint (0) takes the widest.
 
 #include "caustic_tiles.glsl"
 
@@ -18,6 +19,7 @@ uniform ivec2 u_viewport;
 uniform float u_pixel_size_scale;  // a facing pixel's side at view depth z: scale * z
 uniform float u_footprint_scale;
 uniform float u_min_pixels;
+uniform float u_max_pixels;
 uniform float u_max_radius;
 
 flat out int v_keep;
@@ -51,6 +53,7 @@ void main() {
     float footprint = photon_footprint_radius(photon);
     float radius = footprint > 0.0 ? u_footprint_scale * footprint : u_max_radius;
     radius = clamp(radius, u_min_pixels * pixel, max(u_max_radius, u_min_pixels * pixel));
+    radius = min(radius, u_max_pixels * pixel);
     // The sphere's screen half-size, from its nearest depth (never nearer than a tenth of the
     // centre's: a sphere around the eye would cover everything), plus a pixel of margin.
     float near_z = max(z - radius, 0.1 * z);

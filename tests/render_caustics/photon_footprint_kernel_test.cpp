@@ -208,6 +208,21 @@ TEST_F(PhotonFootprintKernel, AnUnknownFootprintTakesTheWidestRadiusAndBadSettin
     EXPECT_LE(reach, 0.05f);
     EXPECT_NEAR(test::total_power(out, scene).g, 1.0, 0.02);
 
+    // No disc wider than footprint_max_pixels: 8 pixels here, about 1.4 cm at 1 m, still
+    // holding the photon's power.
+    settings.footprint_max_pixels = 8.0f;
+    const std::vector<glm::vec4> capped = test::filtered(settings, scene, size, {photon});
+    int lit = 0;
+    for (const glm::vec4& e : capped) {
+        lit += e.g > 0.0f ? 1 : 0;
+    }
+    EXPECT_GT(lit, 100);
+    EXPECT_LT(lit, 210) << "pi 8^2 = 201 pixels at most";
+    EXPECT_NEAR(test::total_power(capped, scene).g, 1.0, 0.02);
+    settings.footprint_max_pixels = 0.5f;
+    EXPECT_THROW(CausticPass(settings, size), Error);
+    settings.footprint_max_pixels = 64.0f;
+
     settings.footprint_scale = 0.0f;
     EXPECT_THROW(CausticPass(settings, size), Error);
     settings.footprint_scale = 1.0f;

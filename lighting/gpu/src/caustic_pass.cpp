@@ -77,10 +77,13 @@ void validate(const CausticPassSettings& s) {
     }
     if (s.kernel == CausticKernel::PhotonFootprints &&
         (!(s.footprint_scale > 0.0f) || !std::isfinite(s.footprint_scale) ||
-         !(s.footprint_min_pixels >= 1.0f) || !std::isfinite(s.footprint_min_pixels))) {
+         !(s.footprint_min_pixels >= 1.0f) || !std::isfinite(s.footprint_min_pixels) ||
+         !(s.footprint_max_pixels >= s.footprint_min_pixels) ||
+         !std::isfinite(s.footprint_max_pixels))) {
         throw Error(
             "CausticPassSettings: footprint_scale must be positive and finite, "
-            "footprint_min_pixels at least 1 and finite");
+            "footprint_min_pixels at least 1 and footprint_max_pixels at least that, both "
+            "finite");
     }
     if (!(s.min_cos > 0.0f) || !(s.min_cos <= 1.0f)) {
         throw Error("CausticPassSettings.min_cos must be in (0, 1]");
@@ -312,6 +315,7 @@ struct CausticPass::Impl {
             splat_program.set("u_pixel_size_scale", std::sqrt(area_scale));
             splat_program.set("u_footprint_scale", settings.footprint_scale);
             splat_program.set("u_min_pixels", settings.footprint_min_pixels);
+            splat_program.set("u_max_pixels", settings.footprint_max_pixels);
             splat_program.set("u_max_radius", settings.world_radius);
         }
         if (mip()) {
