@@ -20,6 +20,10 @@
 //   CausticPathCells   every slice of the glass sphere's caustic list (40,000 photons) traced
 //        with its paths recorded in PathCells over the scene's box against without (no region:
 //        one flag), alternately; counter `ratio` = with / without (median), `cells` marked.
+//   CausticDifferentials  the glass sphere's 40,000 caustic photons traced one by one on one
+//        thread with their photon differentials (the footprint the default caustic kernel
+//        draws) against the same photons with the differential switched off (invalid from the
+//        start, so no step runs), alternately; counter `ratio` = with / without (median).
 //   ExactInvalidation  the whole level traced and stored with exact invalidation's path index
 //        against without, alternately; counters `ratio` (on / off, median), `index_bytes_per_hit`,
 //        `segments_per_hit`, `query_us` (one query for a 0.5 m box) and `groups_found`.
@@ -420,6 +424,48 @@ void CausticPathCells(benchmark::State& state) {
     state.counters["cells"] = cells;
 }
 BENCHMARK(CausticPathCells)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void CausticDifferentials(benchmark::State& state) {
+    Level level(false);
+    if (level.photons->caustics().empty()) {
+        state.SkipWithError("cornell-13k has no caustic generator");
+        return;
+    }
+    const lighting::CausticEmitter& emitter = level.photons->caustics().front().photons.emitter();
+    const lighting::RayScene& rays = level.photons->ray_scene();
+    constexpr std::uint64_t kPhotons = 40'000;
+    std::vector<lighting::EmittedPhoton> emitted;
+    for (std::uint64_t j = 1; j <= kPhotons; ++j) {
+        emitted.push_back(emitter.emit(
+            {lighting::photon_sample(j, 0, 1), lighting::photon_sample(j, 1, 1)},
+            {lighting::photon_sample(j, 2, 1), lighting::photon_sample(j, 3, 1)}, kPhotons));
+    }
+    lighting::PhotonDifferential off;
+    off.valid = false;
+    const auto trace = [&](bool differentials) {
+        lighting::CausticTraceCounters counters;
+        std::uint64_t stored = 0;
+        const auto start = std::chrono::steady_clock::now();
+        for (std::uint64_t j = 0; j < kPhotons; ++j) {
+            const lighting::PhotonDifferential start_differential =
+                differentials ? emitter.differential(emitted[j], kPhotons) : off;
+            stored += lighting::trace_caustic_photon(rays, level.photons->materials(), emitted[j],
+                                                     start_differential, j + 1, 1, 16, counters)
+                          ? 1
+                          : 0;
+        }
+        benchmark::DoNotOptimize(stored);
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    std::vector<double> ratios;
+    for (auto _ : state) {
+        const double without = trace(false);
+        const double with = trace(true);
+        ratios.push_back(without > 0.0 ? with / without : 0.0);
+    }
+    state.counters["ratio"] = percentile(ratios, 0.5);
+}
+BENCHMARK(CausticDifferentials)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void PaperFrame(benchmark::State& state) {
     lighting::PhotonWorldSettings settings;  // 77 x 40; 10,000 caustic photons, K = 8

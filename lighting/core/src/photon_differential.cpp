@@ -48,22 +48,12 @@ void transfer(PhotonDifferential& differential, const glm::vec3& direction, floa
 }
 
 glm::mat3 shading_normal_jacobian(const RayScene& scene, const RayHit& hit) {
-    const TriangleMesh& mesh = scene.mesh(hit.object);
-    if (mesh.normals.empty() ||
-        3 * static_cast<std::size_t>(hit.triangle) + 2 >= mesh.indices.size()) {
+    const HitTriangle triangle = scene.triangle(hit);
+    if (!triangle.has_normals) {
         return glm::mat3(0.0f);
     }
-    const std::uint32_t* index = &mesh.indices[3 * static_cast<std::size_t>(hit.triangle)];
-    // Static objects are stored in world space (identity transform), dynamic ones in their
-    // own, moved by the transform and its normal matrix.
-    const glm::mat4 transform = scene.transform(hit.object);
-    const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(transform)));
-    glm::vec3 p[3];
-    glm::vec3 n[3];
-    for (int k = 0; k < 3; ++k) {
-        p[k] = glm::vec3(transform * glm::vec4(mesh.positions[index[k]], 1.0f));
-        n[k] = normal_matrix * mesh.normals[index[k]];
-    }
+    const glm::vec3* p = triangle.positions;
+    const glm::vec3* n = triangle.normals;
     const glm::vec3 e1 = p[1] - p[0];
     const glm::vec3 e2 = p[2] - p[0];
     const glm::vec3 g = glm::cross(e1, e2);

@@ -594,6 +594,29 @@ std::uint64_t RayScene::top_level_commits() const {
 const TriangleMesh& RayScene::mesh(ObjectId id) const {
     return impl_->get(id).mesh;
 }
+
+HitTriangle RayScene::triangle(const RayHit& hit) const {
+    const Impl::Object& object = impl_->get(hit.object);
+    const TriangleMesh& mesh = object.mesh;
+    const std::size_t first = 3 * static_cast<std::size_t>(hit.triangle);
+    if (first + 2 >= mesh.indices.size()) {
+        throw Error("RayScene::triangle: object " + std::to_string(hit.object) +
+                    " has no triangle " + std::to_string(hit.triangle));
+    }
+    HitTriangle out;
+    out.has_normals = !mesh.normals.empty();
+    for (int k = 0; k < 3; ++k) {
+        const std::uint32_t v = mesh.indices[first + static_cast<std::size_t>(k)];
+        // Static objects are stored in world space; dynamic ones move by their transform.
+        out.positions[k] = object.dynamic ? transform_point(object.transform, mesh.positions[v])
+                                          : mesh.positions[v];
+        if (out.has_normals) {
+            out.normals[k] =
+                object.dynamic ? object.normal_matrix * mesh.normals[v] : mesh.normals[v];
+        }
+    }
+    return out;
+}
 glm::mat4 RayScene::transform(ObjectId id) const {
     return impl_->get(id).transform;
 }

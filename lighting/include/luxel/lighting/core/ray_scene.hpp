@@ -51,6 +51,14 @@ struct RayHit {
     std::uint32_t triangle = 0;
 };
 
+/// The world-space corners and vertex normals (not normalised; the normal matrix applied) of
+/// the triangle a hit lies on; `has_normals` false for a mesh without vertex normals.
+struct HitTriangle {
+    glm::vec3 positions[3];
+    glm::vec3 normals[3];
+    bool has_normals = false;
+};
+
 /// Moves a ray origin off a surface along its geometric normal by 2^-18 of the position's largest
 /// coordinate (not a fixed epsilon), so a ray leaving a hit does not re-hit the same surface at
 /// any scene scale, from millimetres to kilometres. `side` is +1 to leave on the
@@ -118,6 +126,9 @@ class RayScene {
 
     /// The geometry of an object as added (object space for dynamic, world space for static).
     [[nodiscard]] const TriangleMesh& mesh(ObjectId object) const;
+    /// The triangle `hit` lies on, in world space (one lookup; the photon differentials' normal
+    /// derivative reads it at every specular hit). Throws for an object no longer in the scene.
+    [[nodiscard]] HitTriangle triangle(const RayHit& hit) const;
     [[nodiscard]] glm::mat4 transform(ObjectId object) const;
 
   private:
