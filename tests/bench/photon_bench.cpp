@@ -377,14 +377,24 @@ BENCHMARK(ExactInvalidation)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /// What recording a caustic list's paths costs (METHOD 7.2): the list traced whole with its
 /// PathCells over the scene's box, against the same list recording nothing but a flag.
+/// The emitter of the level's first caustic list (the glass sphere and the light), or null
+/// with the benchmark skipped when the level has none.
+const lighting::CausticEmitter* sphere_emitter(const Level& level, benchmark::State& state) {
+    if (level.photons->caustics().empty()) {
+        state.SkipWithError("cornell-13k has no caustic generator");
+        return nullptr;
+    }
+    return &level.photons->caustics().front().photons.emitter();
+}
+
 void CausticPathCells(benchmark::State& state) {
     JobSystem jobs(2);
     Level level(false);
-    if (level.photons->caustics().empty()) {
-        state.SkipWithError("cornell-13k has no caustic generator");
+    const lighting::CausticEmitter* const found = sphere_emitter(level, state);
+    if (found == nullptr) {
         return;
     }
-    const lighting::CausticEmitter& emitter = level.photons->caustics().front().photons.emitter();
+    const lighting::CausticEmitter& emitter = *found;
     const lighting::RayScene& rays = level.photons->ray_scene();
     lighting::AxisBox region;
     region.add(rays.bounds_min());
@@ -427,11 +437,11 @@ BENCHMARK(CausticPathCells)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void CausticDifferentials(benchmark::State& state) {
     Level level(false);
-    if (level.photons->caustics().empty()) {
-        state.SkipWithError("cornell-13k has no caustic generator");
+    const lighting::CausticEmitter* const found = sphere_emitter(level, state);
+    if (found == nullptr) {
         return;
     }
-    const lighting::CausticEmitter& emitter = level.photons->caustics().front().photons.emitter();
+    const lighting::CausticEmitter& emitter = *found;
     const lighting::RayScene& rays = level.photons->ray_scene();
     constexpr std::uint64_t kPhotons = 40'000;
     std::vector<lighting::EmittedPhoton> emitted;
