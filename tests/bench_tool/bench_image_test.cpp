@@ -62,6 +62,16 @@ TEST(BenchImage, BadImageValuesAreExplained) {
     run = luxel_bench("--level cornell --frames 1 --no-image --sweep kernel=box");
     EXPECT_NE(run.exit_code, 0);
     EXPECT_NE(run.output.find("--no-image"), std::string::npos) << run.output;
+    // The photon footprints' two knobs: named when out of range, and frame-only as the kernel.
+    run = luxel_bench("--level cornell --frames 1 --sweep footprint_min=0.5");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("footprint_min"), std::string::npos) << run.output;
+    run = luxel_bench("--level cornell --frames 1 --sweep footprint_scale=0");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("footprint_scale"), std::string::npos) << run.output;
+    run = luxel_bench("--level cornell --frames 1 --no-image --sweep footprint_scale=1");
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.output.find("--no-image"), std::string::npos) << run.output;
 }
 
 TEST(BenchImage, TheImageErrorIsAFiniteNumberInCsvAndJson) {

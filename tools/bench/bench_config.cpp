@@ -80,6 +80,12 @@ std::string BenchConfig::knobs() const {
     if (sky_edges != "on") {
         out << " sky_edges=" << sky_edges;
     }
+    if (footprint_scale != lighting::CausticPassSettings{}.footprint_scale) {
+        out << " footprint_scale=" << footprint_scale;
+    }
+    if (footprint_min != lighting::CausticPassSettings{}.footprint_min_pixels) {
+        out << " footprint_min=" << footprint_min;
+    }
     if (caustic_refine != lighting::CausticSettings{}.refinement_photons) {
         out << " caustic_refine=" << caustic_refine;
     }
@@ -160,6 +166,12 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.lightmap = value;
             } else if (sweep.knob == "sky_edges") {
                 c.sky_edges = value;
+            } else if (sweep.knob == "footprint_scale") {
+                c.footprint_scale = std::stod(value);
+                c.kernel = "footprints";  // the knob means nothing with another kernel
+            } else if (sweep.knob == "footprint_min") {
+                c.footprint_min = std::stod(value);
+                c.kernel = "footprints";
             } else {
                 continue;  // budget: handled above
             }

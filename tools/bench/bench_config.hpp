@@ -8,6 +8,7 @@
 
 #include "bench_options.hpp"
 #include "luxel/lighting/core/lighting_system.hpp"
+#include "luxel/lighting/gpu/caustic_pass.hpp"
 
 namespace luxel::bench {
 
@@ -66,9 +67,16 @@ struct BenchConfig {
     /// traced by CPU rays), "gpu-turn" (turned, no CPU rays), "gpu-plane" (the paper's plane
     /// alone).
     std::string backend = "cpu";
-    /// The screen-space caustic filter of the frame (CausticPass): larsen, box, cone (the round
-    /// cone) or world (the world-space cone). Changes only the image and its caustic pass time.
+    /// The camera's caustic kernel of the frame (CausticPass): larsen, box, cone (the round
+    /// cone), world (the world-space cone), mip (level-adjusted mip-maps), footprints (the
+    /// photon footprints), layer (the caustic layer on light-mapped pixels, Larsen's elsewhere)
+    /// or layer-<kernel>. Changes only the image and its caustic pass time.
     std::string kernel = "larsen";
+    /// kernel=footprints: CausticPassSettings::footprint_scale and footprint_min_pixels. A sweep
+    /// of either runs the footprints kernel with it (the knobs mean nothing with another).
+    /// Change only the image.
+    double footprint_scale = lighting::CausticPassSettings{}.footprint_scale;
+    double footprint_min = lighting::CausticPassSettings{}.footprint_min_pixels;
     /// The frame's anti-aliasing of geometric edges (FrameSettings::anti_aliasing): "on" or
     /// "off". Changes only the image and its anti-aliasing pass time.
     std::string aa = "on";

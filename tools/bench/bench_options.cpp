@@ -88,6 +88,16 @@ Sweep parse_sweep(const std::string& text) {
             if (value != "on" && value != "off") {
                 throw Error(what + ": '" + value + "' is not on or off");
             }
+        } else if (sweep.knob == "footprint_scale") {
+            const double v = number(value, what);
+            if (!(v > 0.0) || v > 100.0) {
+                throw Error(what + ": '" + value + "' is not a scale in (0, 100]");
+            }
+        } else if (sweep.knob == "footprint_min") {
+            const double v = number(value, what);
+            if (!(v >= 1.0) || v > 64.0) {
+                throw Error(what + ": '" + value + "' is not a number of pixels in [1, 64]");
+            }
         } else if (sweep.knob == "lightmap") {
             if (value != "bilinear" && value != "bicubic") {
                 throw Error(what + ": '" + value + "' is not bilinear or bicubic");
@@ -148,7 +158,7 @@ Sweep parse_sweep(const std::string& text) {
                         "probe_spacing, "
                         "probe_basis, keep, "
                         "caustics, caustic_refine, stand_in, catch_up, backend, "
-                        "kernel, "
+                        "kernel, footprint_scale, footprint_min, "
                         "aa, lightmap, sky_edges)");
         }
     }
@@ -251,7 +261,8 @@ void validate(const Options& options) {
     }
     for (const Sweep& sweep : options.sweeps) {
         if ((sweep.knob == "kernel" || sweep.knob == "aa" || sweep.knob == "lightmap" ||
-             sweep.knob == "sky_edges") &&
+             sweep.knob == "sky_edges" || sweep.knob == "footprint_scale" ||
+             sweep.knob == "footprint_min") &&
             !options.image.enabled) {
             throw Error("--sweep " + sweep.knob +
                         ": it only changes the image, which --no-image turns off");

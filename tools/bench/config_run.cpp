@@ -220,8 +220,12 @@ ConfigRun::ConfigRun(const LevelRunContext& context, const BenchConfig& config)
         const FrameChoices choices{config.kernel == "layer" ? lighting::CausticKernel::Larsen
                                    : layer                  ? parse_kernel(config.kernel.substr(6))
                                                             : parse_kernel(config.kernel),
-                                   config.aa == "on", config.lightmap == "bicubic",
-                                   config.sky_edges == "on", layer};
+                                   config.aa == "on",
+                                   config.lightmap == "bicubic",
+                                   config.sky_edges == "on",
+                                   layer,
+                                   static_cast<float>(config.footprint_scale),
+                                   static_cast<float>(config.footprint_min)};
         view_ =
             std::make_unique<FrameView>(registry_, *lighting_, *camera_, choices, *context.shaders);
     }

@@ -18,6 +18,8 @@ renderer::FrameSettings frame_settings(const lighting::reference::ReferenceCamer
     settings.sky_edge_coverage = choices.sky_edge_coverage;
     settings.caustics = lighting::CausticPassSettings{};
     settings.caustics->kernel = choices.kernel;
+    settings.caustics->footprint_scale = choices.footprint_scale;
+    settings.caustics->footprint_min_pixels = choices.footprint_min;
     settings.caustic_layer_in_view = choices.caustic_layer;
     settings.width = camera.width;
     settings.height = camera.height;

@@ -53,6 +53,9 @@ struct FrameChoices {
     /// kernel=layer: light-mapped pixels read the caustic layer of the light maps
     /// (FrameSettings::caustic_layer_in_view), the others `kernel`'s splat.
     bool caustic_layer = false;
+    /// kernel=footprints: CausticPassSettings::footprint_scale and footprint_min_pixels.
+    float footprint_scale = lighting::CausticPassSettings{}.footprint_scale;
+    float footprint_min = lighting::CausticPassSettings{}.footprint_min_pixels;
 };
 
 /// One run's renderer. Needs the context current for its whole life.

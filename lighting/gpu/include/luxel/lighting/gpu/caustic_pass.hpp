@@ -38,10 +38,10 @@ struct CausticPassSettings {
     /// differential spans among one generation's photons), then held to at least
     /// footprint_min_pixels pixels at the photon's depth (a disc of one pixel's radius always
     /// holds a pixel centre, so its power is kept on average over where it lands) and at most
-    /// world_radius. 2 and 1 had the lowest caustic error on the caustics level's four
-    /// close-up cameras of the 1-2 and 1-1.5 tried (docs/RESULTS.md, "Close-ups"): a still
-    /// caustic's refinements add photons the differential does not know of, and close up noise
-    /// costs more than blur.
+    /// world_radius. 2 and 1 had the lowest caustic error overall on the caustics level's
+    /// four close-up cameras of the grid measured (docs/RESULTS.md, "Close-ups"; luxel-bench
+    /// --sweep footprint_scale / footprint_min): a still caustic's refinements add photons the
+    /// differential does not know of, and close up noise costs more than blur.
     float footprint_scale = 2.0f;
     float footprint_min_pixels = 1.0f;
     /// PhotonFootprints only: no disc wider than this many pixels in radius, whatever its
