@@ -351,6 +351,26 @@ void check_extras_types(const ImportContext& context, const nlohmann::json& luxe
     }
 }
 
+/// The largest light radius a level may give: a sphere wider than a stadium is a unit mistake
+/// (centimetres written as metres), not a lamp.
+constexpr double kMaxLightRadius = 100.0;
+
+/// extras.luxel.light_radius (docs/LEVELS.md): metres, from 0 (a point) to kMaxLightRadius.
+/// Absent: 0.
+float light_radius(const ImportContext& context, const nlohmann::json& luxel,
+                   const std::string& where) {
+    const auto found = luxel.find("light_radius");
+    if (found == luxel.end()) {
+        return 0.0f;
+    }
+    if (!found->is_number() || !std::isfinite(found->get<double>()) || found->get<double>() < 0.0 ||
+        found->get<double>() > kMaxLightRadius) {
+        context.fail(where + ": extras.luxel.light_radius must be a number of metres from 0 to " +
+                     std::to_string(static_cast<int>(kMaxLightRadius)) + ", got " + found->dump());
+    }
+    return static_cast<float>(found->get<double>());
+}
+
 /// Reads `extras.luxel` into NodeFlags. Wrong types fail: a misspelt flag silently ignored
 /// would light a level wrongly with no hint why.
 void import_flags(const ImportContext& context, const tinygltf::Node& source, Node& node,
@@ -370,6 +390,7 @@ void import_flags(const ImportContext& context, const tinygltf::Node& source, No
         node.flags.light_enabled = *enabled;
     }
     check_extras_types(context, luxel, where);
+    node.flags.light_radius = light_radius(context, luxel, where);
     node.flags.raw = luxel;
 }
 

@@ -441,6 +441,11 @@ class DocumentWriter {
         } else {
             luxel.erase("enabled");
         }
+        if (flags.light_radius > 0.0f) {
+            luxel["light_radius"] = flags.light_radius;
+        } else {
+            luxel.erase("light_radius");
+        }
         return luxel;
     }
 

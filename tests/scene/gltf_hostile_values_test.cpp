@@ -466,6 +466,10 @@ TEST(GltfHostileValues, LuxelExtrasOfTheWrongTypeNameTheNodeAndTheKey) {
         {{{"portal", "window"}}, "extras.luxel.portal must be true or false (or 1 or 0)"},
         {{{"portal", 2}}, "extras.luxel.portal must be true or false (or 1 or 0), got 2"},
         {{{"lightmap", 7}}, "extras.luxel.lightmap must be a JSON object"},
+        {{{"light_radius", -0.1}}, "extras.luxel.light_radius must be a number of metres from 0"},
+        {{{"light_radius", 1000}}, "extras.luxel.light_radius must be a number of metres from 0"},
+        {{{"light_radius", "10 cm"}}, "extras.luxel.light_radius must be a number of metres"},
+        {{{"light_radius", nullptr}}, "extras.luxel.light_radius must be a number of metres"},
     };
     for (const auto& [luxel, problem] : cases) {
         GltfBuilder file = triangle();
@@ -498,6 +502,20 @@ TEST(GltfHostileValues, BooleanFlagsAcceptBlendersIntegers) {
         EXPECT_EQ(*scene.nodes[0].flags.dynamic, value == 1);
         EXPECT_EQ(scene.nodes[0].flags.light_enabled, value == 1);
     }
+}
+
+TEST(GltfHostileValues, ALightRadiusInRangeIsReadInMetres) {
+    for (const double radius : {0.0, 0.1, 100.0}) {
+        GltfBuilder file = triangle();
+        file.document["nodes"][0]["extras"]["luxel"] = {{"light_radius", radius}};
+        const luxel::scene::Scene scene =
+            luxel::scene::load_gltf_from_memory(bytes_of(file.text()), kName, {}, {});
+        ASSERT_EQ(scene.nodes.size(), 1u);
+        EXPECT_FLOAT_EQ(scene.nodes[0].flags.light_radius, static_cast<float>(radius));
+    }
+    const luxel::scene::Scene plain =
+        luxel::scene::load_gltf_from_memory(bytes_of(triangle().text()), kName, {}, {});
+    EXPECT_EQ(plain.nodes[0].flags.light_radius, 0.0f);
 }
 
 }  // namespace

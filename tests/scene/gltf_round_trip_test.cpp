@@ -103,6 +103,7 @@ TEST(GltfRoundTrip, LoadedSceneIsConsistent) {
     EXPECT_FALSE(room.is_dynamic(find("room")));
     EXPECT_FALSE(room.is_dynamic(find("camera")));
     EXPECT_FALSE(room.nodes[static_cast<std::size_t>(find("bulb"))].flags.light_enabled);
+    EXPECT_EQ(room.nodes[static_cast<std::size_t>(find("bulb"))].flags.light_radius, 0.125f);
     EXPECT_EQ(room.nodes[static_cast<std::size_t>(find("camera"))].flags.raw.at("big"),
               9007199254740993);
 }

@@ -50,6 +50,7 @@ inline void expect_same_scene(const scene::Scene& a, const scene::Scene& b) {
         EXPECT_NEAR(std::abs(glm::dot(x.rotation, y.rotation)), 1.0f, kRoundTripTolerance) << what;
         EXPECT_EQ(x.flags.dynamic, y.flags.dynamic) << what;
         EXPECT_EQ(x.flags.light_enabled, y.flags.light_enabled) << what;
+        EXPECT_EQ(x.flags.light_radius, y.flags.light_radius) << what;
         EXPECT_EQ(x.flags.raw, y.flags.raw) << what;
     }
 

@@ -258,7 +258,9 @@ scene::Scene box_room() {
     scene::Node bulb = node("bulb", {0.0f, 1.2f, 0.0f});
     bulb.light = 0;
     bulb.flags.light_enabled = false;
-    bulb.flags.raw = {{"enabled", false}, {"switch", {{"period", 4.0}, {"on", 2.0}}}};
+    bulb.flags.light_radius = 0.125f;  // a 25 cm globe: soft shadows
+    bulb.flags.raw = {
+        {"enabled", false}, {"light_radius", 0.125}, {"switch", {{"period", 4.0}, {"on", 2.0}}}};
     add_node(s, bulb, room);
 
     scene::Node spot = node("spot", {1.5f, 1.4f, -1.5f});

@@ -25,12 +25,12 @@ void add_light(ecs::Registry& registry, ecs::Entity entity, const scene::Light& 
     switch (light.type) {
         case scene::LightType::Point:
             registry.emplace<lighting::PointLight>(entity, light.radiant_power(), light.range,
-                                                   enabled);
+                                                   enabled, flags.light_radius);
             break;
         case scene::LightType::Spot:
             registry.emplace<lighting::SpotLight>(entity, light.radiant_power(),
                                                   light.inner_cone_angle, light.outer_cone_angle,
-                                                  light.range, enabled);
+                                                  light.range, enabled, flags.light_radius);
             break;
         case scene::LightType::Directional:
             registry.emplace<lighting::DirectionalLight>(entity, light.irradiance(), enabled);

@@ -9,6 +9,15 @@ namespace luxel::lighting {
 
 using photon_world_support::world_matrix;
 
+namespace {
+
+/// A light's radius as the direct light uses it: a negative or non-finite one is a point.
+float sphere_radius(float radius) {
+    return std::isfinite(radius) && radius > 0.0f ? radius : 0.0f;
+}
+
+}  // namespace
+
 LightGroups::LightGroups(const ecs::Registry& registry, PhotonMap& map,
                          const SelectiveSettings& settings)
     : registry_(registry), map_(map), settings_(settings) {}
@@ -30,12 +39,14 @@ void LightGroups::refresh(ecs::Entity entity, const BoundingSphere& scene) {
     if (const auto* point = registry_.try_get<PointLight>(entity)) {
         source.kind = LightKind::Point;
         source.power = point->power;
+        source.radius = sphere_radius(point->radius);
         enabled = point->enabled;
     } else if (const auto* spot = registry_.try_get<SpotLight>(entity)) {
         source.kind = LightKind::Spot;
         source.power = spot->power;
         source.inner_cone = spot->inner_cone;
         source.outer_cone = spot->outer_cone;
+        source.radius = sphere_radius(spot->radius);
         enabled = spot->enabled;
     } else if (const auto* sun = registry_.try_get<DirectionalLight>(entity)) {
         source.kind = LightKind::Directional;

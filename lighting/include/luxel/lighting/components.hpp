@@ -24,6 +24,10 @@ struct PointLight {
     glm::vec3 power{100.0f};
     float range = 0.0f;  ///< metres beyond which it may be ignored; 0 = unbounded
     bool enabled = true;
+    /// Metres: a sphere of this radius that shines with the same intensity, so its shadows have
+    /// penumbrae (the frame's soft shadows, the reference's samples over the sphere). 0: a point
+    /// and hard shadows. Photons leave from the centre either way (docs/METHOD.md §8.8).
+    float radius = 0.0f;
 };
 
 /// A spot light: radiant intensity power / (2 pi (1 - cos outer)) inside the outer cone, with a
@@ -34,6 +38,7 @@ struct SpotLight {
     float outer_cone = 0.5f;
     float range = 0.0f;
     bool enabled = true;
+    float radius = 0.0f;  ///< metres: a spherical source, as PointLight::radius
 };
 
 /// Parallel light from a distant source: `irradiance` W/m^2 on a surface facing it.

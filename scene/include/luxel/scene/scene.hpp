@@ -102,6 +102,8 @@ struct NodeFlags {
     std::optional<bool> dynamic;
     /// The light starts switched off ("enabled": false).
     bool light_enabled = true;
+    /// "light_radius": a point or spot light's sphere, metres (0: a point; docs/LEVELS.md).
+    float light_radius = 0.0f;
     /// The whole `extras.luxel` object, for what a game adds beyond these.
     nlohmann::json raw = nlohmann::json::object();
 };

@@ -25,6 +25,9 @@ struct LightSource {
     glm::vec3 power{0.0f};
     float inner_cone = 0.3f;  ///< spot, radians
     float outer_cone = 0.5f;  ///< spot, radians
+    /// Point and spot: the radius of the sphere that emits, metres (0: a point). The direct
+    /// light's shadows use it; photons leave from `position`.
+    float radius = 0.0f;
     /// Area lights: world-space triangles, three vertices each, emitting on their front side.
     std::vector<glm::vec3> triangles;
     /// Area lights: the radiance of each triangle's pieces (one per triangle in `triangles`'
