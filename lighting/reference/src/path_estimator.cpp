@@ -68,6 +68,32 @@ void add(Components& out, Component component, const glm::dvec3& value, PathCoun
 
 }  // namespace
 
+glm::dvec3 PathEstimator::sphere_light(const ReferenceLight& light, const SphereSample& sphere,
+                                       const glm::vec3& origin, const glm::vec3& normal,
+                                       const glm::vec3& geometric, PathCounters& counters) const {
+    const LightSource& source = light.source;
+    const double cosine = glm::dot(normal, sphere.direction);
+    if (cosine <= 0.0 || glm::dot(geometric, sphere.direction) <= 0.0f) {
+        return glm::dvec3(0.0);
+    }
+    // A spot's falloff is the centre's: the cone does not change across its sphere.
+    double intensity_scale = 1.0;
+    if (source.kind == LightKind::Spot) {
+        const glm::vec3 to_centre = glm::normalize(source.position - origin);
+        intensity_scale = spot_falloff(source, -glm::dot(to_centre, source.direction));
+    }
+    if (intensity_scale <= 0.0) {
+        return glm::dvec3(0.0);
+    }
+    ++counters.rays;
+    if (scene_->rays().occluded(origin, sphere.direction * sphere.distance, 1.0f)) {
+        return glm::dvec3(0.0);
+    }
+    const double r = static_cast<double>(source.radius);
+    const double radiance_scale = intensity_scale / (glm::pi<double>() * r * r);  // L / I
+    return glm::dvec3(light.intensity) * (radiance_scale * cosine * sphere.solid_angle);
+}
+
 const char* component_name(Component component) {
     switch (component) {
         case Component::Direct:
@@ -99,6 +125,15 @@ PathEstimator::DirectLight PathEstimator::direct_light(const glm::vec3& point,
         switch (source.kind) {
             case LightKind::Point:
             case LightKind::Spot: {
+                if (source.radius > 0.0f) {
+                    SphereSample sphere;
+                    if (sample_sphere_light(origin, source.position, source.radius, random.next2(),
+                                            sphere)) {
+                        irradiance +=
+                            sphere_light(light, sphere, origin, normal, geometric, counters);
+                        break;
+                    }
+                }
                 const glm::vec3 to_light = source.position - origin;
                 const double distance2 = glm::dot(glm::dvec3(to_light), glm::dvec3(to_light));
                 if (!(distance2 > 0.0)) {

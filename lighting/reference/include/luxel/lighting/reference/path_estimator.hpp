@@ -8,6 +8,7 @@
 
 #include "luxel/lighting/reference/reference_scene.hpp"
 #include "luxel/lighting/reference/sample_stream.hpp"
+#include "luxel/lighting/reference/sphere_light.hpp"
 
 /// Path tracing with next-event estimation for the reference (docs/METHOD.md §10.1): irradiance
 /// at a light-map texel split by how the light got there, and radiance along a camera ray.
@@ -97,6 +98,11 @@ class PathEstimator {
     [[nodiscard]] glm::dvec3 sky_light(const ReferenceLight& light, const glm::vec3& origin,
                                        const glm::vec3& normal, const glm::vec3& geometric,
                                        SampleStream& random, PathCounters& counters) const;
+    /// A point or spot light with a radius: its irradiance at `origin` by the one direction
+    /// `sphere` drew over the cone it subtends (0 when blocked or below the horizon).
+    [[nodiscard]] glm::dvec3 sphere_light(const ReferenceLight& light, const SphereSample& sphere,
+                                          const glm::vec3& origin, const glm::vec3& normal,
+                                          const glm::vec3& geometric, PathCounters& counters) const;
     /// Irradiance at a point from every light by next-event estimation, MIS-weighted against
     /// cosine sampling around `normal` for area lights and skies. `geometric` rejects
     /// directions into the surface.
