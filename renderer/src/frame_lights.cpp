@@ -16,6 +16,11 @@ bool delivers_light(const glm::vec3& value) {
     return glm::any(glm::greaterThan(value, glm::vec3(0.0f)));
 }
 
+/// A component's radius as the frame uses it: a negative or non-finite one is a point.
+float sphere_radius(float radius) {
+    return std::isfinite(radius) && radius > 0.0f ? radius : 0.0f;
+}
+
 FrameLight placed(const ecs::Registry& registry, ecs::Entity entity) {
     FrameLight light;
     light.entity = entity;
@@ -46,6 +51,7 @@ std::vector<FrameLight> collect_lights(ecs::Registry& registry) {
         FrameLight light = placed(registry, entity);
         light.kind = 0;
         light.intensity = point.power / (4.0f * pi);
+        light.radius = sphere_radius(point.radius);
         light.shadow = ShadowKind::Cube;
         lights.push_back(light);
     }
@@ -60,6 +66,7 @@ std::vector<FrameLight> collect_lights(ecs::Registry& registry) {
         light.cos_outer = std::cos(outer);
         light.cos_inner = std::cos(std::clamp(spot.inner_cone, 0.0f, outer));
         light.intensity = spot.power / (2.0f * pi * std::max(1.0f - light.cos_outer, 1e-8f));
+        light.radius = sphere_radius(spot.radius);
         light.shadow = outer > kWideSpot ? ShadowKind::Cube : ShadowKind::Perspective;
         lights.push_back(light);
     }

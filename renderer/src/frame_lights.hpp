@@ -33,6 +33,9 @@ struct FrameLight {
     float cos_inner = 1.0f;
     float cos_outer = 0.0f;
     float outer_cone = 0.0f;
+    /// Point and spot: the emitting sphere's radius, m; > 0 draws the light with soft shadows
+    /// (SoftShadows). 0 for directional lights and for points.
+    float radius = 0.0f;
     ShadowKind shadow = ShadowKind::Cube;
 };
 

@@ -31,6 +31,7 @@
 #include "scene_draws.hpp"
 #include "shadow_maps.hpp"
 #include "sky_coverage.hpp"
+#include "soft_shadows.hpp"
 #include "specular_cube_maps.hpp"
 
 namespace luxel::renderer {
@@ -66,8 +67,8 @@ void clear_colour(GLuint framebuffer, GLint buffer = 0) {
 
 std::string_view name(RenderPass pass) {
     static constexpr std::array<std::string_view, kRenderPassCount> names = {
-        "shadows",  "gbuffer",   "direct",        "indirect",
-        "specular", "composite", "anti_aliasing", "sky_edges"};
+        "shadows",   "gbuffer",       "direct",    "indirect",    "specular",
+        "composite", "anti_aliasing", "sky_edges", "soft_shadows"};
     return names[static_cast<std::size_t>(pass)];
 }
 
@@ -100,6 +101,8 @@ struct FrameRenderer::Impl {
     lighting::SkyTexture sky;  ///< the lighting system's skies, behind everything drawn
     SpecularCubeMaps cube_maps;
     std::optional<EdgeAntiAliasing> anti_aliasing;  ///< FrameSettings::anti_aliasing
+    std::optional<SoftShadows>
+        soft_shadows;  ///< from the first frame with a light that has a radius
     /// FrameSettings::sky_edge_coverage, while the frame has a sky.
     std::optional<SkyCoverage> sky_edges;
     bool sky_masked = false;  ///< this frame has sky_edges' mask
@@ -254,6 +257,12 @@ struct FrameRenderer::Impl {
         glFrontFace(GL_CCW);
     }
 
+    /// Whether `light` is drawn by SoftShadows: it has a radius and a shadow map to soften.
+    [[nodiscard]] bool soft(const FrameLight& light) const {
+        const ShadowMap* map = shadows.find(light.entity);
+        return settings.soft_shadows && light.radius > 0.0f && map != nullptr && map->valid;
+    }
+
     void direct_pass(const std::vector<FrameLight>& lights) {
         const GLuint fbo = targets.direct_target.id();
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
@@ -381,10 +390,28 @@ struct FrameRenderer::Impl {
 
         const bool direct = plan.direct() && !lights.empty() && terms.direct;
         if (direct) {
+            std::vector<FrameLight> hard;
+            std::vector<FrameLight> soft_lights;
+            for (const FrameLight& light : lights) {
+                (soft(light) ? soft_lights : hard).push_back(light);
+            }
+            counters.soft_lights = soft_lights.size();
             timer.begin(RenderPass::Direct);
-            direct_pass(lights);
+            direct_pass(hard);
             timer.end(RenderPass::Direct);
+            if (!soft_lights.empty()) {
+                timer.begin(RenderPass::SoftShadows);
+                if (!soft_shadows) {
+                    soft_shadows.emplace(shader_library);
+                }
+                for (const FrameLight& light : soft_lights) {
+                    soft_shadows->draw(light, batches, shadows, targets, camera,
+                                       settings.filtered_shadows);
+                }
+                timer.end(RenderPass::SoftShadows);
+            }
         } else {
+            counters.soft_lights = 0;
             clear_colour(targets.direct_target.id());
         }
 

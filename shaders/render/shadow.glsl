@@ -165,7 +165,11 @@ vec4 map_ray_point(Light light, vec2 centre) {
     return light.shadow_inverse * vec4(centre * 2.0 - 1.0, 0.0, 1.0);
 }
 
-float map_shadow(Light light, vec3 p, vec3 n, bool filtered) {
+// A 2D map's lookup; `gap` the nearest occluder's distance in front of the receiver plane
+// along the light's ray (metres; 1e30: no tap was shadowed), which soft shadows size their
+// penumbra by (render/soft_shadow_gather.frag).
+float map_shadow_gap(Light light, vec3 p, vec3 n, bool filtered, out float gap) {
+    gap = 1e30;
     bool ortho = int(light.params.w) == SHADOW_ORTHO;
     vec3 origin = light.position_kind.xyz;
     vec3 direction = light.direction_far.xyz;
@@ -224,7 +228,13 @@ float map_shadow(Light light, vec3 p, vec3 n, bool filtered) {
         }
     }
     vec3 to_light = ortho ? -direction : normalize(origin - p);
+    gap = taps.gap;
     return shadow_result(taps, texel, dot(n, to_light));
+}
+
+float map_shadow(Light light, vec3 p, vec3 n, bool filtered) {
+    float gap;
+    return map_shadow_gap(light, p, n, filtered, gap);
 }
 
 // The face a direction from the light lands on: its major axis and its two minor axes as unit
@@ -266,7 +276,8 @@ vec3 cube_texel_centre(vec3 dir, float size) {
 // The same on a cube map, over the texel grid of the face the receiver lands on. A tap past
 // the face's edge is moved to the centre of the texel it falls in on the next face, so every
 // comparison still reads one texel against the plane's depth along that texel's own ray.
-float cube_shadow(Light light, vec3 p, vec3 n, bool filtered) {
+float cube_shadow_gap(Light light, vec3 p, vec3 n, bool filtered, out float gap) {
+    gap = 1e30;
     vec3 light_position = light.position_kind.xyz;
     float far = light.direction_far.w;
     vec3 v = p - light_position;
@@ -306,5 +317,21 @@ float cube_shadow(Light light, vec3 p, vec3 n, bool filtered) {
             }
         }
     }
+    gap = taps.gap;
     return shadow_result(taps, texel, dot(n, -v / distance));
+}
+
+float cube_shadow(Light light, vec3 p, vec3 n, bool filtered) {
+    float gap;
+    return cube_shadow_gap(light, p, n, filtered, gap);
+}
+
+// Either lookup, as the light's record names its map; 1 (lit) for a light without one.
+float light_shadow_gap(Light light, vec3 p, vec3 n, bool filtered, out float gap) {
+    gap = 1e30;
+    if (light.intensity_shadow.w < 0.0) {
+        return 1.0;
+    }
+    return int(light.params.w) == SHADOW_CUBE ? cube_shadow_gap(light, p, n, filtered, gap)
+                                             : map_shadow_gap(light, p, n, filtered, gap);
 }

@@ -29,6 +29,11 @@ struct FrameSettings {
     int map_shadow_size = 1024;  ///< texels per edge of 2D maps (spot, directional)
     /// 3 x 3 PCF of bilinear comparisons (soft edges); false: one hard comparison per pixel.
     bool filtered_shadows = true;
+    /// Lights with a radius (PointLight::radius, SpotLight::radius) cast soft shadows: the
+    /// image-space gathering of R.-H. Yao's thesis, a blocker search and a penumbra-wide filter
+    /// over the G-buffer (docs/METHOD.md §8.8). false: every light's shadows are hard. Frames
+    /// whose lights are all points run no extra pass either way.
+    bool soft_shadows = true;
     /// Smooths the frame's geometric edges after the composite (docs/METHOD.md §8.4): pixels
     /// where the G-buffer shows two surfaces meeting take the mix of both sides their coverage
     /// gives; every other pixel is the composite's exactly. false: no edge pass, no extra target.
@@ -96,9 +101,10 @@ enum class RenderPass : std::uint8_t {
     Specular,
     Composite,
     AntiAliasing,
-    SkyEdges  ///< SkyCoverage's mask, while the frame has a sky
+    SkyEdges,    ///< SkyCoverage's mask, while the frame has a sky
+    SoftShadows  ///< the direct light of lights with a radius (SoftShadows), while there are any
 };
-inline constexpr std::size_t kRenderPassCount = 8;
+inline constexpr std::size_t kRenderPassCount = 9;
 /// "shadows", "gbuffer", ...
 [[nodiscard]] std::string_view name(RenderPass pass);
 
@@ -120,6 +126,7 @@ struct FrameCounters {
     std::size_t shadow_maps_drawn = 0;     ///< re-rendered this frame
     std::uint64_t shadow_map_renders = 0;  ///< since construction
     std::size_t lights = 0;                ///< enabled punctual lights this frame
+    std::size_t soft_lights = 0;           ///< of them drawn with soft shadows
     std::size_t draws = 0;                 ///< primitives drawn into the G-buffer this frame
     std::size_t meshes_cached = 0;         ///< (scene, mesh) pairs with GPU buffers
     std::uint64_t mesh_uploads = 0;        ///< meshes uploaded, since construction
