@@ -36,6 +36,7 @@ layout(location = 0) out vec4 out_radiance;
 // Taps of the blocker search and of the filter. The search looks as far as the penumbra of an
 // occluder 4/5 of the way to the light (d / (D - d) = 4); both stop at kMaxPixels on screen,
 // which bounds the pass's cost (a wider penumbra is averaged over that disc).
+const int kFirstTaps = 8;
 const int kSearchTaps = 24;
 const int kFilterTaps = 48;
 const float kSearchScale = 4.0;
@@ -117,7 +118,23 @@ void main() {
     float gaps = own.y > 0.0 ? 1.0 : 0.0;
     float lit_taps = own.x;
     float closeness = 1.0 / max(0.25 * search * search, 1e-12);
-    if (search_pixels >= 1.0) {
+    // Most pixels lie in the open, far from any shadow: a first look at kFirstTaps of the
+    // disc that finds no occluder and the pixel itself lit keeps the hard value (1) at a third
+    // of the search's cost (Frame/soft, docs/PERFORMANCE.md).
+    bool open = own.x >= 1.0 && own.y <= 0.0;
+    if (open && search_pixels >= 1.0) {
+        for (int i = 0; i < kFirstTaps; ++i) {
+            vec2 shadow;
+            float across2;
+            if (tap(pixel, spiral(i, kFirstTaps) * search_pixels, receiver, search, shadow,
+                    across2) &&
+                (shadow.y > 0.0 || shadow.x < 1.0)) {
+                open = false;
+                break;
+            }
+        }
+    }
+    if (!open && search_pixels >= 1.0) {
         for (int i = 0; i < kSearchTaps; ++i) {
             vec2 shadow;
             float across2;

@@ -17,6 +17,8 @@
 //                     layer of the light maps is redrawn; the specular pass includes that
 //   Frame/caustics-no-layer the same without the renderer's caustic pass (no layer, no
 //                     splat): the baseline of the row above
+//   Frame/soft        static, cornell's light a sphere of 5 cm (PointLight::radius): its
+//                     soft_shadows_ms is the soft shadows' cost; Frame/static the baseline
 // Counters: milliseconds per frame of each pass (GPU), averaged over the iterations; for the
 // skinned rows also the bytes a frame sends for the figure (vertices or joint matrices).
 
@@ -51,6 +53,7 @@ struct Variant {
     bool gpu_skinning = true;
     bool caustics_level = false;  ///< the caustics level, lit before every frame
     bool caustic_pass = true;     ///< FrameSettings::caustics set
+    float light_radius = 0.0f;    ///< the point light's sphere, m (> 0: soft shadows)
 };
 
 /// Vertices of every skinned mesh's bind pose in the registry.
@@ -92,6 +95,10 @@ void frame(benchmark::State& state, const Variant& variant) {
     }
     for (auto [entity, point] : world.registry.view<PointLight>()) {
         light = entity;
+    }
+    if (variant.light_radius > 0.0f) {
+        world.registry.patch<PointLight>(
+            light, [&](PointLight& point) { point.radius = variant.light_radius; });
     }
     renderer::FrameSettings settings;
     settings.width = kSize;
@@ -174,6 +181,9 @@ void BM_FrameCausticsNoLayer(benchmark::State& state) {
 void BM_FrameStatic(benchmark::State& state) {
     frame(state, {});
 }
+void BM_FrameSoft(benchmark::State& state) {
+    frame(state, {.light_radius = 0.05f});
+}
 void BM_FrameMovingLight(benchmark::State& state) {
     frame(state, {.moving = true});
 }
@@ -190,6 +200,11 @@ void BM_FrameSkyPlain(benchmark::State& state) {
 
 BENCHMARK(BM_FrameStatic)
     ->Name("Frame/static")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+BENCHMARK(BM_FrameSoft)
+    ->Name("Frame/soft")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);
