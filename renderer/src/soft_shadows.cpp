@@ -68,6 +68,7 @@ void SoftShadows::draw(const FrameLight& light, LightBatches& batches, const Sha
     gather_program_.set("u_pixels_per_metre",
                         camera.projection[1][1] * 0.5f * static_cast<float>(targets.height));
     gather_program_.set("u_radius", light.radius);
+    gather_program_.set("u_view_projection", camera.projection * camera.view);
     glBindTextureUnit(3, shadow_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDisable(GL_BLEND);

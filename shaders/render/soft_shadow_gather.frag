@@ -30,6 +30,7 @@ uniform vec3 u_forward;             // the camera's view direction, unit
 uniform float u_pixels_per_metre;   // at 1 m of view depth (perspective) or anywhere (ortho)
 uniform int u_perspective;
 uniform float u_radius;             // the light's, m
+uniform mat4 u_view_projection;     // the camera's: world to clip
 
 layout(location = 0) out vec4 out_radiance;
 
@@ -78,6 +79,46 @@ bool tap(ivec2 pixel, vec2 offset, Receiver receiver, float reach, out vec2 shad
     }
     shadow = texelFetch(u_shadow, q, 0).xy;
     return true;
+}
+
+// How far along the light's ray from the receiver the frame shows something in the way: the
+// ray marched in kContactSteps (closer together near the receiver) up to `reach`, each point
+// looked up in the G-buffer; a point hidden behind the surface the camera sees there, by less
+// than that surface could plausibly be thick, lies inside an occluder. 1e30: none found.
+//
+// Why: the shadow map holds only the occluder's surface the light sees (a box's top), so at the
+// foot of a box its distance is the box's height where the edge that shades the receiver (the
+// box's far side, which the light does not see) stands right beside it. Read as the penumbra's
+// distance it spread light a few centimetres into the umbra along every contact
+// (tests/render/soft_shadow_test.cpp, the box). The engines' screen-space contact shadows march
+// the same way.
+float contact(Receiver receiver, float reach) {
+    const int kContactSteps = 8;
+    vec2 size = vec2(textureSize(u_position, 0));
+    for (int k = 1; k <= kContactSteps; ++k) {
+        float f = float(k) / float(kContactSteps);
+        float t = reach * f * f;
+        vec3 q = receiver.p + receiver.l * t;
+        vec4 clip = u_view_projection * vec4(q, 1.0);
+        if (!(clip.w > 0.0)) {
+            break;
+        }
+        vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+        if (any(lessThan(uv, vec2(0.0))) || any(greaterThanEqual(uv, vec2(1.0)))) {
+            break;
+        }
+        vec4 seen = texelFetch(u_position, ivec2(uv * size), 0);
+        if (seen.w == 0.0) {
+            continue;
+        }
+        float behind = distance(u_camera, q) - distance(u_camera, seen.xyz);
+        // More than two pixels behind (not the receiver's own plane read a pixel off), less than
+        // 5 cm plus a quarter of the distance marched (not an object far in front of it).
+        if (behind > 2.0 * receiver.metres_per_pixel && behind < 0.05 + 0.25 * t) {
+            return t;
+        }
+    }
+    return 1e30;
 }
 
 void main() {
@@ -153,8 +194,10 @@ void main() {
     // No occluder around (fully lit) or no light around (the umbra): the hard value stands.
     if (gaps > 0.0 && lit_taps > 0.0) {
         // A pixel in the hard shadow has its own occluder's distance: the edge that shades it.
-        // Its neighbours' would widen a contact's penumbra (a box's foot) into its umbra.
-        float d = min(own.y > 0.0 ? own.y : gap_sum / gaps, 0.999 * distance_to_light);
+        // Its neighbours' would widen a contact's penumbra (a box's foot) into its umbra, and
+        // so would the map's distance where the frame shows the occluder nearer (contact()).
+        float d = own.y > 0.0 ? min(own.y, contact(receiver, search)) : gap_sum / gaps;
+        d = min(d, 0.999 * distance_to_light);
         float width = min(u_radius * d / max(distance_to_light - d, 1e-4), search);
         float width_pixels = width * stretch / receiver.metres_per_pixel;
         if (width_pixels >= 0.5) {

@@ -247,9 +247,20 @@ TEST_P(SoftShadows, APenumbraMatchesTheReferencesSphericalLight) {
         write_exr(stem + "-frame.exr", soft.direct);
         write_exr(stem + "-hard.exr", hard.direct);
         write_exr(stem + "-reference.exr", reference_image);
-        write_png(stem + "-frame.png", soft.direct);
-        write_png(stem + "-hard.png", hard.direct);
-        write_png(stem + "-reference.png", reference_image);
+        // One picture at one exposure, twice the size: soft | hard | reference.
+        constexpr int kScale = 2;
+        constexpr int kGap = 4;
+        Image picture(3 * kSize * kScale + 2 * kGap, kSize * kScale, glm::vec4(0, 0, 0, 1));
+        const Image* panels[] = {&soft.direct, &hard.direct, &reference_image};
+        for (int panel = 0; panel < 3; ++panel) {
+            for (int y = 0; y < kSize * kScale; ++y) {
+                for (int x = 0; x < kSize * kScale; ++x) {
+                    picture.set_pixel(panel * (kSize * kScale + kGap) + x, y,
+                                      panels[panel]->pixel(x / kScale, y / kScale));
+                }
+            }
+        }
+        write_png(stem + ".png", picture, ToneMapSettings{.exposure = 3.0f});
     }
 
     // The penumbra: floor pixels from which the card hides part of the sphere, not all of it.
