@@ -152,6 +152,13 @@ int run(int argc, char** argv) {
         ->check(CLI::IsMember({"on", "off"}))
         ->default_str("on");
     app.add_option_function<std::string>(
+           "--soft-shadows",
+           [&](const std::string& text) { options.app.soft_shadows = text == "on"; },
+           "soft shadows of lights with a radius (extras.luxel.light_radius; docs/METHOD.md "
+           "8.8); off: every shadow hard")
+        ->check(CLI::IsMember({"on", "off"}))
+        ->default_str("on");
+    app.add_option_function<std::string>(
            "--lightmap-filter",
            [&](const std::string& text) { options.app.bicubic_light_maps = text == "bicubic"; },
            "how light maps are read: bilinear, or bicubic (a cubic B-spline: smoother, slightly "

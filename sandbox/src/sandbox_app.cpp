@@ -83,6 +83,7 @@ SandboxApp::SandboxApp(const AppSettings& settings, JobSystem& jobs, const Shade
     frame.width = width_;
     frame.height = height_;
     frame.anti_aliasing = settings.anti_aliasing;
+    frame.soft_shadows = settings.soft_shadows;
     frame.bicubic_light_maps = settings.bicubic_light_maps;
     frame.sky_edge_coverage = settings.sky_edges;
     renderer_ = std::make_unique<renderer::FrameRenderer>(registry_, *lighting_, frame, shaders);

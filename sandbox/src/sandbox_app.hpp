@@ -32,6 +32,7 @@ struct AppSettings {
     std::optional<scene::SkySpec> sky;  ///< --sky: instead of the level's
     prep::AutoPrepSettings auto_prep;   ///< --no-auto-prep, --prep-cache
     bool anti_aliasing = true;          ///< --aa: smooth the frame's geometric edges
+    bool soft_shadows = true;           ///< --soft-shadows: penumbrae of lights with a radius
     bool bicubic_light_maps = false;    ///< --lightmap-filter bicubic
     bool sky_edges = true;              ///< --sky-edges: sky coverage at silhouettes
 };
