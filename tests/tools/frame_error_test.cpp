@@ -44,6 +44,39 @@ struct Frames {
     Frames& operator=(const Frames&) = delete;
 };
 
+// --picture: frame | reference | difference at one exposure; the patch, darker in the frame,
+// is blue in the difference panel and black elsewhere.
+TEST(FrameError, APictureShowsThePatchInTheDifferencePanel) {
+    const Frames f("picture");
+    const std::filesystem::path picture = f.dir / "picture.png";
+    const auto r = run_command(kTool, quoted(f.frame) + " " + quoted(f.reference) + " --picture " +
+                                          quoted(picture) + " --zoom 2 --exposure 0.1");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const luxel::Image8 png = luxel::read_png(picture);
+    ASSERT_EQ(png.width, 3 * 32 * 2 + 2 * 4);
+    ASSERT_EQ(png.height, 24 * 2);
+    const int difference = 2 * (32 * 2 + 4);  // the third panel's left edge
+    // Inside the patch (x 8-16, y 4-8 at zoom 2): blue, no red.
+    EXPECT_GT(png.at(difference + 2 * 12, 2 * 6, 2), 0);
+    EXPECT_EQ(png.at(difference + 2 * 12, 2 * 6, 0), 0);
+    // Outside it: black.
+    EXPECT_EQ(png.at(difference + 2 * 24, 2 * 16, 2), 0);
+    // The frame and the reference panels agree outside the patch and differ inside it.
+    EXPECT_EQ(png.at(2 * 24, 2 * 16, 1), png.at(32 * 2 + 4 + 2 * 24, 2 * 16, 1));
+    EXPECT_LT(png.at(2 * 12, 2 * 6, 1), png.at(32 * 2 + 4 + 2 * 12, 2 * 6, 1));
+    // A zoom whose picture would pass 64 Mpixels is refused (exit 2, no file) before the
+    // picture is allocated: 400 x 240 at 16x would be 3 x 24.6 Mpixels.
+    const luxel::Image large(400, 240, glm::vec4(1.0f));
+    luxel::write_exr(f.dir / "large.exr", large);
+    const std::filesystem::path big = f.dir / "big.png";
+    const auto refused =
+        run_command(kTool, quoted(f.dir / "large.exr") + " " + quoted(f.dir / "large.exr") +
+                               " --picture " + quoted(big) + " --zoom 16");
+    EXPECT_EQ(refused.exit_code, 2) << refused.output;
+    EXPECT_NE(refused.output.find("would exceed 64 Mpixels"), std::string::npos) << refused.output;
+    EXPECT_FALSE(std::filesystem::exists(big));
+}
+
 TEST(FrameError, ARegionShowsThePatchTheWholeFrameDilutes) {
     const Frames f("patch");
     const auto r = run_command(kTool, quoted(f.frame) + " " + quoted(f.reference) +

@@ -5,8 +5,11 @@
 // (pixels X0 <= x < X1, Y0 <= y < Y1, rows from the top): relRMSE over RGB (docs/METHOD.md
 // §10.2's image error) and the ratio of the means. --block N first averages N x N pixel blocks
 // in both frames, which lowers a path-traced reference's own noise by N where the error looked
-// for is wider than a block (docs/RESULTS.md, "Contact").
+// for is wider than a block (docs/RESULTS.md, "Contact"). --picture OUT.png writes what the
+// numbers say as a picture: the frame, the reference and their difference side by side at one
+// exposure (the reference's metered one, or --exposure), each pixel --zoom times.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -99,6 +102,34 @@ Figures compare(const luxel::Image& frame, const luxel::Image& reference, const 
     return out;
 }
 
+/// frame | reference | difference, `zoom` x `zoom` screen pixels a pixel, 4 pixels apart. The
+/// first two at `exposure`; the difference as a signed map at the same exposure (red where the
+/// frame is brighter, blue where it is darker, in luminance), so a patch plainly wrong shows
+/// at once where the numbers only say "somewhere".
+luxel::Image side_by_side(const luxel::Image& frame, const luxel::Image& reference, int zoom,
+                          float exposure) {
+    constexpr int kGap = 4;
+    const int w = frame.width * zoom;
+    const int h = frame.height * zoom;
+    luxel::Image out(3 * w + 2 * kGap, h, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    const auto luminance = [](const glm::vec4& c) {
+        return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+    };
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const glm::vec4 a = frame.pixel(x / zoom, y / zoom);
+            const glm::vec4 b = reference.pixel(x / zoom, y / zoom);
+            const float d = luminance(a) - luminance(b);
+            out.set_pixel(x, y, glm::vec4(glm::vec3(a) * exposure, 1.0f));
+            out.set_pixel(w + kGap + x, y, glm::vec4(glm::vec3(b) * exposure, 1.0f));
+            out.set_pixel(
+                2 * (w + kGap) + x, y,
+                glm::vec4(std::max(d, 0.0f), 0.0f, std::max(-d, 0.0f), 1.0f) * (4.0f * exposure));
+        }
+    }
+    return out;
+}
+
 void check_finite(const luxel::Image& image, const std::string& file) {
     for (std::size_t i = 0; i < image.rgba.size(); ++i) {
         if (!std::isfinite(image.rgba[i])) {
@@ -124,6 +155,19 @@ int run(int argc, char** argv) {
                    "(repeatable)");
     app.add_option("--block", block, "average N x N pixel blocks before comparing")
         ->check(CLI::Range(1, 4096))
+        ->capture_default_str();
+    std::string picture_file;
+    int zoom = 1;
+    float exposure = 0.0f;
+    app.add_option("--picture", picture_file,
+                   "also write frame | reference | difference (red: the frame brighter, blue: "
+                   "darker, 4x the exposure) side by side as a PNG");
+    app.add_option("--zoom", zoom, "screen pixels per frame pixel in the picture")
+        ->check(CLI::Range(1, 16))
+        ->capture_default_str();
+    app.add_option("--exposure", exposure,
+                   "the picture's linear exposure (0: the reference's metered exposure)")
+        ->check(CLI::Range(0.0f, 1e9f))
         ->capture_default_str();
     if (!luxel::cli::parse(app, argc, argv)) {
         return 0;
@@ -159,6 +203,20 @@ int run(int argc, char** argv) {
                       f.frame_mean.x, f.frame_mean.y, f.frame_mean.z, f.reference_mean.x,
                       f.reference_mean.y, f.reference_mean.z);
         std::cout << line << "\n";
+    }
+    if (!picture_file.empty()) {
+        // Checked before the picture is allocated: 3 panels of (W zoom) x (H zoom) RGBA floats.
+        constexpr double kMaxPicturePixels = 64.0 * 1024.0 * 1024.0;
+        if (3.0 * frame.width * zoom * frame.height * zoom > kMaxPicturePixels) {
+            throw luxel::UsageError("--zoom " + std::to_string(zoom) + ": the picture of a " +
+                                    std::to_string(frame.width) + "x" +
+                                    std::to_string(frame.height) +
+                                    " frame would exceed 64 Mpixels; use a smaller zoom");
+        }
+        const float shown = exposure > 0.0f ? exposure : luxel::metered_exposure(reference);
+        luxel::write_png(picture_file, side_by_side(frame, reference, zoom, shown),
+                         luxel::ToneMapSettings{.exposure = 1.0f});
+        std::cout << "picture: " << picture_file << " (exposure " << shown << ")\n";
     }
     return 0;
 }
