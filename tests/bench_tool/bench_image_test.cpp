@@ -241,6 +241,46 @@ TEST(BenchImage, PixelsWithoutALightMapAreMeasuredOnTheirOwn) {
     EXPECT_LT(value(1, "image_unmapped_relrmse"), value(2, "image_unmapped_relrmse"));
 }
 
+// --no-light-map NODE: cornell's cube loses its light map, so its pixels join those measured
+// apart (the glass sphere's) and the light-map reference leaves its texels out; a node that is
+// not there, or has no light map, is named.
+TEST(BenchImage, ANodeLeftWithoutALightMapIsMeasuredWithTheUnmappedPixels) {
+    luxel::testing::TempDir dir("luxel-bench-no-light-map");
+    const std::string tiny =
+        "--level cornell --budgets 100000 --frames 4 --checkpoint 4 --change none "
+        "--ref-photons 100000 --ref-caustic-photons 1000 --ref-spp 1 --image 48x36 "
+        "--image-spp 4 --threads 2 --out ";
+    const CommandResult mapped = luxel_bench(tiny + quoted(dir / "mapped"));
+    ASSERT_EQ(mapped.exit_code, 0) << mapped.output;
+    const CommandResult unmapped =
+        luxel_bench(tiny + quoted(dir / "unmapped") + " --no-light-map 'moving cube'");
+    ASSERT_EQ(unmapped.exit_code, 0) << unmapped.output;
+    const auto pixels = [](const std::filesystem::path& out) {
+        const CsvRows rows = read_csv(out / "runs.csv");
+        return cell_number(rows.at(1).at(column_index(rows, "unmapped_pixels")));
+    };
+    const double sphere = pixels(dir / "mapped");
+    const double sphere_and_cube = pixels(dir / "unmapped");
+    std::printf("[ figures  ] pixels without a light map: %.0f, with the cube's %.0f\n", sphere,
+                sphere_and_cube);
+    EXPECT_GT(sphere_and_cube, sphere + 20.0);
+    // The light-map reference leaves the cube's texels out (its key counts them).
+    const auto texels = [](const std::string& output) {
+        const std::size_t at = output.find("texels=");
+        return at == std::string::npos ? -1L : std::stol(output.substr(at + 7));
+    };
+    EXPECT_GT(texels(unmapped.output), 0L) << unmapped.output;
+    EXPECT_LT(texels(unmapped.output), texels(mapped.output));
+
+    CommandResult bad = luxel_bench(tiny + quoted(dir / "bad") + " --no-light-map 'no such node'");
+    EXPECT_EQ(bad.exit_code, 1) << bad.output;
+    EXPECT_NE(bad.output.find("--no-light-map no such node"), std::string::npos) << bad.output;
+    EXPECT_NE(bad.output.find("has no node of that name"), std::string::npos) << bad.output;
+    bad = luxel_bench(tiny + quoted(dir / "bad") + " --no-light-map camera");
+    EXPECT_EQ(bad.exit_code, 1) << bad.output;
+    EXPECT_NE(bad.output.find("has no light map to leave out"), std::string::npos) << bad.output;
+}
+
 TEST(BenchImage, ATexturedLevelBlenderWroteMatchesTheReferenceWithinEightPercent) {
     // Issue 21's textured goal on the level Blender's exporter wrote (emissive-sign.py: an
     // emissive texture on a sign, a checker floor), seen from above the floor: luxel-ref reads

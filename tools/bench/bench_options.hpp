@@ -62,6 +62,9 @@ struct Options {
     scene::LoadOptions load_limits;     ///< --limit
     std::optional<scene::SkySpec> sky;  ///< --sky: instead of the level's
     prep::AutoPrepSettings auto_prep;   ///< --no-auto-prep, --prep-cache
+    /// --no-light-map NODE: these nodes' meshes lose their light maps (receivers the irradiance
+    /// probes light, issue 26), in the real-time run and the light-map reference alike.
+    std::vector<std::string> unmapped;
     std::vector<double> budgets{1.0, 2.0, 4.0, 8.0};
     std::uint32_t frames = 150;  ///< static frames per configuration
     std::uint32_t after = 90;    ///< frames after the scripted change

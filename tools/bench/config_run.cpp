@@ -182,6 +182,18 @@ ConfigRun::ConfigRun(const LevelRunContext& context, const BenchConfig& config)
       instance_(
           posed_instance(registry_, context.source, context.options->time, context.options->sky)) {
     result_.config = config;
+    for (const std::string& node : options_.unmapped) {
+        const ecs::Entity entity = instance_.find(node);
+        if (entity == ecs::null_entity) {
+            throw Error("--no-light-map " + node + ": " + context.file.string() +
+                        " has no node of that name");
+        }
+        if (!registry_.has<lighting::LightmappedSurface>(entity)) {
+            throw Error("--no-light-map " + node + ": node '" + node + "' of " +
+                        context.file.string() + " has no light map to leave out");
+        }
+        registry_.remove<lighting::LightmappedSurface>(entity);
+    }
     transforms_ = std::make_unique<ecs::TransformSystem>(registry_);
     transforms_->update();
     world::update_skins(registry_);  // skinned meshes follow their joints

@@ -127,6 +127,10 @@ int run(int argc, char** argv) {
                    "turns it, NODE:off / NODE:on switch its light; auto: 'moving cube' by 0.3 m "
                    "in x when the level has it; none")
         ->capture_default_str();
+    app.add_option("--no-light-map", options.unmapped,
+                   "NODE: the node's mesh loses its light map and is lit as a receiver without "
+                   "one (the irradiance probes); repeatable. The image error over such pixels is "
+                   "reported apart (pixels without a light map)");
     app.add_option("--time", options.time, "animation pose in seconds (frozen)")
         ->capture_default_str();
     app.add_option("--dt", options.dt, "seconds per frame (the IIM fade-in runs on it)")
