@@ -65,21 +65,6 @@ void clear_colour(GLuint framebuffer, GLint buffer = 0) {
 
 }  // namespace
 
-std::string_view name(RenderPass pass) {
-    static constexpr std::array<std::string_view, kRenderPassCount> names = {
-        "shadows",   "gbuffer",       "direct",    "indirect",    "specular",
-        "composite", "anti_aliasing", "sky_edges", "soft_shadows"};
-    return names[static_cast<std::size_t>(pass)];
-}
-
-double FrameTimings::total() const {
-    double sum = 0.0;
-    for (double ms : milliseconds) {
-        sum += ms;
-    }
-    return sum;
-}
-
 struct FrameRenderer::Impl {
     ecs::Registry& registry;
     const lighting::LightingSystem& lighting;
@@ -257,12 +242,6 @@ struct FrameRenderer::Impl {
         glFrontFace(GL_CCW);
     }
 
-    /// Whether `light` is drawn by SoftShadows: it has a radius and a shadow map to soften.
-    [[nodiscard]] bool soft(const FrameLight& light) const {
-        const ShadowMap* map = shadows.find(light.entity);
-        return settings.soft_shadows && light.radius > 0.0f && map != nullptr && map->valid;
-    }
-
     void direct_pass(const std::vector<FrameLight>& lights) {
         const GLuint fbo = targets.direct_target.id();
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
@@ -390,24 +369,18 @@ struct FrameRenderer::Impl {
 
         const bool direct = plan.direct() && !lights.empty() && terms.direct;
         if (direct) {
-            std::vector<FrameLight> hard;
-            std::vector<FrameLight> soft_lights;
-            for (const FrameLight& light : lights) {
-                (soft(light) ? soft_lights : hard).push_back(light);
-            }
-            counters.soft_lights = soft_lights.size();
+            const SplitLights split = split_soft(lights, shadows, settings.soft_shadows);
+            counters.soft_lights = split.soft.size();
             timer.begin(RenderPass::Direct);
-            direct_pass(hard);
+            direct_pass(split.hard);
             timer.end(RenderPass::Direct);
-            if (!soft_lights.empty()) {
+            if (!split.soft.empty()) {
                 timer.begin(RenderPass::SoftShadows);
                 if (!soft_shadows) {
                     soft_shadows.emplace(shader_library);
                 }
-                for (const FrameLight& light : soft_lights) {
-                    soft_shadows->draw(light, batches, shadows, targets, camera,
-                                       settings.filtered_shadows);
-                }
+                soft_shadows->draw(split.soft, batches, shadows, targets, camera,
+                                   settings.filtered_shadows);
                 timer.end(RenderPass::SoftShadows);
             }
         } else {

@@ -15,6 +15,17 @@ std::string batch_define() {
 
 }  // namespace
 
+SplitLights split_soft(const std::vector<FrameLight>& lights, const ShadowMaps& shadows,
+                       bool enabled) {
+    SplitLights split;
+    for (const FrameLight& light : lights) {
+        const ShadowMap* map = shadows.find(light.entity);
+        const bool soft = enabled && light.radius > 0.0f && map != nullptr && map->valid;
+        (soft ? split.soft : split.hard).push_back(light);
+    }
+    return split;
+}
+
 SoftShadows::SoftShadows(const ShaderLibrary& shaders)
     : inputs_program_(shaders.build({{ShaderStage::Vertex, "post/fullscreen.vert"},
                                      {ShaderStage::Fragment, "render/soft_shadow_inputs.frag"}},
@@ -37,8 +48,17 @@ void SoftShadows::resize(int width, int height) {
     height_ = height;
 }
 
-void SoftShadows::draw(const FrameLight& light, LightBatches& batches, const ShadowMaps& shadows,
-                       const FrameTargets& targets, const FrameCamera& camera, bool filtered) {
+void SoftShadows::draw(const std::vector<FrameLight>& lights, LightBatches& batches,
+                       const ShadowMaps& shadows, const FrameTargets& targets,
+                       const FrameCamera& camera, bool filtered) {
+    for (const FrameLight& light : lights) {
+        draw_one(light, batches, shadows, targets, camera, filtered);
+    }
+}
+
+void SoftShadows::draw_one(const FrameLight& light, LightBatches& batches,
+                           const ShadowMaps& shadows, const FrameTargets& targets,
+                           const FrameCamera& camera, bool filtered) {
     resize(targets.width, targets.height);
     batches.bind(std::vector<FrameLight>{light}, 0, shadows);
     glBindTextureUnit(0, targets.albedo.id());

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <vector>
+
 #include "frame_lights.hpp"
 #include "frame_targets.hpp"
 #include "light_batches.hpp"
@@ -14,6 +16,16 @@ class ShaderLibrary;
 
 namespace luxel::renderer {
 
+/// A frame's lights split by who draws them: `soft`, those with a radius and a shadow map to
+/// soften (while soft shadows are `enabled`), by SoftShadows; `hard`, the rest, by the direct
+/// pass.
+struct SplitLights {
+    std::vector<FrameLight> hard;
+    std::vector<FrameLight> soft;
+};
+[[nodiscard]] SplitLights split_soft(const std::vector<FrameLight>& lights,
+                                     const ShadowMaps& shadows, bool enabled);
+
 /// The direct light of lights with a radius, with soft shadows by image-space gathering
 /// (R.-H. Yao's thesis; docs/METHOD.md §8.8): per light, its hard shadow and the nearest
 /// occluder's distance per pixel (shaders/render/soft_shadow_inputs.frag) into a target of its
@@ -24,13 +36,16 @@ class SoftShadows {
   public:
     explicit SoftShadows(const ShaderLibrary& shaders);
 
-    /// Adds `light`'s direct light to targets.direct_target (which the caller has cleared and
-    /// filled with the other lights). The caller binds the empty vertex array and restores
+    /// Adds each light's direct light to targets.direct_target (which the caller has cleared
+    /// and filled with the other lights). The caller binds the empty vertex array and restores
     /// state (FrameRenderer's StateGuard); `filtered` as FrameSettings::filtered_shadows.
-    void draw(const FrameLight& light, LightBatches& batches, const ShadowMaps& shadows,
-              const FrameTargets& targets, const FrameCamera& camera, bool filtered);
+    void draw(const std::vector<FrameLight>& lights, LightBatches& batches,
+              const ShadowMaps& shadows, const FrameTargets& targets, const FrameCamera& camera,
+              bool filtered);
 
   private:
+    void draw_one(const FrameLight& light, LightBatches& batches, const ShadowMaps& shadows,
+                  const FrameTargets& targets, const FrameCamera& camera, bool filtered);
     void resize(int width, int height);
 
     gl::Program inputs_program_;
