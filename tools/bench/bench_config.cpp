@@ -37,6 +37,7 @@ lighting::LightingConfig BenchConfig::lighting() const {
     config.maps.change_test_sigmas = keep;
     config.photons.selective.exact_invalidation = exact != 0;
     config.maps.contact_texels = contact != 0;
+    config.gather.unmapped_radiance = unmapped != 0;
     config.maps.stitch_seams = stitch != 0;
     config.maps.aim_keeps_power = aim_power != 0;
     config.maps.order_local_passes = local_order != 0;
@@ -67,6 +68,9 @@ std::string BenchConfig::knobs() const {
     }
     if (probes != 1) {
         out << " probes=" << probes;
+    }
+    if (unmapped != 1) {
+        out << " unmapped=" << unmapped;
     }
     if (probe_spacing != lighting::IrradianceProbeSettings{}.spacing) {
         out << " probe_spacing=" << probe_spacing;
@@ -144,6 +148,8 @@ std::vector<BenchConfig> make_configs(const Options& options) {
                 c.aim_power = whole(value);
             } else if (sweep.knob == "contact") {
                 c.contact = whole(value);
+            } else if (sweep.knob == "unmapped") {
+                c.unmapped = whole(value);
             } else if (sweep.knob == "stitch") {
                 c.stitch = whole(value);
             } else if (sweep.knob == "probes") {

@@ -30,6 +30,9 @@ struct BenchConfig {
     /// Texels under an object's edge gathered beside it (IlluminationSettings::contact_texels;
     /// 1: on, default).
     std::uint32_t contact = 1;
+    /// Gather rays read a surface without a light map as its direct light and the probes'
+    /// (CpuGatherSettings::unmapped_radiance; 1: on, default; 0: black, as before).
+    std::uint32_t unmapped = 1;
     /// The IIM's light-map seams stitched after each pass (IlluminationSettings::stitch_seams;
     /// 1: on, default).
     std::uint32_t stitch = 1;

@@ -120,7 +120,8 @@ Sweep parse_sweep(const std::string& text) {
             }
         } else if (sweep.knob == "local" || sweep.knob == "exact" || sweep.knob == "contact" ||
                    sweep.knob == "stitch" || sweep.knob == "probes" || sweep.knob == "aim_power" ||
-                   sweep.knob == "local_order" || sweep.knob == "stand_in") {
+                   sweep.knob == "local_order" || sweep.knob == "stand_in" ||
+                   sweep.knob == "unmapped") {
             if (value != "0" && value != "1") {
                 throw Error(what + ": '" + value + "' is not 0 (off) or 1 (on)");
             }
@@ -154,7 +155,7 @@ Sweep parse_sweep(const std::string& text) {
             throw Error("--sweep " + sweep.knob +
                         ": unknown knob (budget, photons, aim_n, rays, texels_per_unit, filter, "
                         "refine, local, change_blend, exact, contact, stitch, aim_power, "
-                        "local_order, probes, "
+                        "local_order, probes, unmapped, "
                         "probe_spacing, "
                         "probe_basis, keep, "
                         "caustics, caustic_refine, stand_in, catch_up, backend, "

@@ -99,6 +99,7 @@ int run(int argc, char** argv) {
         "KNOB=V1,V2,... (budget, photons GxM, aim_n, rays, texels_per_unit, filter, "
         "refine, local 0|1, change_blend SECONDS, exact 0|1, contact 0|1, stitch 0|1, "
         "aim_power 0|1, local_order 0|1, probes 0|1, probe_spacing METRES, probe_basis oct|sh2, "
+        "unmapped 0|1, "
         "keep SIGMAS, "
         "caustics NxK, caustic_refine PHOTONS, stand_in 0|1, catch_up SHARE, "
         "backend cpu|gpu|gpu-turn|gpu-plane, kernel "

@@ -174,6 +174,17 @@ glm::vec3 CpuGatherer::trace(glm::vec3 origin, glm::vec3 direction, std::optiona
             if (glm::dot(hit->geometric_normal, direction) >= 0.0f) {
                 return glm::vec3(0.0f);
             }
+            if (unmapped_ != nullptr && settings_.unmapped_radiance && !has_light_map(*hit) &&
+                !emits(*hit)) {
+                // No AIM here: the surface's own estimate (UnmappedRadiance), not black.
+                // Its light pick: a sample dimension past those the specular scatters use.
+                return weight *
+                       unmapped_->exitant(
+                           hit->position, facing_normals(*hit, direction).shading,
+                           material != nullptr ? material->albedo : TraceMaterial{}.albedo,
+                           glm::dvec2(photon_sample(ray, 5 + settings_.max_specular, seed),
+                                      photon_sample(ray, 6 + settings_.max_specular, seed)));
+            }
             return weight * atlas_->sample(hit->surface, hit->lightmap_uv);
         }
         // A mirror or glass has no AIM of its own: it shows what it reflects or refracts (the
@@ -189,15 +200,22 @@ glm::vec3 CpuGatherer::trace(glm::vec3 origin, glm::vec3 direction, std::optiona
     return glm::vec3(0.0f);  // trapped between specular surfaces
 }
 
+bool CpuGatherer::has_light_map(const RayHit& hit) const {
+    return hit.surface >= 0 &&
+           static_cast<std::size_t>(hit.surface) < atlas_->surface_page.size() &&
+           atlas_->surface_page[static_cast<std::size_t>(hit.surface)] >= 0;
+}
+
+bool CpuGatherer::emits(const RayHit& hit) const {
+    return hit.surface >= 0 &&
+           static_cast<std::size_t>(hit.surface) < atlas_->surface_emission.size() &&
+           glm::any(glm::greaterThan(
+               atlas_->surface_emission[static_cast<std::size_t>(hit.surface)], glm::vec3(0.0f)));
+}
+
 bool CpuGatherer::see_through(const RayHit& hit) const {
-    const bool mapped = hit.surface >= 0 &&
-                        static_cast<std::size_t>(hit.surface) < atlas_->surface_page.size() &&
-                        atlas_->surface_page[static_cast<std::size_t>(hit.surface)] >= 0;
-    const bool emits =
-        hit.surface >= 0 &&
-        static_cast<std::size_t>(hit.surface) < atlas_->surface_emission.size() &&
-        glm::any(glm::greaterThan(atlas_->surface_emission[static_cast<std::size_t>(hit.surface)],
-                                  glm::vec3(0.0f)));
+    const bool mapped = has_light_map(hit);
+    const bool emits = this->emits(hit);
     const TraceMaterial* material = materials_ != nullptr && hit.material < materials_->size()
                                         ? &(*materials_)[hit.material]
                                         : nullptr;

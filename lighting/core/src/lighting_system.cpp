@@ -264,6 +264,7 @@ const LightingStats& LightingSystem::update(double budget_ms, double now_seconds
     stats_.census = take_census();
     plan_ = FeaturePlan::from(stats_.census);
     sync_probes();
+    sync_unmapped_radiance();
     queue_work();
     const std::uint64_t aim_before = maps_->counters().aim_texels;
     const std::uint64_t gathered_before = maps_->counters().texels_gathered;
@@ -319,6 +320,20 @@ void LightingSystem::sync_probes() {
         probes_ = std::make_unique<IrradianceProbes>(grid, config_.probes);
     }
     probe_grid_surfaces_ = stats_.census.lightmapped_surfaces;
+}
+
+void LightingSystem::sync_unmapped_radiance() {
+    if (probes_ == nullptr) {  // the plan has no receiver without a light map
+        unmapped_.clear();
+        cpu_gatherer_->set_unmapped(nullptr);
+        return;
+    }
+    std::vector<const LightSource*> lights;
+    for (const LightPhotons* light : photons_->active_lights()) {
+        lights.push_back(&light->emitter().light());
+    }
+    unmapped_.set(&photons_->ray_scene(), lights, probes_.get());
+    cpu_gatherer_->set_unmapped(&unmapped_);
 }
 
 void LightingSystem::queue_probe_units() {

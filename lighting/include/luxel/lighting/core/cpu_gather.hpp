@@ -9,6 +9,7 @@
 #include "luxel/lighting/core/photon_tracer.hpp"
 #include "luxel/lighting/core/radiance_atlas.hpp"
 #include "luxel/lighting/core/ray_scene.hpp"
+#include "luxel/lighting/core/unmapped_radiance.hpp"
 
 namespace luxel {
 class JobSystem;
@@ -22,6 +23,10 @@ struct CpuGatherSettings {
     float max_distance = 1e6f;
     /// Mirror and glass interactions a ray follows before it gives up (with materials).
     std::uint32_t max_specular = 8;
+    /// A ray that meets a diffuse surface without a light map reads its direct light and the
+    /// irradiance probes' (UnmappedRadiance, set by the lighting system); false: black, as
+    /// before (luxel-bench --sweep unmapped=0).
+    bool unmapped_radiance = true;
 };
 
 /// The CPU backend: from each texel centre, cosine-weighted Halton directions (bases 2, 3;
@@ -42,6 +47,9 @@ class CpuGatherer final : public IrradianceGatherer {
     void set_materials(const std::vector<TraceMaterial>* materials) override {
         materials_ = materials;
     }
+    /// What a diffuse surface without a light map sends back (null: black). Read at each
+    /// gather call; needs the materials for the surface's albedo.
+    void set_unmapped(const UnmappedRadiance* unmapped) { unmapped_ = unmapped; }
 
     [[nodiscard]] std::string_view name() const override { return "cpu"; }
     /// Each pass rotates the ray pattern anew (GatherTexel::pass).
@@ -79,11 +87,16 @@ class CpuGatherer final : public IrradianceGatherer {
                                   std::uint32_t ray, std::uint32_t seed) const;
 
     /// Whether a probe ray passes through this hit (diffuse, no light map, no emission).
+    /// Whether the hit surface has AIM texels (a page in the atlas).
+    [[nodiscard]] bool has_light_map(const RayHit& hit) const;
+    /// Whether the hit surface emits (RadianceAtlas::surface_emission).
+    [[nodiscard]] bool emits(const RayHit& hit) const;
     [[nodiscard]] bool see_through(const RayHit& hit) const;
 
     const RayScene* scene_;
     const std::vector<TraceMaterial>* materials_ = nullptr;
     const RadianceAtlas* atlas_;
+    const UnmappedRadiance* unmapped_ = nullptr;
     CpuGatherSettings settings_;
     JobSystem* jobs_;
     std::uint64_t rays_traced_ = 0;

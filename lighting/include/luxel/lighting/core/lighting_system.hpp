@@ -188,6 +188,9 @@ class LightingSystem {
     void queue_map_units();
     /// Creates, refits or frees the irradiance probes as the plan says.
     void sync_probes();
+    /// Gives the CPU gather this frame's lights and probes for what surfaces without a light
+    /// map send back (UnmappedRadiance); none while the level has no such receiver.
+    void sync_unmapped_radiance();
     /// Units of irradiance probe passes.
     void queue_probe_units();
 
@@ -198,6 +201,7 @@ class LightingSystem {
     std::unique_ptr<IlluminationMaps> maps_;
     std::unique_ptr<CpuGatherer> cpu_gatherer_;
     std::unique_ptr<IrradianceProbes> probes_;
+    UnmappedRadiance unmapped_;  ///< read by cpu_gatherer_ while the level has probes
     /// The light-mapped surface count the probes' grid was fitted to (a new or removed surface
     /// may change the level's extent).
     std::uint32_t probe_grid_surfaces_ = 0;
