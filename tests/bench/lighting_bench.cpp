@@ -11,6 +11,10 @@
 //        `p99_vs_idle` (loaded p99 over idle p99).
 //   Unbudgeted         the same frames with an unlimited budget: what the work costs when all of
 //        it runs every frame (the baseline the budgets spread out).
+//   WarmUpUnmapped     the sandbox level's loading-screen warm-up (every AIM built, every IIM
+//        refined) with the gathers reading its one surface without a light map (the walker) as
+//        its own light (CpuGatherSettings::unmapped_radiance) and as black, alternated twice in
+//        one iteration: `on_ms`, `off_ms` (means of the two) and `ratio` = on / off.
 
 #include <benchmark/benchmark.h>
 
@@ -28,6 +32,7 @@
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/scene_instance.hpp"
+#include "luxel/world/skinning.hpp"
 
 namespace {
 
@@ -167,6 +172,55 @@ void Unbudgeted(benchmark::State& state) {
     state.counters["p99_ms"] = quantile(run.update_ms, 0.99);
 }
 BENCHMARK(Unbudgeted)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+/// The sandbox level's warm-up, posed at t = 0 as luxel-sandbox poses it, in ms.
+double sandbox_warm_up_ms(bool unmapped_radiance) {
+    static const auto level = std::make_shared<scene::Scene>(
+        scene::load_gltf(std::filesystem::path(LUXEL_SOURCE_DIR) / "assets" / "levels" /
+                         "prepared" / "sandbox.glb"));
+    ecs::Registry registry;
+    world::instantiate(registry, level);
+    world::update_animations(registry, 0.0);
+    ecs::TransformSystem(registry).update();
+    world::update_skins(registry);
+    JobSystem jobs(2);
+    lighting::LightingConfig config;
+    config.gather.unmapped_radiance = unmapped_radiance;
+    lighting::LightingSystem lighting(registry, jobs, config);
+    const Stopwatch watch;
+    const lighting::WarmUpResult result = lighting.warm_up(0.0, 60'000.0);
+    const double elapsed = watch.elapsed_ms();
+    return result.end == lighting::WarmUpEnd::Converged ? elapsed : -1.0;
+}
+
+void WarmUpUnmapped(benchmark::State& state) {
+    std::vector<double> on;
+    std::vector<double> off;
+    for (auto _ : state) {
+        for (int round = 0; round < 2; ++round) {
+            off.push_back(sandbox_warm_up_ms(false));
+            on.push_back(sandbox_warm_up_ms(true));
+        }
+    }
+    // Two of each: their means (a median of two is either of them).
+    const auto mean = [](const std::vector<double>& values) {
+        double sum = 0.0;
+        for (double v : values) {
+            sum += v;
+        }
+        return values.empty() ? 0.0 : sum / static_cast<double>(values.size());
+    };
+    const double on_ms = *std::min_element(on.begin(), on.end()) > 0.0 ? mean(on) : -1.0;
+    const double off_ms = *std::min_element(off.begin(), off.end()) > 0.0 ? mean(off) : -1.0;
+    if (!(on_ms > 0.0 && off_ms > 0.0)) {
+        state.SkipWithError("the sandbox level's warm-up did not converge");
+        return;
+    }
+    state.counters["on_ms"] = on_ms;
+    state.counters["off_ms"] = off_ms;
+    state.counters["ratio"] = on_ms / off_ms;
+}
+BENCHMARK(WarmUpUnmapped)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
