@@ -212,9 +212,9 @@ float metered_exposure(const Image& image, int stride) {
     for (int y = 0; y < image.height; y += step) {
         for (int x = 0; x < image.width; x += step) {
             const glm::vec4 p = image.pixel(x, y);
-            const double luminance = 0.2126 * p.r + 0.7152 * p.g + 0.0722 * p.b;
-            if (std::isfinite(luminance) && luminance > 1e-6) {
-                log_sum += std::log(1e-4 + luminance);
+            const double seen = luminance(glm::dvec3(glm::vec3(p)));
+            if (std::isfinite(seen) && seen > 1e-6) {
+                log_sum += std::log(1e-4 + seen);
                 ++count;
             }
         }

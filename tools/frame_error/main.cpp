@@ -112,14 +112,12 @@ luxel::Image side_by_side(const luxel::Image& frame, const luxel::Image& referen
     const int w = frame.width * zoom;
     const int h = frame.height * zoom;
     luxel::Image out(3 * w + 2 * kGap, h, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-    const auto luminance = [](const glm::vec4& c) {
-        return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
-    };
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
             const glm::vec4 a = frame.pixel(x / zoom, y / zoom);
             const glm::vec4 b = reference.pixel(x / zoom, y / zoom);
-            const float d = luminance(a) - luminance(b);
+            const auto d = static_cast<float>(luxel::luminance(glm::dvec3(glm::vec3(a))) -
+                                              luxel::luminance(glm::dvec3(glm::vec3(b))));
             out.set_pixel(x, y, glm::vec4(glm::vec3(a) * exposure, 1.0f));
             out.set_pixel(w + kGap + x, y, glm::vec4(glm::vec3(b) * exposure, 1.0f));
             out.set_pixel(

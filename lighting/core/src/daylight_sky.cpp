@@ -5,6 +5,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "luxel/lighting/core/sky_radiance.hpp"
+#include "luxel/runtime/tone_map.hpp"
 
 // Preetham, Shirley and Smits (1999), appendix A.2: the Perez coefficients of luminance Y and
 // chromaticity x, y as linear functions of turbidity, and the zenith's values as functions of
@@ -115,8 +116,7 @@ SkyRadiance daylight_sky(const glm::vec3& towards_sun, float turbidity,
     // same exact cell integrals a ground below it uses (horizontal_irradiance).
     const glm::dvec3 horizontal =
         lighting::horizontal_irradiance(SkyRadiance(kWidth, kHeight, cells));
-    const double luminance_now =
-        0.2126 * horizontal.r + 0.7152 * horizontal.g + 0.0722 * horizontal.b;
+    const double luminance_now = luxel::luminance(horizontal);
     const double wanted = std::isfinite(horizontal_irradiance)
                               ? std::max(static_cast<double>(horizontal_irradiance), 0.0)
                               : 0.0;

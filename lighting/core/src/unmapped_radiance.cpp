@@ -8,16 +8,13 @@
 
 #include "luxel/lighting/core/irradiance_probes.hpp"
 #include "luxel/lighting/core/ray_scene.hpp"
+#include "luxel/runtime/tone_map.hpp"
 
 namespace luxel::lighting {
 namespace {
 
 bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-double luminance(const glm::vec3& c) {
-    return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
 }
 
 }  // namespace
@@ -91,7 +88,7 @@ glm::vec3 UnmappedRadiance::direct(const glm::vec3& position, const glm::vec3& n
     double total = 0.0;
     for (std::size_t i = 0; i < count; ++i) {
         contribution[i] = unshadowed(lights_[i], origin, normal, towards[i]);
-        total += luminance(contribution[i]);
+        total += luminance(glm::dvec3(contribution[i]));
     }
     if (!(total > 0.0)) {
         return glm::vec3(0.0f);
@@ -99,14 +96,14 @@ glm::vec3 UnmappedRadiance::direct(const glm::vec3& position, const glm::vec3& n
     double pick = u * total;
     std::size_t chosen = count - 1;
     for (std::size_t i = 0; i < count; ++i) {
-        const double share = luminance(contribution[i]);
+        const double share = luminance(glm::dvec3(contribution[i]));
         if (pick < share) {
             chosen = i;
             break;
         }
         pick -= share;
     }
-    const double probability = luminance(contribution[chosen]) / total;
+    const double probability = luminance(glm::dvec3(contribution[chosen])) / total;
     if (!(probability > 0.0) || scene_->occluded(origin, towards[chosen], 1.0f)) {
         return glm::vec3(0.0f);
     }

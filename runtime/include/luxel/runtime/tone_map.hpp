@@ -21,6 +21,12 @@ struct ToneMapSettings {
 [[nodiscard]] float linear_to_srgb(float linear);
 [[nodiscard]] float srgb_to_linear(float encoded);
 
+/// The luminance of linear RGB (Rec. 709 / sRGB primaries): what the eye weighs a colour by,
+/// for meters, light picks and difference pictures.
+[[nodiscard]] inline double luminance(const glm::dvec3& rgb) {
+    return 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b;
+}
+
 /// Maps linear radiance to display-linear [0,1] (not yet sRGB-encoded). NaN maps to 0.
 [[nodiscard]] glm::vec3 tone_map(const glm::vec3& linear, const ToneMapSettings& settings);
 
