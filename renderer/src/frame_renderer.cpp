@@ -23,6 +23,7 @@
 #include "luxel/runtime/error.hpp"
 #include "luxel/runtime/gl_state_guard.hpp"
 #include "luxel/runtime/log.hpp"
+#include "luxel/runtime/program_variants.hpp"
 #include "luxel/runtime/render_target.hpp"
 #include "luxel/runtime/shader_library.hpp"
 #include "mesh_cache.hpp"
@@ -71,9 +72,12 @@ struct FrameRenderer::Impl {
     FrameSettings settings;
     gl::Program gbuffer_program;
     gl::Program shadow_program;
-    gl::Program direct_program;
-    gl::Program indirect_program;
-    gl::Program composite_program;
+    /// The full-screen passes in the variants a frame needs (ProgramVariants): the direct pass
+    /// by the batch's shadow-map shapes, the indirect one by bicubic pages and probes, the
+    /// composite by the caustic layer, the sky and its mask.
+    ProgramVariants direct_programs;
+    ProgramVariants indirect_programs;
+    ProgramVariants composite_programs;
     gl::VertexArray fullscreen = gl::VertexArray::create();
     FrameTargets targets;
     MeshCache meshes;
@@ -121,14 +125,14 @@ struct FrameRenderer::Impl {
                                          {ShaderStage::Fragment, "render/gbuffer.frag"}})),
           shadow_program(shaders.build({{ShaderStage::Vertex, "render/shadow.vert"},
                                         {ShaderStage::Fragment, "render/shadow.frag"}})),
-          direct_program(shaders.build(
-              {{ShaderStage::Vertex, "post/fullscreen.vert"},
-               {ShaderStage::Fragment, "render/direct.frag"}},
-              "#define LIGHTS_PER_BATCH " + std::to_string(LightBatches::kLightsPerBatch) + "\n")),
-          indirect_program(shaders.build({{ShaderStage::Vertex, "post/fullscreen.vert"},
-                                          {ShaderStage::Fragment, "render/indirect.frag"}})),
-          composite_program(shaders.build({{ShaderStage::Vertex, "post/fullscreen.vert"},
-                                           {ShaderStage::Fragment, "render/composite.frag"}})),
+          direct_programs(
+              shaders, "post/fullscreen.vert", "render/direct.frag",
+              {"CUBE_SHADOWS", "MAP_SHADOWS"},
+              "#define LIGHTS_PER_BATCH " + std::to_string(LightBatches::kLightsPerBatch) + "\n"),
+          indirect_programs(shaders, "post/fullscreen.vert", "render/indirect.frag",
+                            {"IIM_BICUBIC", "PROBES"}),
+          composite_programs(shaders, "post/fullscreen.vert", "render/composite.frag",
+                             {"CAUSTIC_LAYER", "SKY", "SKY_MASK"}),
           targets(s.width, s.height, s.anti_aliasing),
           shadows(s.cube_shadow_size, s.map_shadow_size),
           cube_maps(shaders, s.specular_cube_size, s.specular_faces_per_frame),
@@ -251,12 +255,14 @@ struct FrameRenderer::Impl {
         glEnable(GL_BLEND);
         glBlendEquation(GL_FUNC_ADD);
         glBlendFunc(GL_ONE, GL_ONE);
-        direct_program.use();
-        direct_program.set("u_filtered", settings.filtered_shadows ? 1 : 0);
         glBindTextureUnit(0, targets.albedo.id());
         glBindTextureUnit(1, targets.normal.id());
         glBindTextureUnit(2, targets.position.id());
         for (std::size_t batch = 0; batch < LightBatches::batch_count(lights.size()); ++batch) {
+            const gl::Program& program =
+                direct_programs.get(LightBatches::shadow_shapes(lights, batch, shadows));
+            program.use();
+            program.set("u_filtered", settings.filtered_shadows ? 1 : 0);
             batches.bind(lights, batch, shadows);
             draw_fullscreen();
         }
@@ -268,16 +274,17 @@ struct FrameRenderer::Impl {
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
         glViewport(0, 0, targets.width, targets.height);
         clear_colour(fbo);
-        indirect_program.use();
-        indirect_program.set("u_now", static_cast<float>(now_seconds));
-        indirect_program.set("u_bicubic", settings.bicubic_light_maps ? 1 : 0);
-        indirect_program.set("u_camera", camera.position);
+        const gl::Program& program = indirect_programs.get((settings.bicubic_light_maps ? 1u : 0u) |
+                                                           (probes.empty() ? 0u : 2u));
+        program.use();
+        program.set("u_now", static_cast<float>(now_seconds));
+        program.set("u_camera", camera.position);
         glBindTextureUnit(0, targets.albedo.id());
         glBindTextureUnit(1, targets.normal.id());
         glBindTextureUnit(2, targets.position.id());
         glBindTextureUnit(3, targets.lightmap.id());
         lightmaps.bind();
-        probes.bind(indirect_program);
+        probes.bind(program);
         draw_fullscreen();
     }
 
@@ -287,22 +294,24 @@ struct FrameRenderer::Impl {
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
         glViewport(0, 0, targets.width, targets.height);
         const bool caustic = terms.caustics && caustics.texture != 0;
+        // Light-mapped pixels from the caustic layer (FrameSettings::caustic_layer_in_view).
+        const lighting::CausticLightMaps* layer =
+            caustic && own_caustics_shown && settings.caustic_layer_in_view ? own_caustics.layer()
+                                                                            : nullptr;
+        const bool sky_on = sky.present();  // synced by render()
+        const gl::Program& composite_program = composite_programs.get(
+            (layer != nullptr ? 1u : 0u) | (sky_on ? 2u : 0u) | (sky_masked ? 4u : 0u));
         composite_program.use();
         composite_program.set("u_terms", glm::vec4(direct ? 1.0f : 0.0f, indirect ? 1.0f : 0.0f,
                                                    caustic ? 1.0f : 0.0f, specular ? 1.0f : 0.0f));
         composite_program.set("u_emission_on", terms.emission ? 1.0f : 0.0f);
         composite_program.set("u_caustics_irradiance", caustics.irradiance ? 1 : 0);
-        // Light-mapped pixels from the caustic layer (FrameSettings::caustic_layer_in_view).
-        const lighting::CausticLightMaps* layer =
-            caustic && own_caustics_shown && settings.caustic_layer_in_view ? own_caustics.layer()
-                                                                            : nullptr;
         composite_program.set("u_caustic_layer", layer != nullptr ? 1 : 0);
         if (layer != nullptr) {
             lightmaps.bind();  // the page sizes
             glBindTextureUnit(3, targets.lightmap.id());
             layer->bind();
         }
-        const bool sky_on = sky.present();  // synced by render()
         composite_program.set("u_sky_on", sky_on ? 1 : 0);
         composite_program.set("u_inverse_view_projection",
                               glm::inverse(camera.projection * camera.view));

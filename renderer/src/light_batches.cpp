@@ -33,6 +33,18 @@ LightBatches::LightBatches()
       unused_cube_(unused_shadow_map(GL_TEXTURE_CUBE_MAP_ARRAY)),
       unused_map_(unused_shadow_map(GL_TEXTURE_2D_ARRAY)) {}
 
+std::uint32_t LightBatches::shadow_shapes(const std::vector<FrameLight>& lights, std::size_t batch,
+                                          const ShadowMaps& shadows) {
+    std::uint32_t shapes = 0;
+    const std::size_t first = batch * kLightsPerBatch;
+    for (std::size_t i = first; i < std::min(first + kLightsPerBatch, lights.size()); ++i) {
+        if (const ShadowMap* map = shadows.find(lights[i].entity); map != nullptr && map->valid) {
+            shapes |= map->kind == ShadowKind::Cube ? kCubeShadows : kMapShadows;
+        }
+    }
+    return shapes;
+}
+
 void LightBatches::bind(const std::vector<FrameLight>& lights, std::size_t batch,
                         const ShadowMaps& shadows) {
     GpuLightBatch data;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "frame_lights.hpp"
@@ -25,6 +26,14 @@ class LightBatches {
     /// Uploads batch `batch` of `lights` and binds it with the shadow maps. A shape with no map
     /// gets a 1 x 1 unused array, so both samplers always have a complete texture.
     void bind(const std::vector<FrameLight>& lights, std::size_t batch, const ShadowMaps& shadows);
+
+    /// The shadow-map shapes the lights of `batch` read, as bind() describes them: kCubeShadows,
+    /// kMapShadows (a perspective or orthographic map), or neither. direct_lights.glsl's
+    /// variants compile the other shape out.
+    static constexpr std::uint32_t kCubeShadows = 1u;
+    static constexpr std::uint32_t kMapShadows = 2u;
+    [[nodiscard]] static std::uint32_t shadow_shapes(const std::vector<FrameLight>& lights,
+                                                     std::size_t batch, const ShadowMaps& shadows);
 
   private:
     gl::Buffer block_;

@@ -5,6 +5,19 @@
 // by albedo / pi here) or radiance; with u_caustic_layer, light-mapped pixels read the caustic
 // layer of the light maps instead (FrameSettings::caustic_layer_in_view). Tone mapping happens
 // later, for display only.
+//
+// Variants (renderer/src/program_variants.hpp) compile out what a frame does not have: the
+// caustic layer (CAUSTIC_LAYER), the sky (SKY) and its edge mask (SKY_MASK). All on where not
+// defined.
+#ifndef CAUSTIC_LAYER
+#define CAUSTIC_LAYER 1
+#endif
+#ifndef SKY
+#define SKY 1
+#endif
+#ifndef SKY_MASK
+#define SKY_MASK 1
+#endif
 
 #include "common/radiometry.glsl"
 #include "common/sky.glsl"
@@ -84,6 +97,7 @@ vec3 surface_radiance(ivec2 pixel) {
         if (u_caustics_irradiance != 0) {
             caustic = lambert_radiance(texelFetch(u_albedo, pixel, 0).rgb, caustic);
         }
+#if CAUSTIC_LAYER
         vec4 lookup = u_caustic_layer ? texelFetch(u_lightmap, pixel, 0) : vec4(-1.0);
         if (lookup.z >= 0.0) {
             // Where a layer texel covers a pixel or less the layer is shown; where the camera is
@@ -94,6 +108,7 @@ vec3 surface_radiance(ivec2 pixel) {
                                                     texelFetch(u_albedo, pixel, 0).rgb);
             caustic = mix(caustic, layer, weight);
         }
+#endif
         l += caustic;
     }
     if (u_terms.w > 0.0) {
@@ -130,20 +145,31 @@ float sky_share(ivec2 pixel) {
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     bool surface = texelFetch(u_position, pixel, 0).w != 0.0;
+#if SKY && SKY_MASK
     float sky_part = u_sky_on != 0 ? sky_share(pixel) : 0.0;
+#else
+    float sky_part = 0.0;
+#endif
     if (surface) {
         vec3 l = surface_radiance(pixel);
+#if SKY && SKY_MASK
         // A silhouette against the sky: the pixel shows the sky over the share the surfaces
         // leave (SkyCoverage: one sample at the centre cannot tell how much that is).
         if (sky_part > 0.0) {
             l = mix(l, sky_through_pixel(), sky_part);
         }
+#endif
         out_radiance = vec4(l, 1.0);
         return;
     }
     // Nothing drawn at the centre: the sky along the pixel's ray, or no light at all from the
     // void.
+#if SKY
     vec3 l = u_sky_on != 0 ? sky_through_pixel() : vec3(0.0);
+#else
+    vec3 l = vec3(0.0);
+#endif
+#if SKY_MASK
     float surface_part = u_coverage_scale > 0 ? 1.0 - sky_part : 0.0;
     if (surface_part > 0.0) {
         // Surfaces cover part of it: their light as the neighbours whose centres they cover
@@ -165,5 +191,6 @@ void main() {
             l = mix(l, sum / count, surface_part);
         }
     }
+#endif
     out_radiance = vec4(l, 1.0);
 }

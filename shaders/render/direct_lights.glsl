@@ -6,6 +6,15 @@
 #ifndef LIGHTS_PER_BATCH
 #define LIGHTS_PER_BATCH 4
 #endif
+// The shadow-map shapes the batch's lights use (variants of the direct pass,
+// renderer/src/program_variants.hpp): a shape no light of the batch has is compiled out. Both
+// where not defined.
+#ifndef CUBE_SHADOWS
+#define CUBE_SHADOWS 1
+#endif
+#ifndef MAP_SHADOWS
+#define MAP_SHADOWS 1
+#endif
 
 layout(std140, binding = 0) uniform LightBatch {
     Light u_lights[LIGHTS_PER_BATCH];
@@ -29,8 +38,14 @@ vec3 batch_irradiance(vec3 p, vec3 n) {
         }
         float lit = 1.0;
         if (light.intensity_shadow.w >= 0.0) {
+#if CUBE_SHADOWS && MAP_SHADOWS
             lit = int(light.params.w) == SHADOW_CUBE ? cube_shadow(light, p, n, filtered)
                                                      : map_shadow(light, p, n, filtered);
+#elif CUBE_SHADOWS
+            lit = cube_shadow(light, p, n, filtered);
+#elif MAP_SHADOWS
+            lit = map_shadow(light, p, n, filtered);
+#endif
         }
         irradiance += e * lit;
     }

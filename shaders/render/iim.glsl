@@ -16,8 +16,11 @@ layout(std430, binding = 1) readonly buffer PageSizes {
 };
 
 uniform float u_now;    // seconds, the clock the IIM was committed with
-// Cubic B-spline filtering of the pages instead of bilinear (FrameSettings::bicubic_light_maps).
-uniform bool u_bicubic = false;
+// Cubic B-spline filtering of the pages instead of bilinear (FrameSettings::bicubic_light_maps):
+// a variant of the program (renderer/src/program_variants.hpp), bilinear where not defined.
+#ifndef IIM_BICUBIC
+#define IIM_BICUBIC 0
+#endif
 
 vec3 iim_shown(ivec3 texel) {
     vec3 previous = texelFetch(u_iim_previous, texel, 0).rgb;
@@ -87,7 +90,11 @@ vec3 iim_radiance(vec2 uv, float layer_value, bool irradiance, vec3 albedo) {
     float extent = float(size);
     // Texel centres sit at integer + 0.5; clamp so every tap stays on the page.
     vec2 f = clamp(uv * extent - 0.5, vec2(0.0), vec2(extent - 1.0));
-    vec3 value = u_bicubic ? iim_bicubic(f, layer, size) : iim_bilinear(f, layer, size);
+#if IIM_BICUBIC
+    vec3 value = iim_bicubic(f, layer, size);
+#else
+    vec3 value = iim_bilinear(f, layer, size);
+#endif
     value = max(value, vec3(0.0));
     return irradiance ? lambert_radiance(albedo, value) : value;
 }
