@@ -12,7 +12,10 @@ namespace luxel::renderer {
 /// Anti-aliasing of the composed frame where the G-buffer shows two surfaces meeting
 /// (shaders/post/edge_aa.frag, docs/METHOD.md §8.4): reads FrameTargets::composed and the
 /// G-buffer's positions and normals, writes FrameTargets::frame. Pixels away from geometric
-/// edges are copied exactly, so flat regions, textures, shadows and light maps are untouched.
+/// edges are copied exactly, so flat regions, textures, shadows and light maps are untouched:
+/// the frame is copied whole, a mask pass marks the edge pixels in FrameTargets::edge_stencil
+/// (shaders/post/edge_mask.frag) and the filter runs under the stencil test, so only blocks
+/// with an edge pixel are shaded by it.
 class EdgeAntiAliasing {
   public:
     explicit EdgeAntiAliasing(const ShaderLibrary& shaders);
@@ -24,6 +27,7 @@ class EdgeAntiAliasing {
     void run(const FrameTargets& targets, bool sky_resolved) const;
 
   private:
+    gl::Program mask_;
     gl::Program program_;
 };
 

@@ -63,6 +63,9 @@ FrameTargets::FrameTargets(int w, int h, bool anti_aliasing) : width(w), height(
         composed = target_texture(GL_RGBA32F, w, h);
         gl::set_sampling(composed.id(), gl::Sampling::Filtered);
         composed_target = single_target(composed, "composed target");
+        edge_stencil = gl::Renderbuffer::create(GL_STENCIL_INDEX8, w, h);
+        frame_target.attach(GL_STENCIL_ATTACHMENT, edge_stencil);
+        frame_target.check_complete("frame target with the edge mask");
     }
     gl::check_error("FrameTargets");
 }

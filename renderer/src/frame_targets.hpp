@@ -35,6 +35,9 @@ struct FrameTargets {
     /// composite writes `frame` and these stay empty.
     gl::Texture composed;
     gl::Framebuffer composed_target;
+    /// With anti-aliasing only: STENCIL_INDEX8 on `frame_target`, the edge pass's mask of the
+    /// pixels it filters (EdgeAntiAliasing).
+    gl::Renderbuffer edge_stencil;
 
     /// Allocates everything at `width` x `height` (throws luxel::Error for a bad size or an
     /// incomplete framebuffer); `anti_aliasing` adds the composed target.

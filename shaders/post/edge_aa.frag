@@ -17,25 +17,20 @@
 layout(binding = 0) uniform sampler2D u_frame;     // composed linear radiance, bilinear
 layout(binding = 1) uniform sampler2D u_position;  // world position, w = 1 where covered
 layout(binding = 2) uniform sampler2D u_normal;    // world normal
-uniform int u_sky_resolved;  // 1: silhouettes against the sky were resolved by coverage
 
 layout(location = 0) out vec4 out_radiance;
+
+#include "post/geometric_edges.glsl"
 
 // Contrast below which an edge is left alone: 8% of the neighbourhood's brightest pixel.
 const float kMinContrast = 0.08;
 // A neighbourhood darker than this is black to any exposure (and 1 / it would overflow).
 const float kBlack = 1e-30;
-// A turn of the normal past 30 degrees between neighbours is a crease.
-const float kCreaseCos = 0.866;
-// A neighbour more than 0.25 of its distance off the pixel's tangent plane lies on another
-// surface (a step in depth); neighbours on one plane, even at grazing angles, give 0.
-const float kOffPlane = 0.25;
 // The search along the edge: a first step of one pixel each way, then these strides, one at a
 // time near and longer far (up to 25 pixels from the centre).
 const int kStrides = 9;
 const float kStride[kStrides] = float[](1.0, 1.0, 1.0, 1.5, 2.0, 2.0, 4.0, 4.0, 8.0);
 
-ivec2 frame_size;
 float to_contrast;  // 1 / the neighbourhood's brightest luminance
 
 vec3 radiance_at(ivec2 p) {
@@ -56,34 +51,6 @@ float luma_at(ivec2 p) {
 
 float luma_at_uv(vec2 uv) {
     return luma(textureLod(u_frame, uv, 0.0).rgb);
-}
-
-// Whether the pixel at position xp with normal np and pixel q show different surfaces.
-bool surfaces_differ(vec4 xp, vec3 np, ivec2 q) {
-    q = clamp(q, ivec2(0), frame_size - 1);
-    vec4 xq = texelFetch(u_position, q, 0);
-    if (xp.w != xq.w) {
-        // A surface against the sky: the composite mixed the two by their coverage already.
-        return u_sky_resolved == 0;
-    }
-    if (xp.w == 0.0) {
-        return false;  // sky on both sides
-    }
-    vec3 nq = texelFetch(u_normal, q, 0).xyz;
-    if (dot(np, nq) < kCreaseCos) {
-        return true;
-    }
-    vec3 between = xq.xyz - xp.xyz;
-    float apart = length(between);
-    return abs(dot(np, between)) > kOffPlane * apart || abs(dot(nq, between)) > kOffPlane * apart;
-}
-
-bool on_geometric_edge(ivec2 p) {
-    // The pixel's own position and normal are read once for its four neighbours.
-    vec4 xp = texelFetch(u_position, p, 0);
-    vec3 np = texelFetch(u_normal, p, 0).xyz;
-    return surfaces_differ(xp, np, p + ivec2(1, 0)) || surfaces_differ(xp, np, p - ivec2(1, 0)) ||
-           surfaces_differ(xp, np, p + ivec2(0, 1)) || surfaces_differ(xp, np, p - ivec2(0, 1));
 }
 
 void main() {
