@@ -13,7 +13,7 @@ namespace luxel::renderer {
 /// (shaders/post/edge_aa.frag, docs/METHOD.md §8.4): reads FrameTargets::composed and the
 /// G-buffer's positions and normals, writes FrameTargets::frame. Pixels away from geometric
 /// edges are copied exactly, so flat regions, textures, shadows and light maps are untouched:
-/// the frame is copied whole, a mask pass marks the edge pixels in FrameTargets::edge_stencil
+/// the frame is copied whole, a mask pass marks the edge pixels in FrameTargets::stencil
 /// (shaders/post/edge_mask.frag) and the filter runs under the stencil test, so only blocks
 /// with an edge pixel are shaded by it.
 class EdgeAntiAliasing {

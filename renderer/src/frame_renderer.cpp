@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "composite_pass.hpp"
 #include "edge_anti_aliasing.hpp"
 #include "fill_budget.hpp"
 #include "frame_lights.hpp"
@@ -73,11 +74,10 @@ struct FrameRenderer::Impl {
     gl::Program gbuffer_program;
     gl::Program shadow_program;
     /// The full-screen passes in the variants a frame needs (ProgramVariants): the direct pass
-    /// by the batch's shadow-map shapes, the indirect one by bicubic pages and probes, the
-    /// composite by the caustic layer, the sky and its mask.
+    /// by the batch's shadow-map shapes, the indirect one by bicubic pages and probes.
     ProgramVariants direct_programs;
     ProgramVariants indirect_programs;
-    ProgramVariants composite_programs;
+    CompositePass composite;
     gl::VertexArray fullscreen = gl::VertexArray::create();
     FrameTargets targets;
     MeshCache meshes;
@@ -131,8 +131,7 @@ struct FrameRenderer::Impl {
               "#define LIGHTS_PER_BATCH " + std::to_string(LightBatches::kLightsPerBatch) + "\n"),
           indirect_programs(shaders, "post/fullscreen.vert", "render/indirect.frag",
                             {"IIM_BICUBIC", "PROBES"}),
-          composite_programs(shaders, "post/fullscreen.vert", "render/composite.frag",
-                             {"CAUSTIC_LAYER", "SKY", "SKY_MASK"}),
+          composite(shaders),
           targets(s.width, s.height, s.anti_aliasing),
           shadows(s.cube_shadow_size, s.map_shadow_size),
           cube_maps(shaders, s.specular_cube_size, s.specular_faces_per_frame),
@@ -289,47 +288,27 @@ struct FrameRenderer::Impl {
     }
 
     void composite_pass(const FrameCamera& camera, bool direct, bool indirect, bool specular) {
-        // With anti-aliasing the sum goes to the composed target, which the edge pass reads.
-        const GLuint fbo = anti_aliasing ? targets.composed_target.id() : targets.frame_target.id();
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
-        glViewport(0, 0, targets.width, targets.height);
-        const bool caustic = terms.caustics && caustics.texture != 0;
-        // Light-mapped pixels from the caustic layer (FrameSettings::caustic_layer_in_view).
-        const lighting::CausticLightMaps* layer =
-            caustic && own_caustics_shown && settings.caustic_layer_in_view ? own_caustics.layer()
-                                                                            : nullptr;
-        const bool sky_on = sky.present();  // synced by render()
-        const gl::Program& composite_program = composite_programs.get(
-            (layer != nullptr ? 1u : 0u) | (sky_on ? 2u : 0u) | (sky_masked ? 4u : 0u));
-        composite_program.use();
-        composite_program.set("u_terms", glm::vec4(direct ? 1.0f : 0.0f, indirect ? 1.0f : 0.0f,
-                                                   caustic ? 1.0f : 0.0f, specular ? 1.0f : 0.0f));
-        composite_program.set("u_emission_on", terms.emission ? 1.0f : 0.0f);
-        composite_program.set("u_caustics_irradiance", caustics.irradiance ? 1 : 0);
-        composite_program.set("u_caustic_layer", layer != nullptr ? 1 : 0);
-        if (layer != nullptr) {
-            lightmaps.bind();  // the page sizes
-            glBindTextureUnit(3, targets.lightmap.id());
-            layer->bind();
+        CompositeInputs in;
+        in.direct = direct;
+        in.indirect = indirect;
+        in.specular = specular;
+        in.emission = terms.emission;
+        in.caustics = terms.caustics ? caustics.texture : 0;
+        in.caustics_irradiance = caustics.irradiance;
+        if (in.caustics != 0 && own_caustics_shown && settings.caustic_layer_in_view) {
+            in.caustic_layer = own_caustics.layer();
+            in.lightmaps = &lightmaps;
         }
-        composite_program.set("u_sky_on", sky_on ? 1 : 0);
-        composite_program.set("u_inverse_view_projection",
-                              glm::inverse(camera.projection * camera.view));
-        composite_program.set("u_camera", camera.position);
-        composite_program.set("u_viewport", glm::vec2(static_cast<float>(targets.width),
-                                                      static_cast<float>(targets.height)));
-        glBindTextureUnit(9, sky_on ? sky.id() : black.id());
-        // The sky mask, where there is one: scale^2 sub-samples per pixel (0: none).
-        composite_program.set("u_coverage_scale", sky_masked ? sky_edges->scale() : 0);
-        glBindTextureUnit(10, sky_masked ? sky_edges->texture() : black.id());
-        glBindTextureUnit(0, targets.albedo.id());
-        glBindTextureUnit(2, targets.position.id());
-        glBindTextureUnit(4, targets.emission.id());
-        glBindTextureUnit(5, targets.direct.id());
-        glBindTextureUnit(6, targets.indirect.id());
-        glBindTextureUnit(7, caustic ? caustics.texture : black.id());
-        glBindTextureUnit(8, specular ? targets.specular_term.id() : black.id());
-        draw_fullscreen();
+        in.sky = sky.present() ? sky.id() : 0;  // synced by render()
+        if (sky_masked) {
+            in.sky_mask = sky_edges->texture();
+            in.sky_mask_scale = sky_edges->scale();
+        }
+        in.black = black.id();
+        // With anti-aliasing the sum goes to the composed target, which the edge pass reads.
+        composite.run(targets,
+                      anti_aliasing ? targets.composed_target.id() : targets.frame_target.id(),
+                      camera, in);
     }
 
     void render(const FrameCamera& camera, double now_seconds) {

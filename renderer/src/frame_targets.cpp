@@ -63,11 +63,22 @@ FrameTargets::FrameTargets(int w, int h, bool anti_aliasing) : width(w), height(
         composed = target_texture(GL_RGBA32F, w, h);
         gl::set_sampling(composed.id(), gl::Sampling::Filtered);
         composed_target = single_target(composed, "composed target");
-        edge_stencil = gl::Renderbuffer::create(GL_STENCIL_INDEX8, w, h);
-        frame_target.attach(GL_STENCIL_ATTACHMENT, edge_stencil);
-        frame_target.check_complete("frame target with the edge mask");
+        ensure_stencil();
     }
     gl::check_error("FrameTargets");
+}
+
+void FrameTargets::ensure_stencil() {
+    if (stencil.id() != 0) {
+        return;
+    }
+    stencil = gl::Renderbuffer::create(GL_STENCIL_INDEX8, width, height);
+    frame_target.attach(GL_STENCIL_ATTACHMENT, stencil);
+    frame_target.check_complete("frame target with a stencil");
+    if (composed_target.id() != 0) {
+        composed_target.attach(GL_STENCIL_ATTACHMENT, stencil);
+        composed_target.check_complete("composed target with a stencil");
+    }
 }
 
 }  // namespace luxel::renderer

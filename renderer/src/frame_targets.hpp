@@ -35,14 +35,18 @@ struct FrameTargets {
     /// composite writes `frame` and these stay empty.
     gl::Texture composed;
     gl::Framebuffer composed_target;
-    /// With anti-aliasing only: STENCIL_INDEX8 on `frame_target`, the edge pass's mask of the
-    /// pixels it filters (EdgeAntiAliasing).
-    gl::Renderbuffer edge_stencil;
+    /// STENCIL_INDEX8 on `frame_target` and `composed_target`, made by ensure_stencil() for the
+    /// passes that run on marked pixels only: the edge pass (EdgeAntiAliasing) and the
+    /// composite's mixing by the sky mask. Empty until one of them needs it.
+    gl::Renderbuffer stencil;
 
     /// Allocates everything at `width` x `height` (throws luxel::Error for a bad size or an
     /// incomplete framebuffer); `anti_aliasing` adds the composed target.
     FrameTargets(int width, int height, bool anti_aliasing);
     FrameTargets() = default;
+
+    /// Makes `stencil` and attaches it, once.
+    void ensure_stencil();
 };
 
 }  // namespace luxel::renderer

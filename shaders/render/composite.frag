@@ -6,9 +6,10 @@
 // layer of the light maps instead (FrameSettings::caustic_layer_in_view). Tone mapping happens
 // later, for display only.
 //
-// Variants (renderer/src/program_variants.hpp) compile out what a frame does not have: the
-// caustic layer (CAUSTIC_LAYER), the sky (SKY) and its edge mask (SKY_MASK). All on where not
-// defined.
+// Variants (luxel/runtime/program_variants.hpp) compile out what a frame does not have: the
+// caustic layer (CAUSTIC_LAYER), the sky (SKY) and the mixing by its edge mask (SKY_MASK). With
+// a mask the frame draws twice: every pixel without the mixing, then, under a stencil of the
+// pixels the mask mixes (sky_fill_mask.frag), those with it. All on where not defined.
 #ifndef CAUSTIC_LAYER
 #define CAUSTIC_LAYER 1
 #endif
@@ -24,6 +25,7 @@
 // iim.glsl for the page sizes the caustic layer is read with.
 #include "render/iim.glsl"
 #include "render/caustic_light_map.glsl"
+#include "render/sky_share.glsl"
 
 layout(binding = 0) uniform sampler2D u_albedo;
 layout(binding = 2) uniform sampler2D u_position;
@@ -44,11 +46,6 @@ uniform vec3 u_camera;
 uniform vec2 u_viewport;
 
 layout(location = 0) out vec4 out_radiance;
-
-// The sky mask (renderer/src/sky_coverage.hpp): u_coverage_scale^2 sub-samples per pixel, 1
-// where a surface covers one; u_coverage_scale 0 when there is none.
-layout(binding = 10) uniform sampler2D u_coverage;
-uniform int u_coverage_scale;
 
 // How many caustic-layer texels one pixel steps over at `pixel` (whose G-buffer light-map entry
 // is `lookup`, on a page): per screen axis the smaller step to a neighbour on the same page (the
@@ -125,21 +122,6 @@ vec3 sky_through_pixel() {
     vec2 ndc = 2.0 * gl_FragCoord.xy / u_viewport - 1.0;
     vec4 far = u_inverse_view_projection * vec4(ndc, 0.5, 1.0);
     return sky_radiance(u_sky, far.xyz / far.w - u_camera);
-}
-
-// The share of the pixel's sub-samples that show the sky (0 without a mask).
-float sky_share(ivec2 pixel) {
-    if (u_coverage_scale <= 0) {
-        return 0.0;
-    }
-    float covered = 0.0;
-    ivec2 base = pixel * u_coverage_scale;
-    for (int y = 0; y < u_coverage_scale; ++y) {
-        for (int x = 0; x < u_coverage_scale; ++x) {
-            covered += texelFetch(u_coverage, base + ivec2(x, y), 0).r;
-        }
-    }
-    return 1.0 - covered / float(u_coverage_scale * u_coverage_scale);
 }
 
 void main() {

@@ -7,7 +7,7 @@
 #define LIGHTS_PER_BATCH 4
 #endif
 // The shadow-map shapes the batch's lights use (variants of the direct pass,
-// renderer/src/program_variants.hpp): a shape no light of the batch has is compiled out. Both
+// luxel/runtime/program_variants.hpp): a shape no light of the batch has is compiled out. Both
 // where not defined.
 #ifndef CUBE_SHADOWS
 #define CUBE_SHADOWS 1

@@ -17,7 +17,7 @@ layout(std430, binding = 1) readonly buffer PageSizes {
 
 uniform float u_now;    // seconds, the clock the IIM was committed with
 // Cubic B-spline filtering of the pages instead of bilinear (FrameSettings::bicubic_light_maps):
-// a variant of the program (renderer/src/program_variants.hpp), bilinear where not defined.
+// a variant of the program (luxel/runtime/program_variants.hpp), bilinear where not defined.
 #ifndef IIM_BICUBIC
 #define IIM_BICUBIC 0
 #endif

@@ -1,7 +1,7 @@
 #version 450 core
 // Indirect light per pixel: from the IIM pages at the pixel's light-map UV (render/iim.glsl),
 // or, for a receiver without a light map, from the irradiance probes
-// (render/irradiance_probes.glsl). PROBES 0 (a variant, renderer/src/program_variants.hpp) leaves
+// (render/irradiance_probes.glsl). PROBES 0 (a variant, luxel/runtime/program_variants.hpp) leaves
 // the probes out for a frame that has none: such pixels get no indirect light, as from empty
 // probes.
 
