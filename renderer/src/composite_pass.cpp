@@ -3,6 +3,7 @@
 #include <glm/glm.hpp>
 
 #include "luxel/runtime/shader_library.hpp"
+#include "stencil_mask.hpp"
 
 namespace luxel::renderer {
 namespace {
@@ -67,22 +68,15 @@ void CompositePass::run(FrameTargets& targets, GLuint framebuffer, const FrameCa
     }
     // The pixels the mask mixes, marked in the stencil, then drawn again with the mixing.
     targets.ensure_stencil();
-    const GLint clear = 0;
-    glStencilMask(0xFF);
-    glClearNamedFramebufferiv(framebuffer, GL_STENCIL, 0, &clear);
-    glEnable(GL_STENCIL_TEST);
-    glStencilFunc(GL_ALWAYS, 1, 0xFF);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    fill_mask_.use();
-    fill_mask_.set("u_sky_on", sky ? 1 : 0);
-    fill_mask_.set("u_coverage_scale", in.sky_mask_scale);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glStencilFunc(GL_EQUAL, 1, 0xFF);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    draw(variant | kSkyMask);
-    glDisable(GL_STENCIL_TEST);
+    shade_marked(
+        framebuffer,
+        [&] {
+            fill_mask_.use();
+            fill_mask_.set("u_sky_on", sky ? 1 : 0);
+            fill_mask_.set("u_coverage_scale", in.sky_mask_scale);
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+        },
+        [&] { draw(variant | kSkyMask); });
 }
 
 }  // namespace luxel::renderer
