@@ -77,6 +77,33 @@ TEST(FrameError, APictureShowsThePatchInTheDifferencePanel) {
     EXPECT_FALSE(std::filesystem::exists(big));
 }
 
+// --crop: the picture of a corner only, at the whole reference's exposure; a crop outside the
+// frame or not four numbers is a usage error (exit 2) and leaves no file.
+TEST(FrameError, ACropPicturesOnlyItsPixels) {
+    const Frames f("crop");
+    const std::filesystem::path picture = f.dir / "crop.png";
+    const auto r = run_command(kTool, quoted(f.frame) + " " + quoted(f.reference) + " --picture " +
+                                          quoted(picture) + " --crop 8,4,20,10 --zoom 3");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const luxel::Image8 png = luxel::read_png(picture);
+    ASSERT_EQ(png.width, 3 * 12 * 3 + 2 * 4);
+    ASSERT_EQ(png.height, 6 * 3);
+    const int difference = 2 * (12 * 3 + 4);
+    // The crop's first 8 x 4 pixels are the patch (blue in the difference), the rest is not.
+    EXPECT_GT(png.at(difference + 3 * 2, 3 * 1, 2), 0);
+    EXPECT_EQ(png.at(difference + 3 * 10, 3 * 1, 2), 0);
+    EXPECT_EQ(png.at(difference + 3 * 2, 3 * 5, 2), 0);
+    for (const std::string bad : {"8,4,40,10", "8,4,8,10", "8,4,20"}) {
+        const std::filesystem::path none = f.dir / "none.png";
+        const auto refused =
+            run_command(kTool, quoted(f.frame) + " " + quoted(f.reference) + " --picture " +
+                                   quoted(none) + " --crop " + bad);
+        EXPECT_EQ(refused.exit_code, 2) << bad << ": " << refused.output;
+        EXPECT_NE(refused.output.find("--crop " + bad), std::string::npos) << refused.output;
+        EXPECT_FALSE(std::filesystem::exists(none)) << bad;
+    }
+}
+
 TEST(FrameError, ARegionShowsThePatchTheWholeFrameDilutes) {
     const Frames f("patch");
     const auto r = run_command(kTool, quoted(f.frame) + " " + quoted(f.reference) +

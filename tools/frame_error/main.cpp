@@ -7,7 +7,9 @@
 // in both frames, which lowers a path-traced reference's own noise by N where the error looked
 // for is wider than a block (docs/RESULTS.md, "Contact"). --picture OUT.png writes what the
 // numbers say as a picture: the frame, the reference and their difference side by side at one
-// exposure (the reference's metered one, or --exposure), each pixel --zoom times.
+// exposure (the reference's metered one, or --exposure), each pixel --zoom times, of the whole
+// frame or of --crop X0,Y0,X1,Y1 (a corner worth a close look, the exposure still metered over
+// the whole reference).
 
 #include <algorithm>
 #include <cmath>
@@ -35,11 +37,12 @@ struct Region {
     std::string name;
 };
 
-Region parse_region(const std::string& text) {
+/// `text` of the option `option` (--region, --crop).
+Region parse_region(const std::string& text, const std::string& option = "--region") {
     Region r;
     char tail = 0;
     if (std::sscanf(text.c_str(), "%d,%d,%d,%d%c", &r.x0, &r.y0, &r.x1, &r.y1, &tail) != 4) {
-        throw luxel::UsageError("--region " + text + ": not X0,Y0,X1,Y1 (whole pixels)");
+        throw luxel::UsageError(option + " " + text + ": not X0,Y0,X1,Y1 (whole pixels)");
     }
     r.name = "region " + text;
     return r;
@@ -102,20 +105,21 @@ Figures compare(const luxel::Image& frame, const luxel::Image& reference, const 
     return out;
 }
 
-/// frame | reference | difference, `zoom` x `zoom` screen pixels a pixel, 4 pixels apart. The
+/// frame | reference | difference over `crop`, `zoom` x `zoom` screen pixels a pixel, 4 pixels
+/// apart. The
 /// first two at `exposure`; the difference as a signed map at the same exposure (red where the
 /// frame is brighter, blue where it is darker, in luminance), so a patch plainly wrong shows
 /// at once where the numbers only say "somewhere".
-luxel::Image side_by_side(const luxel::Image& frame, const luxel::Image& reference, int zoom,
-                          float exposure) {
+luxel::Image side_by_side(const luxel::Image& frame, const luxel::Image& reference,
+                          const Region& crop, int zoom, float exposure) {
     constexpr int kGap = 4;
-    const int w = frame.width * zoom;
-    const int h = frame.height * zoom;
+    const int w = (crop.x1 - crop.x0) * zoom;
+    const int h = (crop.y1 - crop.y0) * zoom;
     luxel::Image out(3 * w + 2 * kGap, h, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
-            const glm::vec4 a = frame.pixel(x / zoom, y / zoom);
-            const glm::vec4 b = reference.pixel(x / zoom, y / zoom);
+            const glm::vec4 a = frame.pixel(crop.x0 + x / zoom, crop.y0 + y / zoom);
+            const glm::vec4 b = reference.pixel(crop.x0 + x / zoom, crop.y0 + y / zoom);
             const auto d = static_cast<float>(luxel::luminance(glm::dvec3(glm::vec3(a))) -
                                               luxel::luminance(glm::dvec3(glm::vec3(b))));
             out.set_pixel(x, y, glm::vec4(glm::vec3(a) * exposure, 1.0f));
@@ -160,6 +164,10 @@ int run(int argc, char** argv) {
     app.add_option("--picture", picture_file,
                    "also write frame | reference | difference (red: the frame brighter, blue: "
                    "darker, 4x the exposure) side by side as a PNG");
+    std::string crop_text;
+    app.add_option("--crop", crop_text,
+                   "X0,Y0,X1,Y1: the picture shows these pixels only (the exposure is still "
+                   "metered over the whole reference)");
     app.add_option("--zoom", zoom, "screen pixels per frame pixel in the picture")
         ->check(CLI::Range(1, 16))
         ->capture_default_str();
@@ -184,14 +192,23 @@ int run(int argc, char** argv) {
     check_finite(frame, frame_file);
     check_finite(reference, reference_file);
     Region whole{0, 0, frame.width, frame.height, "whole frame"};
-    regions.insert(regions.begin(), whole);
-    for (const Region& r : regions) {
+    const auto check_inside = [&](const Region& r, int smallest) {
         if (r.x0 < 0 || r.y0 < 0 || r.x1 > frame.width || r.y1 > frame.height ||
-            r.x1 - r.x0 < block || r.y1 - r.y0 < block) {
+            r.x1 - r.x0 < smallest || r.y1 - r.y0 < smallest) {
             throw luxel::UsageError(r.name + ": not inside the " + std::to_string(frame.width) +
                                     "x" + std::to_string(frame.height) +
                                     " frame, or smaller than one block");
         }
+    };
+    Region crop = whole;
+    if (!crop_text.empty()) {
+        crop = parse_region(crop_text, "--crop");
+        crop.name = "--crop " + crop_text;
+        check_inside(crop, 1);
+    }
+    regions.insert(regions.begin(), whole);
+    for (const Region& r : regions) {
+        check_inside(r, block);
         const Figures f = compare(frame, reference, r, block);
         char line[512];
         std::snprintf(line, sizeof(line),
@@ -205,14 +222,14 @@ int run(int argc, char** argv) {
     if (!picture_file.empty()) {
         // Checked before the picture is allocated: 3 panels of (W zoom) x (H zoom) RGBA floats.
         constexpr double kMaxPicturePixels = 64.0 * 1024.0 * 1024.0;
-        if (3.0 * frame.width * zoom * frame.height * zoom > kMaxPicturePixels) {
+        if (3.0 * (crop.x1 - crop.x0) * zoom * (crop.y1 - crop.y0) * zoom > kMaxPicturePixels) {
             throw luxel::UsageError("--zoom " + std::to_string(zoom) + ": the picture of a " +
-                                    std::to_string(frame.width) + "x" +
-                                    std::to_string(frame.height) +
+                                    std::to_string(crop.x1 - crop.x0) + "x" +
+                                    std::to_string(crop.y1 - crop.y0) +
                                     " frame would exceed 64 Mpixels; use a smaller zoom");
         }
         const float shown = exposure > 0.0f ? exposure : luxel::metered_exposure(reference);
-        luxel::write_png(picture_file, side_by_side(frame, reference, zoom, shown),
+        luxel::write_png(picture_file, side_by_side(frame, reference, crop, zoom, shown),
                          luxel::ToneMapSettings{.exposure = 1.0f});
         std::cout << "picture: " << picture_file << " (exposure " << shown << ")\n";
     }
