@@ -9,8 +9,12 @@ namespace luxel::lighting {
 namespace {
 
 /// Texels per full turn and per half turn at least: a grid coarser than this (a uniform sky
-/// is 1 x 2 cells) is repeated cell by cell up to it, so the shader's bilinear filter blurs
-/// only a thin band at each cell's edge (the horizon of a uniform sky stays sharp).
+/// is 1 x 2 cells) is repeated cell by cell up to it. The texture is read without filtering, so
+/// a direction reads its cell's radiance, as SkyRadiance::radiance (and so luxel-ref) does: a
+/// bilinear filter had blended a texel's width across every cell's edge, and across the
+/// horizon, where the daylight sky meets its ground with a step, it drew a 4-pixel gradient
+/// where the reference has one edge (docs/RESULTS.md, "Frame 0 at the main job's
+/// resolution").
 constexpr int kMinWidth = 512;
 constexpr int kMinHeight = 256;
 
@@ -81,8 +85,8 @@ bool SkyTexture::sync(const RadianceAtlas& atlas) {
             : sum_of(atlas, width, height);
     texture_ = gl::Texture::create_2d(GL_RGB32F, width, height);
     glTextureSubImage2D(texture_.id(), 0, 0, 0, width, height, GL_RGB, GL_FLOAT, texels.data());
-    glTextureParameteri(texture_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(texture_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(texture_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(texture_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     // Azimuth wraps around; the poles do not.
     glTextureParameteri(texture_.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTextureParameteri(texture_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
