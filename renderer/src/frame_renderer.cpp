@@ -56,6 +56,10 @@ void validate(const FrameSettings& s) {
     }
 }
 
+// Bits of the indirect pass's variants, in the order of its features.
+constexpr std::uint32_t kIndirectBicubic = 1u;
+constexpr std::uint32_t kIndirectProbes = 2u;
+
 void draw_fullscreen() {
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
@@ -201,10 +205,15 @@ struct FrameRenderer::Impl {
         const std::array<float, 4> no_page = {0.0f, 0.0f, -1.0f, 0.0f};
         glClearNamedFramebufferfv(fbo, GL_COLOR, 3, no_page.data());
         const float far_depth = 1.0f;
-        glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &far_depth);
+        glStencilMask(0xFF);
+        glClearNamedFramebufferfi(fbo, GL_DEPTH_STENCIL, 0, far_depth, 0);
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
         glDepthMask(GL_TRUE);
+        // The stencil says which visible surface has no light map (1): the indirect pass gives
+        // those pixels the probes' light in a pass of their own.
+        glEnable(GL_STENCIL_TEST);
+        glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
         const gl::Program& program = gbuffer_program;
         program.use();
         const glm::mat4 view_projection = camera.projection * camera.view;
@@ -228,6 +237,7 @@ struct FrameRenderer::Impl {
                 program.set("u_emission", m.emission);
                 program.set("u_specular", m.specular);
                 program.set("u_lightmap", m.lightmap);
+                glStencilFunc(GL_ALWAYS, m.lightmap.x < 0.0f ? 1 : 0, 0xFF);
                 program.set("u_double_sided", m.double_sided ? 1 : 0);
                 draw_primitive(*primitive.range);
                 ++drawn;
@@ -241,6 +251,7 @@ struct FrameRenderer::Impl {
         }
         gbuffer_skipped += budget.skipped();
         glDisable(GL_DEPTH_TEST);
+        glDisable(GL_STENCIL_TEST);
         glDisable(GL_CULL_FACE);
         glFrontFace(GL_CCW);
     }
@@ -273,18 +284,34 @@ struct FrameRenderer::Impl {
         glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
         glViewport(0, 0, targets.width, targets.height);
         clear_colour(fbo);
-        const gl::Program& program = indirect_programs.get((settings.bicubic_light_maps ? 1u : 0u) |
-                                                           (probes.empty() ? 0u : 2u));
-        program.use();
-        program.set("u_now", static_cast<float>(now_seconds));
-        program.set("u_camera", camera.position);
         glBindTextureUnit(0, targets.albedo.id());
         glBindTextureUnit(1, targets.normal.id());
         glBindTextureUnit(2, targets.position.id());
         glBindTextureUnit(3, targets.lightmap.id());
         lightmaps.bind();
-        probes.bind(program);
-        draw_fullscreen();
+        const auto draw = [&](std::uint32_t variant) {
+            const gl::Program& program = indirect_programs.get(variant);
+            program.use();
+            program.set("u_now", static_cast<float>(now_seconds));
+            program.set("u_camera", camera.position);
+            if ((variant & kIndirectProbes) != 0) {
+                probes.bind(program);
+            }
+            draw_fullscreen();
+        };
+        // Every pixel from the light maps; then, with probes, the pixels the G-buffer's stencil
+        // marks (no light map) with them: on a software rasteriser the probes' code costs every
+        // pixel it is compiled into, while the stencil skips the blocks without such a pixel.
+        const std::uint32_t filter = settings.bicubic_light_maps ? kIndirectBicubic : 0u;
+        draw(filter);
+        if (!probes.empty()) {
+            glEnable(GL_STENCIL_TEST);
+            glStencilMask(0x00);
+            glStencilFunc(GL_EQUAL, 1, 0xFF);
+            draw(filter | kIndirectProbes);
+            glDisable(GL_STENCIL_TEST);
+            glStencilMask(0xFF);
+        }
     }
 
     void composite_pass(const FrameCamera& camera, bool direct, bool indirect, bool specular) {

@@ -34,7 +34,7 @@ FrameTargets::FrameTargets(int w, int h, bool anti_aliasing) : width(w), height(
     // are bounded material values and keep 16 bits.
     emission = target_texture(GL_RGBA32F, w, h);
     specular = target_texture(GL_RGBA16F, w, h);
-    depth = target_texture(GL_DEPTH_COMPONENT32F, w, h);
+    depth = target_texture(GL_DEPTH32F_STENCIL8, w, h);
     gbuffer = gl::Framebuffer::create();
     const std::array<const gl::Texture*, 6> colours = {&albedo,   &normal,   &position,
                                                        &lightmap, &emission, &specular};
@@ -43,7 +43,7 @@ FrameTargets::FrameTargets(int w, int h, bool anti_aliasing) : width(w), height(
         buffers[i] = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
         gbuffer.attach(buffers[i], *colours[i]);
     }
-    gbuffer.attach(GL_DEPTH_ATTACHMENT, depth);
+    gbuffer.attach(GL_DEPTH_STENCIL_ATTACHMENT, depth);
     glNamedFramebufferDrawBuffers(gbuffer.id(), static_cast<GLsizei>(buffers.size()),
                                   buffers.data());
     gbuffer.check_complete("G-buffer");
@@ -55,8 +55,11 @@ FrameTargets::FrameTargets(int w, int h, bool anti_aliasing) : width(w), height(
     specular_term = target_texture(GL_RGBA32F, w, h);
     specular_target = single_target(specular_term, "specular target");
     // The specular term redraws specular objects over the G-buffer's depth.
-    specular_target.attach(GL_DEPTH_ATTACHMENT, depth);
+    specular_target.attach(GL_DEPTH_STENCIL_ATTACHMENT, depth);
     specular_target.check_complete("specular target");
+    // The indirect pass reads the G-buffer's stencil of receivers without a light map.
+    indirect_target.attach(GL_DEPTH_STENCIL_ATTACHMENT, depth);
+    indirect_target.check_complete("indirect target");
     frame = target_texture(GL_RGBA32F, w, h);
     frame_target = single_target(frame, "frame target");
     if (anti_aliasing) {

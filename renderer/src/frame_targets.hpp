@@ -18,7 +18,9 @@ struct FrameTargets {
     gl::Texture lightmap;  ///< RGBA32F: light-map uv, page layer, content
     gl::Texture emission;  ///< RGBA16F: emitted radiance
     gl::Texture specular;  ///< RGBA16F: F0, transmission
-    gl::Texture depth;     ///< DEPTH_COMPONENT32F
+    /// DEPTH32F_STENCIL8. The stencil is 1 where the visible surface has no light map (the
+    /// G-buffer pass writes it), so the probes' indirect light runs on those pixels only.
+    gl::Texture depth;
     gl::Framebuffer gbuffer;
 
     // One framebuffer per term, each with its texture as colour attachment 0.
