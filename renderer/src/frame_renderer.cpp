@@ -14,6 +14,7 @@
 #include "fill_budget.hpp"
 #include "frame_lights.hpp"
 #include "frame_targets.hpp"
+#include "indirect_pass.hpp"
 #include "light_batches.hpp"
 #include "luxel/ecs/observer.hpp"
 #include "luxel/ecs/transform.hpp"
@@ -56,10 +57,6 @@ void validate(const FrameSettings& s) {
     }
 }
 
-// Bits of the indirect pass's variants, in the order of its features.
-constexpr std::uint32_t kIndirectBicubic = 1u;
-constexpr std::uint32_t kIndirectProbes = 2u;
-
 void draw_fullscreen() {
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
@@ -77,10 +74,9 @@ struct FrameRenderer::Impl {
     FrameSettings settings;
     gl::Program gbuffer_program;
     gl::Program shadow_program;
-    /// The full-screen passes in the variants a frame needs (ProgramVariants): the direct pass
-    /// by the batch's shadow-map shapes, the indirect one by bicubic pages and probes.
+    /// The direct pass in the variant each light batch needs (its shadow-map shapes).
     ProgramVariants direct_programs;
-    ProgramVariants indirect_programs;
+    IndirectPass indirect_light;
     CompositePass composite;
     gl::VertexArray fullscreen = gl::VertexArray::create();
     FrameTargets targets;
@@ -133,8 +129,7 @@ struct FrameRenderer::Impl {
               shaders, "post/fullscreen.vert", "render/direct.frag",
               {"CUBE_SHADOWS", "MAP_SHADOWS"},
               "#define LIGHTS_PER_BATCH " + std::to_string(LightBatches::kLightsPerBatch) + "\n"),
-          indirect_programs(shaders, "post/fullscreen.vert", "render/indirect.frag",
-                            {"IIM_BICUBIC", "PROBES"}),
+          indirect_light(shaders),
           composite(shaders),
           targets(s.width, s.height, s.anti_aliasing),
           shadows(s.cube_shadow_size, s.map_shadow_size),
@@ -280,38 +275,8 @@ struct FrameRenderer::Impl {
     }
 
     void indirect_pass(const FrameCamera& camera, double now_seconds) {
-        const GLuint fbo = targets.indirect_target.id();
-        glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
-        glViewport(0, 0, targets.width, targets.height);
-        clear_colour(fbo);
-        glBindTextureUnit(0, targets.albedo.id());
-        glBindTextureUnit(1, targets.normal.id());
-        glBindTextureUnit(2, targets.position.id());
-        glBindTextureUnit(3, targets.lightmap.id());
-        lightmaps.bind();
-        const auto draw = [&](std::uint32_t variant) {
-            const gl::Program& program = indirect_programs.get(variant);
-            program.use();
-            program.set("u_now", static_cast<float>(now_seconds));
-            program.set("u_camera", camera.position);
-            if ((variant & kIndirectProbes) != 0) {
-                probes.bind(program);
-            }
-            draw_fullscreen();
-        };
-        // Every pixel from the light maps; then, with probes, the pixels the G-buffer's stencil
-        // marks (no light map) with them: on a software rasteriser the probes' code costs every
-        // pixel it is compiled into, while the stencil skips the blocks without such a pixel.
-        const std::uint32_t filter = settings.bicubic_light_maps ? kIndirectBicubic : 0u;
-        draw(filter);
-        if (!probes.empty()) {
-            glEnable(GL_STENCIL_TEST);
-            glStencilMask(0x00);
-            glStencilFunc(GL_EQUAL, 1, 0xFF);
-            draw(filter | kIndirectProbes);
-            glDisable(GL_STENCIL_TEST);
-            glStencilMask(0xFF);
-        }
+        indirect_light.run(targets, camera, now_seconds, settings.bicubic_light_maps, lightmaps,
+                           probes);
     }
 
     void composite_pass(const FrameCamera& camera, bool direct, bool indirect, bool specular) {
