@@ -1,4 +1,5 @@
-// Reflection, refraction and Fresnel reflectance against analytic values.
+// Reflection, refraction and Fresnel reflectance against analytic values; radiance and
+// absorption across and inside a closed solid.
 
 #include <cmath>
 #include <cstdint>
@@ -122,6 +123,79 @@ TEST(Optics, ADielectricsInsideAbsorbsOnTheWayOutOnly) {
     // Clear glass (the default) absorbs nothing on the way out.
     glass.attenuation_distance = std::numeric_limits<float>::infinity();
     EXPECT_NEAR(scatter(glm::vec3(0.0f, 1.0f, 0.0f), 1.0f).r, 0.9f, 1e-6f);
+}
+
+TEST(Optics, RadianceScalesByTheIndicesSquaredAcrossAClosedSolidsFaceOnly) {
+    TraceMaterial glass;
+    glass.scattering = Scattering::Dielectric;
+    glass.ior = 1.5f;
+    glass.closed = true;
+    // Into the solid 1 / 2.25, out of it 2.25: through both faces the factors cancel.
+    EXPECT_NEAR(refracted_radiance_scale(glass, true), 1.0f / 2.25f, 1e-6f);
+    EXPECT_NEAR(refracted_radiance_scale(glass, false), 2.25f, 1e-6f);
+    EXPECT_NEAR(refracted_radiance_scale(glass, true) * refracted_radiance_scale(glass, false),
+                1.0f, 1e-6f);
+    // An open sheet (a pane as one quad, a water surface), a mirror, a diffuse surface and a
+    // broken index scale nothing.
+    TraceMaterial sheet = glass;
+    sheet.closed = false;
+    EXPECT_EQ(refracted_radiance_scale(sheet, false), 1.0f);
+    TraceMaterial mirror = glass;
+    mirror.scattering = Scattering::Mirror;
+    EXPECT_EQ(refracted_radiance_scale(mirror, true), 1.0f);
+    EXPECT_EQ(refracted_radiance_scale(TraceMaterial{}, true), 1.0f);
+    for (const float ior : {0.0f, -1.5f, std::numeric_limits<float>::quiet_NaN(),
+                            std::numeric_limits<float>::infinity()}) {
+        TraceMaterial broken = glass;
+        broken.ior = ior;
+        EXPECT_EQ(refracted_radiance_scale(broken, false), 1.0f) << ior;
+    }
+}
+
+TEST(Optics, AClosedSolidAbsorbsOnTheWayToADiffuseSurfaceInsideIt) {
+    TraceMaterial glass;
+    glass.scattering = Scattering::Dielectric;
+    glass.closed = true;
+    glass.attenuation_color = glm::vec3(0.25f, 0.5f, 1.0f);
+    glass.attenuation_distance = 0.5f;
+    const auto absorbed = [](const ClosedMedium& medium, float distance) {
+        glm::vec3 power(1.0f);
+        medium.absorb(distance, power);
+        return power;
+    };
+    ClosedMedium medium;
+    EXPECT_EQ(absorbed(medium, 1.0f), glm::vec3(1.0f));  // in the air
+    medium.update(glass, true, false);                   // reflected off its outside
+    EXPECT_FALSE(medium.inside());
+    medium.update(glass, true, true);  // refracted in through the front
+    ASSERT_TRUE(medium.inside());
+    // 1 m inside, twice the attenuation distance: the colour squared.
+    const glm::vec3 kept = absorbed(medium, 1.0f);
+    EXPECT_NEAR(kept.r, 0.0625f, 1e-6f);
+    EXPECT_NEAR(kept.g, 0.25f, 1e-6f);
+    EXPECT_NEAR(kept.b, 1.0f, 1e-6f);
+    medium.update(glass, false, true);  // out through the back
+    EXPECT_FALSE(medium.inside());
+    // A path that starts inside (a floor under the block) learns it at the first back face:
+    // reflected there (total internal reflection), it is still inside.
+    ClosedMedium from_inside;
+    from_inside.update(glass, false, false);
+    EXPECT_TRUE(from_inside.inside());
+    EXPECT_NEAR(absorbed(from_inside, 0.5f).r, 0.25f, 1e-6f);
+    // An open sheet has no inside: nothing changes, nothing is absorbed.
+    TraceMaterial sheet = glass;
+    sheet.closed = false;
+    ClosedMedium past_sheet;
+    past_sheet.update(sheet, true, true);
+    EXPECT_FALSE(past_sheet.inside());
+    EXPECT_EQ(absorbed(past_sheet, 1.0f), glm::vec3(1.0f));
+    // Clear glass absorbs nothing, inside or not.
+    TraceMaterial clear = glass;
+    clear.attenuation_distance = std::numeric_limits<float>::infinity();
+    ClosedMedium in_clear;
+    in_clear.update(clear, true, true);
+    EXPECT_TRUE(in_clear.inside());
+    EXPECT_EQ(absorbed(in_clear, 10.0f), glm::vec3(1.0f));
 }
 
 TEST(Halton, RadicalInverseDigitsAndStratification) {

@@ -105,10 +105,12 @@ ReferenceImage reference_image_for(const std::filesystem::path& cache_dir, const
     ReferenceImage reference;
     // frame=v3: glass and water enclose nothing (ReferenceScene's hidden points), so a pool's
     // floor seen through its water is lit. v4: the caustic term at pixel resolution beside it.
+    // v5: paths scale radiance across a closed solid's faces and absorb inside it to a diffuse
+    // surface (refracted_radiance_scale, ClosedMedium).
     reference.key = pose + ";" + describe_camera(camera) +
                     ";image_spp=" + std::to_string(image.spp) +
                     ";caustic_photons=" + std::to_string(spec.caustic_photons) +
-                    ";seed=" + std::to_string(spec.seed) + ";frame=v4";
+                    ";seed=" + std::to_string(spec.seed) + ";frame=v5";
     // Paths read base-colour textures per hit (HitTextures): a textured level gets a new
     // entry; an untextured one keeps its cached frame.
     if (scene.textured()) {

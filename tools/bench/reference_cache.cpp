@@ -113,11 +113,12 @@ ReferenceMaps reference_for(const std::filesystem::path& cache_dir, const std::s
     // The version names the reference's algorithms: v2, caustic photons from its own
     // CausticDiscEmitter instead of the real-time CausticEmitter; v3, texel areas counting only
     // the part no object rests on (ReferenceTexel::area); v4, glass and water enclose nothing (a
-    // pool's floor under its water sheet is open).
+    // pool's floor under its water sheet is open); v5, a closed solid's volume absorbs on the
+    // way to a diffuse surface inside it too (ClosedMedium).
     maps.key = pose + ";indirect_photons=" + std::to_string(spec.indirect_photons) +
                ";caustic_photons=" + std::to_string(spec.caustic_photons) +
                ";spp=" + std::to_string(spec.spp) + ";seed=" + std::to_string(spec.seed) +
-               ";texels=" + std::to_string(scene.texel_count()) + ";reference=v4";
+               ";texels=" + std::to_string(scene.texel_count()) + ";reference=v5";
     // Area lights' and skies' direct light counts as indirect (reference_settings): a level
     // that has them gets a new entry; one lit by delta lights alone keeps its reference.
     const auto lights = scene.lights();

@@ -106,6 +106,7 @@ std::optional<CausticPhoton> trace_caustic_photon(
     std::uint32_t specular = 0;
     std::uint32_t dim = 4;  // 0-3 chose the emission
     const TraceMaterial fallback{};
+    ClosedMedium medium;
     for (;;) {
         ++counters.segments;
         const auto hit = scene.intersect(origin, direction);
@@ -133,6 +134,7 @@ std::optional<CausticPhoton> trace_caustic_photon(
                 return std::nullopt;
             }
             ++counters.stored;
+            medium.absorb(hit->distance, power);
             if (incident_direction != nullptr) {
                 *incident_direction = direction;
             }
@@ -154,7 +156,8 @@ std::optional<CausticPhoton> trace_caustic_photon(
                               ? photon_sample(sample_index, dim++, seed)
                               : 0.0;
         const glm::vec3 arriving = direction;
-        scatter_specular(material, *hit, normals, xi, origin, direction, power);
+        medium.update(material, front,
+                      scatter_specular(material, *hit, normals, xi, origin, direction, power));
         follow_differential(scene, *hit, normals, material, arriving, direction, differential);
         // A black mirror or a black tint leaves nothing to carry.
         if (!has_power(power)) {

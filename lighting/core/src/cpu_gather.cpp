@@ -157,6 +157,7 @@ glm::vec3 CpuGatherer::gather_one(const GatherTexel& texel) const {
 glm::vec3 CpuGatherer::trace(glm::vec3 origin, glm::vec3 direction, std::optional<RayHit> hit,
                              std::uint32_t ray, std::uint32_t seed) const {
     glm::vec3 weight(1.0f);
+    ClosedMedium medium;
     for (std::uint32_t interaction = 0; interaction <= settings_.max_specular; ++interaction) {
         if (interaction > 0) {
             hit = scene_->intersect(origin, direction, settings_.max_distance);
@@ -174,6 +175,7 @@ glm::vec3 CpuGatherer::trace(glm::vec3 origin, glm::vec3 direction, std::optiona
             if (glm::dot(hit->geometric_normal, direction) >= 0.0f) {
                 return glm::vec3(0.0f);
             }
+            medium.absorb(hit->distance, weight);
             if (unmapped_ != nullptr && settings_.unmapped_radiance && !has_light_map(*hit) &&
                 !emits(*hit)) {
                 // No AIM here: the surface's own estimate (UnmappedRadiance), not black.
@@ -189,10 +191,19 @@ glm::vec3 CpuGatherer::trace(glm::vec3 origin, glm::vec3 direction, std::optiona
         }
         // A mirror or glass has no AIM of its own: it shows what it reflects or refracts (the
         // room seen through a glass sphere, and the light that focuses through it after a
-        // diffuse bounce). Fresnel picks one branch per ray, as photons do.
+        // diffuse bounce). Fresnel picks one branch per ray, as photons do. Radiance changes by
+        // the indices' ratio squared across a closed solid's surface, which photons (carrying
+        // power) never see: a texel under a glass block resting on it gathers from inside the
+        // block, and without the factor read the light through it 1 / ior^2 too dark
+        // (tinted-glass's floor under the block: 0.43 of luxel-ref's indirect).
         const FacingNormals normals = facing_normals(*hit, direction);
-        scatter_specular(*material, *hit, normals, photon_sample(ray, 4 + interaction, seed),
-                         origin, direction, weight);
+        const bool refracted =
+            scatter_specular(*material, *hit, normals, photon_sample(ray, 4 + interaction, seed),
+                             origin, direction, weight);
+        if (refracted) {
+            weight *= refracted_radiance_scale(*material, normals.front);
+        }
+        medium.update(*material, normals.front, refracted);
         if (!(weight.r > 0.0f || weight.g > 0.0f || weight.b > 0.0f)) {
             return glm::vec3(0.0f);
         }

@@ -56,18 +56,41 @@ PhotonGeometry::PhotonGeometry(const ecs::Registry& registry, PhotonMap& map,
                                bool implicit_surfaces)
     : registry_(registry), map_(map), implicit_surfaces_(implicit_surfaces) {}
 
-std::uint32_t PhotonGeometry::material_index(const scene::Scene* source, int material) {
-    const auto key = std::make_pair(source, material);
+std::uint32_t PhotonGeometry::material_index(const scene::Scene* source, int material,
+                                             bool closed) {
+    const auto key = std::make_tuple(source, material, closed);
     if (const auto found = material_ids_.find(key); found != material_ids_.end()) {
         return found->second;
     }
     const auto index = static_cast<std::uint32_t>(materials_.size());
-    materials_.push_back(
+    TraceMaterial traced =
         material >= 0 && source != nullptr
             ? trace_material_of(*source, source->materials.at(static_cast<std::size_t>(material)))
-            : TraceMaterial{});
+            : TraceMaterial{};
+    traced.closed = closed && traced.scattering == Scattering::Dielectric;
+    materials_.push_back(traced);
     material_ids_.emplace(key, index);
     return index;
+}
+
+bool PhotonGeometry::closed_dielectric(const scene::MeshInstance& instance, std::size_t p) {
+    const scene::Primitive& primitive = instance.geometry().primitives[p];
+    const scene::Scene* source = instance.source.get();
+    if (source == nullptr || primitive.material < 0 ||
+        static_cast<std::size_t>(primitive.material) >= source->materials.size() ||
+        !(source->materials[static_cast<std::size_t>(primitive.material)].transmission > 0.0f)) {
+        return false;  // only a dielectric has an inside to tell
+    }
+    if (instance.posed) {
+        return scene::is_closed_surface(primitive);  // its own vertices, new each pose
+    }
+    const auto key = std::make_tuple(source, instance.mesh, p);
+    if (const auto found = closed_primitives_.find(key); found != closed_primitives_.end()) {
+        return found->second;
+    }
+    const bool closed = scene::is_closed_surface(primitive);
+    closed_primitives_.emplace(key, closed);
+    return closed;
 }
 
 std::uint32_t PhotonGeometry::generator_material(ecs::Entity entity, std::uint32_t shared,
@@ -140,7 +163,8 @@ void PhotonGeometry::add_mesh(ecs::Entity entity) {
         for (std::uint32_t index : primitive.indices) {
             triangles.indices.push_back(base + index);
         }
-        std::uint32_t material = material_index(instance.source.get(), primitive.material);
+        std::uint32_t material = material_index(instance.source.get(), primitive.material,
+                                                closed_dielectric(instance, p));
         if (generator != nullptr && materials_[material].scattering != Scattering::Diffuse) {
             material = generator_material(entity, material, *generator);
         }

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -58,7 +59,12 @@ class PhotonGeometry {
     [[nodiscard]] const std::vector<SurfaceInfo>& surfaces() const { return surfaces_; }
 
   private:
-    std::uint32_t material_index(const scene::Scene* source, int material);
+    /// The table's entry for a scene material, one per (source, material, closed): `closed`
+    /// only matters for a dielectric (TraceMaterial::closed).
+    std::uint32_t material_index(const scene::Scene* source, int material, bool closed);
+    /// Whether primitive `p` of the entity's mesh is a closed dielectric (is_closed_surface,
+    /// asked once per source mesh and primitive; a posed mesh is asked each time).
+    bool closed_dielectric(const scene::MeshInstance& instance, std::size_t p);
     std::uint32_t generator_material(ecs::Entity entity, std::uint32_t shared,
                                      const CausticGenerator& optics);
 
@@ -68,7 +74,9 @@ class PhotonGeometry {
     RayScene scene_;
     std::vector<SurfaceInfo> surfaces_;
     std::vector<TraceMaterial> materials_;
-    std::map<std::pair<const scene::Scene*, int>, std::uint32_t> material_ids_;
+    std::map<std::tuple<const scene::Scene*, int, bool>, std::uint32_t> material_ids_;
+    /// (source, mesh, primitive) -> whether that primitive closes up.
+    std::map<std::tuple<const scene::Scene*, int, std::size_t>, bool> closed_primitives_;
     /// (generator entity, shared material id) -> the generator's own material id.
     std::map<std::pair<ecs::Entity, std::uint32_t>, std::uint32_t> generator_materials_;
     /// An object's box around its own vertices (object space for dynamic objects, world space

@@ -59,7 +59,7 @@ FacingNormals facing_normals(const RayHit& hit, const glm::vec3& direction) {
     return normals;
 }
 
-void scatter_specular(const TraceMaterial& material, const RayHit& hit,
+bool scatter_specular(const TraceMaterial& material, const RayHit& hit,
                       const FacingNormals& normals, double xi, glm::vec3& origin,
                       glm::vec3& direction, glm::vec3& power) {
     const float cos_incident = std::clamp(-glm::dot(direction, normals.shading), 0.0f, 1.0f);
@@ -67,7 +67,7 @@ void scatter_specular(const TraceMaterial& material, const RayHit& hit,
         power *= optics::fresnel_conductor(cos_incident, material.tint);
         direction = optics::reflect(direction, normals.shading);
         origin = offset_ray_origin(hit.position, normals.geometric);
-        return;
+        return false;
     }
     if (!normals.front && material.attenuation_distance < std::numeric_limits<float>::infinity()) {
         power *= scene::beer_lambert(material.attenuation_color, material.attenuation_distance,
@@ -81,11 +81,42 @@ void scatter_specular(const TraceMaterial& material, const RayHit& hit,
     if (!refracted || xi < static_cast<double>(reflectance)) {
         direction = optics::reflect(direction, normals.shading);
         origin = offset_ray_origin(hit.position, normals.geometric);
-    } else {
-        direction = *refracted;
-        power *= material.tint;
-        origin = offset_ray_origin(hit.position, normals.geometric, -1.0f);
+        return false;
     }
+    direction = *refracted;
+    power *= material.tint;
+    origin = offset_ray_origin(hit.position, normals.geometric, -1.0f);
+    return true;
+}
+
+void ClosedMedium::update(const TraceMaterial& material, bool front, bool refracted) {
+    if (material.scattering != Scattering::Dielectric || !material.closed) {
+        return;
+    }
+    // Refracted through the front: now inside; through the back: out. Reflected off the back
+    // (total internal reflection, or Fresnel's share): still inside. Off the front: as before.
+    if (refracted || !front) {
+        inside_ = refracted ? front : true;
+        attenuation_color_ = material.attenuation_color;
+        attenuation_distance_ = material.attenuation_distance;
+    }
+}
+
+void ClosedMedium::absorb(float distance, glm::vec3& power) const {
+    if (inside_ && attenuation_distance_ < std::numeric_limits<float>::infinity()) {
+        power *= scene::beer_lambert(attenuation_color_, attenuation_distance_, distance);
+    }
+}
+
+float refracted_radiance_scale(const TraceMaterial& material, bool front) {
+    // A non-positive or non-finite index is no medium (scene::Material clamps it; this guards
+    // a hand-made TraceMaterial): nothing to scale.
+    const float ior = material.ior;
+    if (material.scattering != Scattering::Dielectric || !material.closed || !(ior > 0.0f) ||
+        !std::isfinite(ior)) {
+        return 1.0f;
+    }
+    return front ? 1.0f / (ior * ior) : ior * ior;
 }
 
 void trace_photon(const RayScene& scene, std::span<const TraceMaterial> materials,
@@ -98,6 +129,7 @@ void trace_photon(const RayScene& scene, std::span<const TraceMaterial> material
     glm::vec3 power = photon.power;
     std::uint32_t bounces = 0;
     std::uint32_t dim = 4;  // 0-3 were spent on emission
+    ClosedMedium medium;
     if (!(power.r > 0.0f || power.g > 0.0f || power.b > 0.0f)) {
         return;
     }
@@ -131,6 +163,7 @@ void trace_photon(const RayScene& scene, std::span<const TraceMaterial> material
                 return;
             }
             ++counters.diffuse_hits;
+            medium.absorb(hit->distance, power);
             hops.push_back({hit->position, power, hit->surface, hit->object, bounces});
             // Russian roulette (docs/METHOD.md §4.3): survive with p = max albedo channel, and
             // keep the expected power by dividing by p.
@@ -165,7 +198,8 @@ void trace_photon(const RayScene& scene, std::span<const TraceMaterial> material
         hops.push_back({hit->position, power, -1, hit->object, bounces});
         const double xi =
             material.scattering == Scattering::Dielectric ? photon_sample(index, dim++, seed) : 0.0;
-        scatter_specular(material, *hit, normals, xi, origin, direction, power);
+        medium.update(material, front,
+                      scatter_specular(material, *hit, normals, xi, origin, direction, power));
         if (!(power.r > 0.0f || power.g > 0.0f || power.b > 0.0f)) {
             return;
         }

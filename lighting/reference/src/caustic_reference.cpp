@@ -76,6 +76,7 @@ void CausticReference::trace(const Pair& pair, std::uint64_t index, Deposit& dep
     glm::vec3 origin = photon.origin;
     glm::vec3 direction = photon.direction;
     glm::vec3 power = photon.power;
+    ClosedMedium medium;
     for (std::uint32_t bounce = 0;; ++bounce) {
         if (bounce > settings_.max_specular) {
             ++counters.truncated;
@@ -98,6 +99,7 @@ void CausticReference::trace(const Pair& pair, std::uint64_t index, Deposit& dep
                 return;
             }
             deposit.stored = true;
+            medium.absorb(hit->distance, power);
             deposit.flux = glm::dvec3(power) * weight;
             deposit.position = hit->position;
             deposit.normal = normals.geometric;
@@ -113,8 +115,10 @@ void CausticReference::trace(const Pair& pair, std::uint64_t index, Deposit& dep
             ++counters.stored;
             return;
         }
-        scatter_specular(material, *hit, normals, photon_sample(halton, 4 + bounce, pair.seed),
-                         origin, direction, power);
+        medium.update(
+            material, normals.front,
+            scatter_specular(material, *hit, normals, photon_sample(halton, 4 + bounce, pair.seed),
+                             origin, direction, power));
         if (!(glm::max(power.x, glm::max(power.y, power.z)) > 0.0f)) {
             ++counters.absorbed;
             return;

@@ -182,6 +182,7 @@ void IndirectPhotons::trace(std::uint64_t index, std::vector<Deposit>& out,
     const RayScene& rays = scene_->rays();
     const auto materials = scene_->materials();
     bool diffuse_seen = false;
+    ClosedMedium medium;
     for (std::uint32_t vertex = 0;; ++vertex) {
         if (vertex >= settings_.max_vertices) {
             ++counters.truncated;
@@ -200,13 +201,20 @@ void IndirectPhotons::trace(std::uint64_t index, std::vector<Deposit>& out,
         const TraceMaterial& material = materials[hit->material];
         if (material.scattering != Scattering::Diffuse) {
             glm::vec3 p(power);
-            scatter_specular(material, *hit, normals, random.next(), origin, direction, p);
+            medium.update(
+                material, normals.front,
+                scatter_specular(material, *hit, normals, random.next(), origin, direction, p));
             power = glm::dvec3(p);
             continue;
         }
         if (!normals.front) {
             ++counters.absorbed;  // one-sided, as PathEstimator: the back absorbs
             break;
+        }
+        {
+            glm::vec3 p(power);
+            medium.absorb(hit->distance, p);
+            power = glm::dvec3(p);
         }
         if (diffuse_seen) {
             const std::int64_t t = scene_->open_texel_at(hit->surface, hit->lightmap_uv);

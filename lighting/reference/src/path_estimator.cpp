@@ -278,6 +278,7 @@ void PathEstimator::trace(glm::vec3 origin, glm::vec3 direction, glm::dvec3 beta
     const auto materials = scene_->materials();
     bool first_segment = from_texel;
     bool any_diffuse = false;
+    ClosedMedium medium;
     for (std::uint32_t vertex = 0;; ++vertex) {
         if (vertex >= settings_.max_vertices) {
             ++counters.truncated;
@@ -294,6 +295,14 @@ void PathEstimator::trace(glm::vec3 origin, glm::vec3 direction, glm::dvec3 beta
             return;
         }
         const FacingNormals normals = facing_normals(*hit, direction);
+        const TraceMaterial& material = materials[hit->material];
+        if (material.scattering == Scattering::Diffuse) {
+            // The segment ends inside a closed solid (a bulb in a glass globe, a floor under a
+            // block): its absorption, which scatter_specular takes only at the solid's faces.
+            glm::vec3 kept(beta);
+            medium.absorb(hit->distance, kept);
+            beta = glm::dvec3(kept);
+        }
         if (normals.front) {
             if (const EmitterHit emitter = scene_->emitter_of(*hit); emitter.light >= 0) {
                 const ReferenceScene::Emission emission =
@@ -312,10 +321,16 @@ void PathEstimator::trace(glm::vec3 origin, glm::vec3 direction, glm::dvec3 beta
                 add(out, component, beta * glm::dvec3(emission.radiance) * weight, counters);
             }
         }
-        const TraceMaterial& material = materials[hit->material];
         if (material.scattering != Scattering::Diffuse) {
             glm::vec3 power(beta);
-            scatter_specular(material, *hit, normals, random.next(), origin, direction, power);
+            // A path carries radiance (importance), which changes by the indices' ratio squared
+            // across a closed solid's surface: the photon estimates keep power and need nothing.
+            const bool refracted =
+                scatter_specular(material, *hit, normals, random.next(), origin, direction, power);
+            if (refracted) {
+                power *= refracted_radiance_scale(material, normals.front);
+            }
+            medium.update(material, normals.front, refracted);
             beta = glm::dvec3(power);
             pdf = 0.0;
             first_segment = false;
