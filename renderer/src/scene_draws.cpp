@@ -105,9 +105,16 @@ void build_draw_list(ecs::Registry& registry, const lighting::LightingSystem& li
             draw.material =
                 material_of(*instance.source, draw.range->material, emission_scale, specular_pass);
             if (draw.material.specular.a > 0.0f) {
-                draw.material.transmittance = glass_transmittance(
-                    instance.source->materials.at(static_cast<std::size_t>(draw.range->material)),
-                    draw.range->closed, item.model);
+                const scene::Material& glass =
+                    instance.source->materials.at(static_cast<std::size_t>(draw.range->material));
+                draw.material.transmittance =
+                    glass_transmittance(glass, draw.range->closed, item.model);
+                draw.material.tint = glm::clamp(glm::vec3(glass.base_color), 0.0f, 1.0f);
+                if (scene::absorbs_inside(glass)) {
+                    // Metres of path, as the photons measure it (TraceMaterial).
+                    draw.material.attenuation =
+                        glm::vec4(glass.attenuation_color, glass.attenuation_distance);
+                }
             }
             // Specular materials draw no diffuse albedo (it is zero), so they need no texture.
             draw.material.base_color_texture =

@@ -30,6 +30,10 @@ struct DrawMaterial {
     /// Glass: rgb what a view ray through it keeps besides Fresnel (the tint per surface
     /// crossed, the inside's absorption), a: the surfaces it crosses (1 or 2). Zero otherwise.
     glm::vec4 transmittance{0.0f};
+    /// A closed solid's own optics, for a view ray that ends on a surface inside it: the tint of
+    /// one surface, and the volume's attenuation (rgb colour, a: distance in metres, 0: clear).
+    glm::vec3 tint{1.0f};
+    glm::vec4 attenuation{1.0f, 1.0f, 1.0f, 0.0f};
     glm::vec2 lightmap{-1.0f, 0.0f};  ///< IIM page layer (-1: none), 1 = holds irradiance
     float ior = 1.5f;
     bool double_sided = false;

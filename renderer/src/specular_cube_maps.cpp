@@ -140,6 +140,7 @@ void SpecularCubeMaps::draw_term(const DrawList& draws, const FrameTargets& targ
         glBindTextureUnit(0, found->second.cube.id());
         program.set("u_probe_centre", found->second.centre);
         program.set("u_probe_reach", face_reach(draws));
+        program.set("u_probe_extent", 0.5f * (item.bounds.hi - item.bounds.lo));
         bind_draw_item(program, item);
         for (std::size_t i = item.first; i < item.first + item.count; ++i) {
             const DrawPrimitive& primitive = draws.primitives[i];
@@ -149,6 +150,8 @@ void SpecularCubeMaps::draw_term(const DrawList& draws, const FrameTargets& targ
             program.set("u_specular", primitive.material.specular);
             program.set("u_ior", primitive.material.ior);
             program.set("u_transmittance", primitive.material.transmittance);
+            program.set("u_tint", primitive.material.tint);
+            program.set("u_attenuation", primitive.material.attenuation);
             draw_primitive(*primitive.range);
         }
     }

@@ -5,7 +5,8 @@
 //   glass:  L = F * L_probe(reflect) + (1 - F)^k * t * T * L_probe(refract)
 // t the transmission factor, k the surfaces a view ray crosses (2 through a closed solid, 1
 // through a sheet) and T the rest of what it keeps: the base colour per surface crossed and
-// the inside's absorption (renderer/src/scene_draws.cpp). The exit's Fresnel equals the
+// the inside's absorption (renderer/src/scene_draws.cpp); a ray that ends inside a closed
+// solid keeps (1 - F) T / ior^2 and its own path's absorption (through_solid()). The exit's Fresnel equals the
 // entry's (a slab's and a sphere's exit angle is the entry's refracted one). The refracted ray
 // is bent once at the entry surface: a thin-object approximation, not a trace through the
 // glass.
@@ -33,6 +34,12 @@ uniform float u_probe_reach;  // metres: the farthest its faces draw
 uniform vec4 u_specular;  // rgb F0, a transmission
 uniform float u_ior;
 uniform vec4 u_transmittance;  // rgb T, a k
+// A closed solid's own optics, for a view ray that ends on a surface inside it (a floor under a
+// glass block resting on it): the tint of one surface, the volume's attenuation (rgb colour,
+// a distance in metres; 0: clear), and the solid's half extent around the probe's centre.
+uniform vec3 u_tint;
+uniform vec4 u_attenuation;
+uniform vec3 u_probe_extent;
 
 layout(location = 0) out vec4 out_radiance;
 
@@ -46,9 +53,9 @@ float beyond_surface(vec3 p) {
     return distance > 0.0 ? length(p) - distance : -1.0;
 }
 
-// The probe's radiance along the ray from `origin` (relative to the probe's centre) in unit
-// direction `dir`.
-vec3 probe_along(vec3 origin, vec3 dir) {
+// Where the ray from `origin` (relative to the probe's centre) in unit direction `dir` meets
+// the surface the probe saw; false when nothing lies within the probe's reach.
+bool march(vec3 origin, vec3 dir, out vec3 hit) {
     const int kSteps = 8;
     const int kBisections = 4;
     float reach = max(u_probe_reach, 1e-3);
@@ -68,11 +75,48 @@ vec3 probe_along(vec3 origin, vec3 dir) {
                     lo = mid;
                 }
             }
-            return texture(u_probe, origin + hi * dir).rgb;
+            hit = origin + hi * dir;
+            return true;
         }
         before = t;
     }
-    return texture(u_probe, dir).rgb;  // nothing within reach: what lies that way far off
+    hit = dir;
+    return false;
+}
+
+// The probe's radiance along the ray from `origin` (relative to the probe's centre) in unit
+// direction `dir`.
+vec3 probe_along(vec3 origin, vec3 dir) {
+    vec3 hit;
+    // Nothing within reach: what lies that way far off.
+    return texture(u_probe, march(origin, dir, hit) ? hit : dir).rgb;
+}
+
+// What a view ray refracted into a closed solid at `origin` keeps and sees. Where the surface it
+// meets lies inside the solid's box (the floor a block rests on: the probe, drawn without the
+// solid, sees it there), the ray ends inside: one surface crossed, its radiance 1 / ior^2 of the
+// light inside (L / n^2 is kept across an interface, as the lighting's estimators count it),
+// absorbed over its own path. Otherwise it leaves through the far side, which the march cannot
+// follow (it bends again there): looked up by its direction, two surfaces crossed and the
+// volume's thickness absorbed (u_transmittance), as measured closer on cornell's sphere.
+vec3 through_solid(vec3 origin, vec3 t, vec3 fresnel) {
+    vec3 hit;
+    if (march(origin, t, hit)) {
+        // The point the probe saw that way (the march stops up to a step's fraction beyond it).
+        vec4 seen = texture(u_probe, hit);
+        vec3 surface = normalize(hit) * seen.a;
+        vec3 slack = 0.02 * u_probe_extent + vec3(1e-3);  // a floor coplanar with the base
+        if (all(lessThanEqual(abs(surface), u_probe_extent + slack))) {
+            float n = max(u_ior, 1e-3);
+            vec3 kept = (1.0 - fresnel) * u_tint / (n * n);
+            if (u_attenuation.a > 0.0) {
+                kept *= pow(max(u_attenuation.rgb, vec3(1e-6)),
+                            vec3(length(surface - origin) / u_attenuation.a));
+            }
+            return kept * seen.rgb;
+        }
+    }
+    return (1.0 - fresnel) * (1.0 - fresnel) * u_transmittance.rgb * texture(u_probe, t).rgb;
 }
 
 void main() {
@@ -100,14 +144,13 @@ void main() {
     if (transmission > 0.0) {
         vec3 t = refract(v, n, 1.0 / max(u_ior, 1e-3));
         if (dot(t, t) > 0.0) {
-            vec3 passed = pow(1.0 - fresnel, vec3(u_transmittance.a));
             // Through a sheet (one surface: water, a pane) the refracted ray goes on straight
-            // and is marched; through a closed solid it bends again where it leaves, which the
-            // march cannot follow, and the direction alone was measured closer (cornell's glass
-            // sphere, docs/RESULTS.md).
+            // and is marched; through a closed solid see through_solid().
             t = normalize(t);
-            vec3 seen = u_transmittance.a < 1.5 ? probe_along(origin, t) : texture(u_probe, t).rgb;
-            l += passed * transmission * u_transmittance.rgb * seen;
+            l += transmission *
+                 (u_transmittance.a < 1.5
+                      ? (1.0 - fresnel) * u_transmittance.rgb * probe_along(origin, t)
+                      : through_solid(origin, t, fresnel));
         }
     }
     out_radiance = vec4(max(l, vec3(0.0)), 1.0);
