@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
 #include "bench_outputs.hpp"
@@ -304,6 +305,68 @@ TEST(BenchImage, ATexturedLevelBlenderWroteMatchesTheReferenceWithinEightPercent
     std::printf("[ figures  ] emissive-sign, the floor's view: image relRMSE %.4f\n", image);
     EXPECT_GT(image, 0.0);
     EXPECT_LT(image, 0.08);
+}
+
+/// The mean RGB of `image` over pixels [x0, x1) x [y0, y1).
+glm::dvec3 region_mean(const luxel::Image& image, int x0, int y0, int x1, int y1) {
+    glm::dvec3 sum(0.0);
+    for (int y = y0; y < y1; ++y) {
+        for (int x = x0; x < x1; ++x) {
+            sum += glm::dvec3(glm::vec3(image.pixel(x, y)));
+        }
+    }
+    return sum / static_cast<double>((x1 - x0) * (y1 - y0));
+}
+
+TEST(BenchImage, GlassBlenderWroteMatchesTheReferenceWithinFivePercent) {
+    // Issue 21's transmission goal on the level Blender's exporter wrote (tinted-glass.py: an
+    // amber glass cube with KHR_materials_volume standing on the floor, a blue single-quad
+    // pane), from its own camera: the glass pixels' mean within 5% of luxel-ref's, and the
+    // colour through the pane within 5% per channel. Measured 1.041 (cube) and 1.011 (pane;
+    // 1.008 1.011 1.012 per channel) here; the cube read 0.839 before the gather, the
+    // reference and the frame scaled radiance across a closed solid's faces and absorbed inside
+    // it on the way to the floor under it (docs/RESULTS.md, "Tinted and absorbing glass").
+    luxel::testing::TempDir dir("luxel-bench-glass");
+    const std::filesystem::path out = dir / "out";
+    const std::filesystem::path level =
+        std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets/levels/prepared/tinted-glass.glb";
+    // 120 frames: the light maps' refinement passes fade in over the first hundred.
+    const CommandResult run = luxel_bench(
+        "--level " + quoted(level) +
+        " --budgets 100000 --frames 120 --checkpoint 120 --change none --ref-photons 1000000 "
+        "--ref-caustic-photons 1000000 --ref-spp 1 --image 160x120 --image-spp 256 --threads 2 "
+        "--out " +
+        quoted(out));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    const luxel::Image frame = luxel::read_exr(out / "frames/paper_100000ms_static.exr");
+    std::filesystem::path reference_path;
+    for (const auto& entry : std::filesystem::directory_iterator(out / "cache")) {
+        const std::string name = entry.path().filename().string();
+        if (name.size() > 10 && name.ends_with(".frame.exr")) {
+            reference_path = entry.path();
+        }
+    }
+    ASSERT_FALSE(reference_path.empty()) << "no reference frame in " << (out / "cache");
+    const luxel::Image reference = luxel::read_exr(reference_path);
+    ASSERT_EQ(frame.width, 160);
+    ASSERT_EQ(reference.width, 160);
+    // The cube's and the pane's pixels at the level's camera (160 x 120).
+    const glm::dvec3 cube = region_mean(frame, 28, 56, 60, 88);
+    const glm::dvec3 cube_reference = region_mean(reference, 28, 56, 60, 88);
+    const glm::dvec3 pane = region_mean(frame, 100, 32, 138, 64);
+    const glm::dvec3 pane_reference = region_mean(reference, 100, 32, 138, 64);
+    const auto sum = [](const glm::dvec3& v) { return v.x + v.y + v.z; };
+    std::printf(
+        "[ figures  ] tinted-glass, frame / reference: cube %.4f (%.3f %.3f %.3f), pane "
+        "%.4f (%.3f %.3f %.3f)\n",
+        sum(cube) / sum(cube_reference), cube.x / cube_reference.x, cube.y / cube_reference.y,
+        cube.z / cube_reference.z, sum(pane) / sum(pane_reference), pane.x / pane_reference.x,
+        pane.y / pane_reference.y, pane.z / pane_reference.z);
+    EXPECT_NEAR(sum(cube) / sum(cube_reference), 1.0, 0.05);
+    EXPECT_NEAR(sum(pane) / sum(pane_reference), 1.0, 0.05);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(pane[c] / pane_reference[c], 1.0, 0.05) << "channel " << c;
+    }
 }
 
 TEST(BenchImage, NoImageMarksTheColumnsNotMeasuredAndMakesNoContext) {
