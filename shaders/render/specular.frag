@@ -104,7 +104,7 @@ vec3 through_solid(vec3 origin, vec3 t, vec3 fresnel) {
     if (march(origin, t, hit)) {
         // The point the probe saw that way (the march stops up to a step's fraction beyond it).
         vec4 seen = texture(u_probe, hit);
-        vec3 surface = normalize(hit) * seen.a;
+        vec3 surface = hit * (seen.a / max(length(hit), 1e-6));
         vec3 slack = 0.02 * u_probe_extent + vec3(1e-3);  // a floor coplanar with the base
         if (all(lessThanEqual(abs(surface), u_probe_extent + slack))) {
             float n = max(u_ior, 1e-3);
