@@ -196,7 +196,8 @@ TEST(BenchImage, TheCausticTermIsMeasuredAtPixelResolution) {
     EXPECT_GT(error, 0.0);
     EXPECT_LT(error, 2.0) << "the real-time caustic lands where the reference's does";
     EXPECT_GT(result["ref_se_caustic_pixels"].get<double>(), 0.0);
-    const luxel::Image caustics = luxel::read_exr(out / "frames/paper_100000ms_static_caustics.exr");
+    const luxel::Image caustics =
+        luxel::read_exr(out / "frames/paper_100000ms_static_caustics.exr");
     double sum = 0.0;
     for (int y = 0; y < caustics.height; ++y) {
         for (int x = 0; x < caustics.width; ++x) {
