@@ -28,7 +28,9 @@ target_compile_options(luxel_warnings INTERFACE
                               -Wold-style-cast -Wcast-align -Woverloaded-virtual>)
 if(LUXEL_DEBUG_INFO STREQUAL "lines")
     # Line tables name the file and line in every stack trace and profile; full debug info made
-    # each file ~20% slower to compile and CI builds everything twice.
+    # each file ~20% slower to compile and CI builds everything twice. It rides on
+    # luxel_warnings because that is the options interface private to our own targets: the
+    # third-party code we link is not compiled here.
     target_compile_options(luxel_warnings INTERFACE $<$<CONFIG:RelWithDebInfo>:-g1>)
 endif()
 
