@@ -86,8 +86,16 @@ FillBudget draw_casters(const DrawList& draws, const gl::Program& program, const
             // Out of the light's reach: casts nothing it can see.
             return map.kind == ShadowKind::Ortho || item.bounds.touches_sphere(map.origin, map.far);
         },
-        [&](const DrawItem& item) { bind_draw_item(program, item); },
-        [](const DrawItem&, const DrawPrimitive& primitive) { draw_primitive(*primitive.range); });
+        [&](const DrawItem& item) {
+            bind_draw_item(program, item);
+            // Both sides cast (no culling), but shadow.frag needs to know which side the light
+            // sees: glTF's front faces wind counter-clockwise, a mirroring transform turns them.
+            glFrontFace(item.mirrored ? GL_CW : GL_CCW);
+        },
+        [&](const DrawItem&, const DrawPrimitive& primitive) {
+            program.set("u_single_sided", primitive.material.double_sided ? 0 : 1);
+            draw_primitive(*primitive.range);
+        });
     return budget;
 }
 
@@ -153,6 +161,7 @@ void ShadowMaps::render(ShadowMap& map, const DrawList& draws, const gl::Program
     program.set("u_light_direction", map.direction);
     program.set("u_planar", map.kind == ShadowKind::Ortho ? 1 : 0);
     program.set("u_far", map.far);
+    program.set("u_texel", map.texel);
     const float clear_depth = 1.0f;
     // Attached at every draw: the array is a new texture after it grows.
     const GLuint array = layers(map.kind).id();

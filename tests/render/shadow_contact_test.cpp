@@ -36,12 +36,12 @@ renderer::FrameSettings contact_settings(bool filtered) {
     return settings;
 }
 
-/// A single-sheet wall in the plane z = 0 (x in [-2, 2], y in [0, 2]) facing +z: it stands on
-/// the 4 m floor like the sandbox level's walls, with no thickness behind it.
-scene::Primitive wall() {
+/// A single-sheet wall in the plane z = 0 (x in [-2, 2], y in [0, height]) facing +z: it
+/// stands on the 4 m floor like the sandbox level's walls, with no thickness behind it.
+scene::Primitive wall(float height = 2.0f) {
     scene::Primitive p;
     p.positions = {
-        {-2.0f, 0.0f, 0.0f}, {2.0f, 0.0f, 0.0f}, {2.0f, 2.0f, 0.0f}, {-2.0f, 2.0f, 0.0f}};
+        {-2.0f, 0.0f, 0.0f}, {2.0f, 0.0f, 0.0f}, {2.0f, height, 0.0f}, {-2.0f, height, 0.0f}};
     p.normals.assign(4, glm::vec3(0.0f, 0.0f, 1.0f));
     p.texcoords0 = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     p.texcoords1 = p.texcoords0;
@@ -212,9 +212,11 @@ TEST_P(ShadowContact, GrazingLightDoesNotShadowTheFloorItLights) {
 // stretches a texel 1 / sin(20 degrees) = 2.9 times along the floor; near a contact the shader
 // narrows the filter to the four nearest texels (shaders/render/shadow.glsl, shadow_result).
 // Past 3 cm filtered and 1.8 cm unfiltered every floor pixel must be dark, under 1% of the sun's
-// unshadowed radiance, and light above 5% must not reach that far. Measured: 2.4 cm filtered
-// (6.5% at most past 1.2 cm, where the wall's foot crosses the map's texels aslant), 1.15 cm
-// unfiltered; the slope-scaled bias used before reached 2.8 cm filtered and 2.4 cm unfiltered.
+// unshadowed radiance, and light above 5% must not reach that far. Measured: 2.0 cm filtered
+// (6.5% at most past 1.2 cm, where the wall's foot crosses the map's texels aslant), 0.7 cm
+// unfiltered (2.4 and 1.15 cm before the wall's back, which the sun sees, was stored a texel
+// nearer the sun: shaders/render/shadow.frag); the slope-scaled bias used before reached 2.8 cm
+// filtered and 2.4 cm unfiltered.
 /// The floor in front of the wall (z > 0), in the wall's umbra: how far from the wall light
 /// above 5% of `unshadowed` reaches, and every pixel past `dark_beyond` metres checked to be
 /// under 1% of it.
@@ -273,8 +275,9 @@ TEST_P(ShadowContact, WallStandingOnTheFloorShadowsItToTheCorner) {
     // image of the leak (the texels nearest a receiver within half a texel of the foot may see
     // the wall). Past 1 cm unfiltered and 2 cm filtered every pixel must read at least 98% of
     // the sun's radiance; the contact rule must not darken it where the filter's taps reach
-    // under the wall's shadow. Measured: 3 mm of dark unfiltered; filtered, 97% at 1.6 cm, the
-    // darkest pixel 36% within 3 mm.
+    // under the wall's shadow. Measured: 3 mm of dark unfiltered; filtered, 98.7% past 2 cm
+    // (99.7% before the wall's back was stored a texel nearer the sun: the taps that read it
+    // within the bias now count as shadow), the darkest pixel 18% within 2 cm.
     const Lit sunny = render(world, {0.0f, 0.45f, -0.55f}, {0.0f, 0.0f, -0.05f}, 0.6f, filtered);
     const float lit_beyond = filtered ? 0.02f : 0.01f;  // metres from the wall
     int sunny_pixels = 0;
@@ -334,6 +337,80 @@ TEST_P(ShadowContact, GrazingSunBehindAWallLeavesNoLitBandAtItsFoot) {
         "[ figures  ] sun at 6 degrees behind the wall, filtered %d: light above 5%% reaches "
         "%.2f cm from the wall\n",
         filtered ? 1 : 0, 100.0f * umbra.leak_reach);
+}
+
+// A room's ceiling meeting its wall, both single sheets facing into the room (the wall +z, the
+// ceiling down, at 1.5 m), and the light outside above the ceiling: the sun coming towards the
+// wall over the ceiling, 30 and 70 degrees high (70: the wall lit at 20 degrees from grazing,
+// as the sandbox level's sun meets its walls), or a point light 1 m above the ceiling. The
+// wall under the ceiling is in the ceiling's shadow (the sun's down to 1.5 - 2 tan(elevation)
+// m, the ceiling reaching 2 m into the room; the point light's everywhere), right up to the
+// edge. To the light's map the ceiling touching the wall is a surface at the wall's own depth:
+// within the half-texel bias of the receiver-plane comparison it counted lit, and a row of
+// sunlit notches a texel apart lit the wall's top (the sandbox level's frame 0, docs/RESULTS.md).
+// The light meets the ceiling from behind, and a single-sided surface seen from behind is
+// stored a texel nearer the light (shaders/render/shadow.frag). Every wall pixel within 30 cm
+// under the ceiling must be dark, under 1% of the unshadowed radiance. Measured before: 45-160 of
+// the strip's 13,440 pixels lit unfiltered (the brightest at the full sun), 115-320 filtered; now
+// none.
+TEST_P(ShadowContact, CeilingMeetingTheWallLeavesNoLitNotchesAlongTheEdge) {
+    const bool filtered = GetParam();
+    constexpr float kCeiling = 1.5f;
+    struct Case {
+        const char* name;
+        float sun_elevation;  ///< degrees; 0: the point light
+    };
+    for (const Case c : {Case{"sun at 30 degrees", 30.0f}, Case{"sun at 70 degrees", 70.0f},
+                         Case{"point light above the ceiling", 0.0f}}) {
+        test::RenderWorld world;
+        world.add_mesh(test::single_mesh_scene(wall(kCeiling), kAlbedo));
+        world.add_mesh(test::single_mesh_scene(
+            test::horizontal_square(glm::vec3(0.0f, kCeiling, 1.0f), 1.0f, false), kAlbedo));
+        float unshadowed = 0.0f;  // the wall's radiance at the edge were nothing in the way
+        const glm::vec3 lamp(0.0f, kCeiling + 1.0f, 1.0f);
+        const glm::vec3 power(200.0f);
+        if (c.sun_elevation > 0.0f) {
+            const float e = glm::radians(c.sun_elevation);
+            const glm::vec3 d =
+                glm::normalize(glm::vec3(0.2f * std::cos(e), -std::sin(e), -std::cos(e)));
+            add_sun(world, d);
+            unshadowed = kAlbedo.g / glm::pi<float>() * kSunIrradiance * -d.z;
+        } else {
+            const ecs::Entity light = world.registry.create();
+            world.registry.emplace<lighting::PointLight>(light, power, 0.0f, true);
+            world.registry.emplace<ecs::Transform>(light, lamp, glm::quat(1.0f, 0.0f, 0.0f, 0.0f));
+            const glm::vec3 to_light = lamp - glm::vec3(0.0f, kCeiling, 0.0f);
+            const float d2 = glm::dot(to_light, to_light);
+            unshadowed = kAlbedo.g / glm::pi<float>() * power.g / (4.0f * glm::pi<float>()) *
+                         (to_light.z / std::sqrt(d2)) / d2;
+        }
+        world.start();
+        world.update();
+        const Lit lit = render(world, {0.0f, 1.1f, 0.7f}, {0.0f, 1.4f, 0.0f}, 0.7f, filtered);
+        int strip = 0;
+        int notches = 0;
+        float brightest = 0.0f;
+        for (int y = 0; y < kSize; ++y) {
+            for (int x = 0; x < kSize; ++x) {
+                const glm::vec4 p = position_at(lit, x, y);
+                if (p.w == 0.0f || std::abs(p.z) > 1e-3f || p.y < kCeiling - 0.3f ||
+                    std::abs(p.x) > 0.9f) {
+                    continue;  // nothing, the ceiling, or the wall away from the edge
+                }
+                ++strip;
+                const float lit_fraction = lit.direct.pixel(x, y).g / unshadowed;
+                brightest = std::max(brightest, lit_fraction);
+                notches += lit_fraction > 0.01f ? 1 : 0;
+            }
+        }
+        EXPECT_GT(strip, kSize * kSize / 4) << c.name;
+        EXPECT_EQ(notches, 0) << c.name << ", filtered " << filtered << ": the brightest pixel "
+                              << brightest << " of the unshadowed radiance";
+        std::printf(
+            "[ figures  ] ceiling on the wall, %s, filtered %d: %d of %d pixels under the edge "
+            "lit above 1%%, the brightest %.3f\n",
+            c.name, filtered ? 1 : 0, notches, strip, brightest);
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Filter, ShadowContact, ::testing::Bool(),
