@@ -38,6 +38,7 @@
 #include "luxel/runtime/jobs.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/scene_instance.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
@@ -75,11 +76,11 @@ struct PoweredLevel {
     explicit PoweredLevel(float light_power) {
         world::InstantiateOptions options;
         options.play_animations = false;
-        instance = world::instantiate(registry,
-                                      std::make_shared<scene::Scene>(scene::load_gltf(
-                                          std::filesystem::path(LUXEL_SOURCE_DIR) / "assets" /
-                                          "levels" / "prepared" / "cornell.glb")),
-                                      options);
+        instance = world::instantiate(
+            registry,
+            std::make_shared<scene::Scene>(scene::load_gltf(luxel::test::source_dir() / "assets" /
+                                                            "levels" / "prepared" / "cornell.glb")),
+            options);
         for (auto [entity, light] : registry.view<PointLight>()) {
             light.power = glm::vec3(light_power);
         }

@@ -33,15 +33,15 @@
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/scene_instance.hpp"
 #include "luxel/world/skinning.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
 using namespace luxel;
 
 std::shared_ptr<const scene::Scene> prepared_cornell() {
-    static const auto loaded = std::make_shared<scene::Scene>(
-        scene::load_gltf(std::filesystem::path(LUXEL_SOURCE_DIR) / "assets" / "levels" /
-                         "prepared" / "cornell.glb"));
+    static const auto loaded = std::make_shared<scene::Scene>(scene::load_gltf(
+        luxel::test::source_dir() / "assets" / "levels" / "prepared" / "cornell.glb"));
     return loaded;
 }
 
@@ -175,9 +175,8 @@ BENCHMARK(Unbudgeted)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 /// The sandbox level's warm-up, posed at t = 0 as luxel-sandbox poses it, in ms.
 double sandbox_warm_up_ms(bool unmapped_radiance) {
-    static const auto level = std::make_shared<scene::Scene>(
-        scene::load_gltf(std::filesystem::path(LUXEL_SOURCE_DIR) / "assets" / "levels" /
-                         "prepared" / "sandbox.glb"));
+    static const auto level = std::make_shared<scene::Scene>(scene::load_gltf(
+        luxel::test::source_dir() / "assets" / "levels" / "prepared" / "sandbox.glb"));
     ecs::Registry registry;
     world::instantiate(registry, level);
     world::update_animations(registry, 0.0);

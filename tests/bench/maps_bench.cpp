@@ -57,6 +57,7 @@
 #include "luxel/runtime/jobs.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/scene_instance.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
@@ -198,8 +199,7 @@ BENCHMARK(KdQuery)->Arg(300)->Arg(500)->Arg(1000)->Arg(2000)->UseManualTime()->U
 // --- Scenes for the gather ----------------------------------------------------------------------
 
 std::filesystem::path prepared(const std::string& name) {
-    return std::filesystem::path(LUXEL_SOURCE_DIR) / "assets" / "levels" / "prepared" /
-           (name + ".glb");
+    return luxel::test::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb");
 }
 
 /// A prepared level as a game holds it: photons traced once (frame 0, every group) and every

@@ -50,14 +50,15 @@
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/scene_instance.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
 using namespace luxel;
 
 std::shared_ptr<const scene::Scene> cornell_13k() {
-    static const auto loaded = std::make_shared<scene::Scene>(scene::load_gltf(
-        std::filesystem::path(LUXEL_SOURCE_DIR) / "assets" / "levels" / "cornell-13k.glb"));
+    static const auto loaded = std::make_shared<scene::Scene>(
+        scene::load_gltf(luxel::test::source_dir() / "assets" / "levels" / "cornell-13k.glb"));
     return loaded;
 }
 

@@ -27,6 +27,7 @@
 #include "luxel/runtime/jobs.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/scene_instance.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
@@ -44,8 +45,8 @@ struct LitCornell {
     JobSystem jobs{2};
     std::unique_ptr<LightingSystem> lighting;
     LitCornell() {
-        auto level = std::make_shared<scene::Scene>(scene::load_gltf(
-            std::filesystem::path(LUXEL_SOURCE_DIR) / "assets/levels/prepared/cornell.glb"));
+        auto level = std::make_shared<scene::Scene>(
+            scene::load_gltf(luxel::test::source_dir() / "assets/levels/prepared/cornell.glb"));
         world::instantiate(registry, level);
         ecs::TransformSystem(registry).update();
         lighting = std::make_unique<LightingSystem>(registry, jobs);

@@ -16,6 +16,7 @@
 #include "bench_outputs.hpp"
 #include "luxel/runtime/image.hpp"
 #include "temp_dir.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
@@ -215,7 +216,7 @@ TEST(BenchImage, PixelsWithoutALightMapAreMeasuredOnTheirOwn) {
     luxel::testing::TempDir dir("luxel-bench-unmapped");
     const std::filesystem::path out = dir / "out";
     const std::filesystem::path level =
-        std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets/levels/prepared/skinned-figure.glb";
+        luxel::test::source_dir() / "assets/levels/prepared/skinned-figure.glb";
     const CommandResult run = luxel_bench(
         "--level " + quoted(level) +
         " --budgets 100000 --frames 20 --checkpoint 20 --change none --ref-photons 200000 "
@@ -294,7 +295,7 @@ TEST(BenchImage, ATexturedLevelBlenderWroteMatchesTheReferenceWithinEightPercent
     luxel::testing::TempDir dir("luxel-bench-textured");
     const std::filesystem::path out = dir / "out";
     const std::filesystem::path level =
-        std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets/levels/prepared/emissive-sign.glb";
+        luxel::test::source_dir() / "assets/levels/prepared/emissive-sign.glb";
     const CommandResult run = luxel_bench(
         "--level " + quoted(level) +
         " --budgets 100000 --frames 30 --checkpoint 30 --change none --ref-photons 1000000 "
@@ -332,7 +333,7 @@ TEST(BenchImage, GlassBlenderWroteMatchesTheReferenceWithinFivePercent) {
     luxel::testing::TempDir dir("luxel-bench-glass");
     const std::filesystem::path out = dir / "out";
     const std::filesystem::path level =
-        std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets/levels/prepared/tinted-glass.glb";
+        luxel::test::source_dir() / "assets/levels/prepared/tinted-glass.glb";
     // 120 frames: the light maps' refinement passes fade in over the first hundred.
     const CommandResult run = luxel_bench(
         "--level " + quoted(level) +

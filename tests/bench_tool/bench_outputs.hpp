@@ -11,11 +11,12 @@
 #include <vector>
 
 #include "run_command.hpp"
+#include "test_paths.hpp"
 
 namespace luxel::testing {
 
 inline CommandResult luxel_bench(const std::string& arguments) {
-    return run_command(LUXEL_BENCH_EXECUTABLE, arguments);
+    return run_command(luxel::test::program("luxel-bench"), arguments);
 }
 
 using CsvRows = std::vector<std::vector<std::string>>;

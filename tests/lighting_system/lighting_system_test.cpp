@@ -14,6 +14,7 @@
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/scene_instance.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
@@ -23,9 +24,8 @@ using namespace luxel::lighting;
 constexpr double kUnlimited = 1e9;  // milliseconds: everything queued runs
 
 std::shared_ptr<const scene::Scene> prepared(const std::string& name) {
-    return std::make_shared<scene::Scene>(
-        scene::load_gltf(std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" / "levels" /
-                         "prepared" / (name + ".glb")));
+    return std::make_shared<scene::Scene>(scene::load_gltf(
+        luxel::test::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb")));
 }
 
 LightingConfig small_config() {

@@ -17,6 +17,7 @@
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/scene_instance.hpp"
 #include "map_test_scenes.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
@@ -34,8 +35,8 @@ struct Furnace {
     double time = 0.0;
 
     Furnace() {
-        scene::Scene scene = scene::load_gltf(std::filesystem::path(LUXEL_TEST_SOURCE_DIR) /
-                                              "assets" / "levels" / "prepared" / "furnace.glb");
+        scene::Scene scene = scene::load_gltf(luxel::test::source_dir() / "assets" / "levels" /
+                                              "prepared" / "furnace.glb");
         scene.materials.at(0).base_color = glm::vec4(glm::vec3(kAlbedo), 1.0f);
         world::InstantiateOptions options;
         options.play_animations = false;

@@ -22,6 +22,7 @@
 #include "luxel/runtime/jobs.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/scene_instance.hpp"
+#include "test_paths.hpp"
 
 namespace luxel::testing {
 
@@ -156,8 +157,8 @@ struct TracedLevel {
     std::unique_ptr<lighting::PhotonWorld> photons;
 
     explicit TracedLevel(const std::string& name) {
-        const std::filesystem::path file = std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" /
-                                           "levels" / "prepared" / (name + ".glb");
+        const std::filesystem::path file =
+            luxel::test::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb");
         world::InstantiateOptions options;
         options.play_animations = false;
         world::instantiate(registry, std::make_shared<scene::Scene>(scene::load_gltf(file)),

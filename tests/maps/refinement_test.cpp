@@ -18,6 +18,7 @@
 #include "luxel/runtime/jobs.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/scene_instance.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
@@ -34,11 +35,11 @@ struct Cornell {
             float noise_sigmas = 0.0f) {
         world::InstantiateOptions options;
         options.play_animations = false;
-        instance = world::instantiate(registry,
-                                      std::make_shared<scene::Scene>(scene::load_gltf(
-                                          std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" /
-                                          "levels" / "prepared" / "cornell.glb")),
-                                      options);
+        instance = world::instantiate(
+            registry,
+            std::make_shared<scene::Scene>(scene::load_gltf(luxel::test::source_dir() / "assets" /
+                                                            "levels" / "prepared" / "cornell.glb")),
+            options);
         transforms.update();
         lighting::LightingConfig config;
         config.gather.rays_per_texel = rays;

@@ -19,6 +19,7 @@
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/scene_instance.hpp"
 #include "map_test_scenes.hpp"
+#include "test_paths.hpp"
 #include "texel_visit.hpp"
 
 namespace {
@@ -26,9 +27,8 @@ namespace {
 using namespace luxel;
 
 std::shared_ptr<const scene::Scene> sky_window() {
-    return std::make_shared<scene::Scene>(
-        scene::load_gltf(std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" / "levels" /
-                         "prepared" / "sky-window.glb"));
+    return std::make_shared<scene::Scene>(scene::load_gltf(
+        luxel::test::source_dir() / "assets" / "levels" / "prepared" / "sky-window.glb"));
 }
 
 /// A pane filling the window's 1.2 x 1.0 m opening edge to edge, in the wall's plane, facing out

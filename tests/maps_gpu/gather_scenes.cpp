@@ -10,6 +10,7 @@
 #include "luxel/lighting/components.hpp"
 #include "luxel/runtime/error.hpp"
 #include "luxel/scene/gltf.hpp"
+#include "test_paths.hpp"
 
 namespace luxel::test {
 
@@ -72,7 +73,7 @@ glm::vec3 synthetic_radiance(int x, int y) {
 }
 
 std::filesystem::path level_path(const std::string& name) {
-    return std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" / "levels" / (name + ".glb");
+    return luxel::test::source_dir() / "assets" / "levels" / (name + ".glb");
 }
 
 GatherLevel::GatherLevel(const std::string& name) {

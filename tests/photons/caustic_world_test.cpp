@@ -18,6 +18,7 @@
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/scene_instance.hpp"
 #include "luxel/world/vertex_wave.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
@@ -39,11 +40,11 @@ struct CausticLevel {
         : jobs(threads) {
         world::InstantiateOptions options;
         options.play_animations = false;
-        instance = world::instantiate(registry,
-                                      std::make_shared<scene::Scene>(scene::load_gltf(
-                                          std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" /
-                                          "levels" / (name + ".glb"))),
-                                      options);
+        instance = world::instantiate(
+            registry,
+            std::make_shared<scene::Scene>(scene::load_gltf(luxel::test::source_dir() / "assets" /
+                                                            "levels" / (name + ".glb"))),
+            options);
         transforms.update();
         lighting::PhotonWorldSettings settings;
         settings.caustics.photons_per_pair = photons_per_pair;

@@ -16,14 +16,15 @@
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/scene_instance.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
 using namespace luxel;
 
 std::shared_ptr<const scene::Scene> load_level(const std::string& name) {
-    return std::make_shared<scene::Scene>(scene::load_gltf(
-        std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" / "levels" / (name + ".glb")));
+    return std::make_shared<scene::Scene>(
+        scene::load_gltf(luxel::test::source_dir() / "assets" / "levels" / (name + ".glb")));
 }
 
 /// A 0.4 m diffuse cube as a one-mesh scene, for adding a moving object to a level.

@@ -20,6 +20,7 @@
 #include "luxel/runtime/image.hpp"
 #include "luxel/world/scene_instance.hpp"
 #include "temp_dir.hpp"
+#include "test_paths.hpp"
 #include "ticking_clock.hpp"
 
 namespace {
@@ -153,8 +154,8 @@ TEST(AutoPrep, APreparedLevelIsLoadedAsItIs) {
     prep::PlayableLevel settings;
     settings.prep.cache_dir = dir / "cache";
     settings.prep.enabled = false;  // never needed
-    const std::filesystem::path file = std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" /
-                                       "levels" / "prepared" / "cornell.glb";
+    const std::filesystem::path file =
+        luxel::test::source_dir() / "assets" / "levels" / "prepared" / "cornell.glb";
     JobSystem jobs(2);
     ::testing::internal::CaptureStderr();
     const auto level = prep::load_playable(file, settings, jobs);

@@ -13,6 +13,7 @@
 #include "prep_test_support.hpp"
 #include "run_command.hpp"
 #include "temp_dir.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
@@ -22,7 +23,7 @@ using luxel::testing::CommandResult;
 using luxel::testing::quoted;
 
 CommandResult luxel_prep(const std::string& arguments) {
-    return luxel::testing::run_command(LUXEL_PREP_EXECUTABLE, arguments);
+    return luxel::testing::run_command(luxel::test::program("luxel-prep"), arguments);
 }
 
 std::vector<char> read_bytes(const std::filesystem::path& file) {

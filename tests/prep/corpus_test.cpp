@@ -16,6 +16,7 @@
 #include "prep_test_support.hpp"
 #include "run_command.hpp"
 #include "temp_dir.hpp"
+#include "test_paths.hpp"
 #include "validator.hpp"
 
 namespace {
@@ -23,7 +24,7 @@ namespace {
 using namespace luxel;
 
 std::filesystem::path corpus_dir() {
-    return std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "tests" / "prep" / "corpus";
+    return luxel::test::source_dir() / "tests" / "prep" / "corpus";
 }
 
 struct CorpusFile {
@@ -146,9 +147,10 @@ TEST(PrepCorpus, PacksRealMeshesWithinTheGoalsAndWritesValidFiles) {
 TEST(PrepCorpus, RefusesALightBeyondWhatFloatsHoldWithAClearError) {
     luxel::testing::TempDir dir("luxel-prep-corpus");
     const auto output = dir / "out.glb";
-    const luxel::testing::CommandResult run = luxel::testing::run_command(
-        LUXEL_PREP_EXECUTABLE, luxel::testing::quoted(corpus_dir() / "hand-bright-light.glb") +
-                                   " -o " + luxel::testing::quoted(output));
+    const luxel::testing::CommandResult run =
+        luxel::testing::run_command(luxel::test::program("luxel-prep"),
+                                    luxel::testing::quoted(corpus_dir() / "hand-bright-light.glb") +
+                                        " -o " + luxel::testing::quoted(output));
     EXPECT_EQ(run.exit_code, 1) << run.output;
     EXPECT_NE(run.output.find("Blinding lamp"), std::string::npos) << run.output;
     EXPECT_NE(run.output.find("intensity"), std::string::npos) << run.output;

@@ -9,6 +9,7 @@
 #include "luxel/prep/raster.hpp"
 #include "luxel/runtime/jobs.hpp"
 #include "luxel/scene/lightmap_layout.hpp"
+#include "test_paths.hpp"
 
 namespace luxel::testing {
 namespace {
@@ -117,15 +118,13 @@ std::vector<std::string> blender_level_names() {
 std::filesystem::path level_file(const std::string& name) {
     const std::vector<std::string> blender = blender_level_names();
     if (std::find(blender.begin(), blender.end(), name) != blender.end()) {
-        return std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "tests" / "levels" / "blender" /
-               (name + ".glb");
+        return luxel::test::source_dir() / "tests" / "levels" / "blender" / (name + ".glb");
     }
-    return std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" / "levels" / (name + ".glb");
+    return luxel::test::source_dir() / "assets" / "levels" / (name + ".glb");
 }
 
 std::filesystem::path prepared_level_file(const std::string& name) {
-    return std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" / "levels" / "prepared" /
-           (name + ".glb");
+    return luxel::test::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb");
 }
 
 scene::Material diffuse_material(const std::string& name) {

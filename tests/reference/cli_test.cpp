@@ -12,6 +12,7 @@
 #include "luxel/runtime/image.hpp"
 #include "run_command.hpp"
 #include "temp_dir.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
@@ -21,7 +22,7 @@ using luxel::testing::CommandResult;
 using luxel::testing::quoted;
 
 CommandResult luxel_ref(const std::string& arguments) {
-    return luxel::testing::run_command(LUXEL_REF_EXECUTABLE, arguments);
+    return luxel::testing::run_command(luxel::test::program("luxel-ref"), arguments);
 }
 
 TEST(RefCli, ABadFlagIsRejectedByName) {

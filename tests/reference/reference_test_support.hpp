@@ -12,12 +12,12 @@
 #include "luxel/lighting/reference/reference_scene.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/scene_instance.hpp"
+#include "test_paths.hpp"
 
 namespace luxel::testing {
 
 inline std::filesystem::path prepared_level(const std::string& name) {
-    return std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" / "levels" / "prepared" /
-           (name + ".glb");
+    return luxel::test::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb");
 }
 
 /// A level instantiated (no animation), its PhotonWorld and IlluminationMaps synced, and the

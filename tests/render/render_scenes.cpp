@@ -7,6 +7,7 @@
 #include "luxel/ecs/transform.hpp"
 #include "luxel/scene/components.hpp"
 #include "luxel/scene/gltf.hpp"
+#include "test_paths.hpp"
 
 namespace luxel::test {
 namespace {
@@ -130,14 +131,13 @@ void RenderWorld::update(double budget_ms, double dt) {
 }
 
 std::filesystem::path prepared_level(const std::string& name) {
-    return std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" / "levels" / "prepared" /
-           (name + ".glb");
+    return luxel::test::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb");
 }
 
 std::vector<std::string> prepared_levels() {
     std::vector<std::string> names;
     for (const auto& entry : std::filesystem::directory_iterator(
-             std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" / "levels" / "prepared")) {
+             luxel::test::source_dir() / "assets" / "levels" / "prepared")) {
         if (entry.path().extension() == ".glb") {
             names.push_back(entry.path().stem().string());
         }

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "run_command.hpp"
+#include "test_paths.hpp"
 
 namespace luxel::testing {
 
@@ -10,7 +11,7 @@ using SandboxResult = CommandResult;
 
 /// Runs build/bin/luxel-sandbox with `arguments` and collects what it printed.
 inline SandboxResult run_sandbox(const std::string& arguments) {
-    return run_command(LUXEL_SANDBOX_EXECUTABLE, arguments);
+    return run_command(luxel::test::program("luxel-sandbox"), arguments);
 }
 
 }  // namespace luxel::testing

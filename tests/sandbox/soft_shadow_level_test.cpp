@@ -14,6 +14,7 @@
 #include "luxel/scene/gltf.hpp"
 #include "run_sandbox.hpp"
 #include "temp_dir.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
@@ -56,7 +57,7 @@ int differing_pixels(const Image& a, const Image& b) {
 
 TEST(SoftShadowLevel, ALampWithARadiusCastsSoftShadowsInTheMainJob) {
     const std::filesystem::path file =
-        std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets/levels/prepared/cornell.glb";
+        luxel::test::source_dir() / "assets/levels/prepared/cornell.glb";
     scene::Scene level = scene::load_gltf(file);
     int lamps = 0;
     for (scene::Node& node : level.nodes) {

@@ -18,6 +18,7 @@
 #include "luxel/world/animation_system.hpp"
 #include "run_sandbox.hpp"
 #include "temp_dir.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
@@ -91,7 +92,7 @@ class StartPose : public ::testing::TestWithParam<std::string> {};
 TEST_P(StartPose, FrameZeroIsTheFrameOfTheStartPoseBakedIntoTheFile) {
     const std::string level = GetParam();
     const std::filesystem::path file =
-        std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets/levels/prepared" / (level + ".glb");
+        luxel::test::source_dir() / "assets/levels/prepared" / (level + ".glb");
     const scene::Scene source = scene::load_gltf(file);
     ASSERT_FALSE(source.animations.empty()) << level << " must move something at t = 0";
     luxel::testing::TempDir out("luxel-start-pose");

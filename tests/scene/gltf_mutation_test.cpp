@@ -21,6 +21,7 @@
 #include "luxel/runtime/log.hpp"
 #include "luxel/scene/gltf.hpp"
 #include "temp_dir.hpp"
+#include "test_paths.hpp"
 #include "test_scenes.hpp"
 
 namespace {
@@ -43,7 +44,7 @@ std::vector<std::uint8_t> read_bytes(const std::filesystem::path& file) {
 
 /// Directories whose .glb/.gltf files join the inputs when they exist: the built-in levels.
 std::vector<std::filesystem::path> level_directories() {
-    const std::filesystem::path root(LUXEL_TEST_SOURCE_DIR);
+    const std::filesystem::path root = luxel::test::source_dir();
     return {root / "assets" / "levels", root / "tests" / "assets" / "levels"};
 }
 

@@ -15,6 +15,8 @@
 
 #include <gtest/gtest.h>
 
+#include "test_paths.hpp"
+
 namespace luxel::testing {
 
 struct ValidatorResult {
@@ -23,8 +25,7 @@ struct ValidatorResult {
 };
 
 inline ValidatorResult run_gltf_validator(const std::vector<std::filesystem::path>& files) {
-    const std::filesystem::path script =
-        std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "tools" / "validate-gltf.cjs";
+    const std::filesystem::path script = luxel::test::source_dir() / "tools" / "validate-gltf.cjs";
     std::string command = "node '" + script.string() + "'";
     for (const auto& file : files) {
         command += " '" + file.string() + "'";

@@ -17,13 +17,14 @@
 #include "luxel/scene/gltf.hpp"
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/scene_instance.hpp"
+#include "test_paths.hpp"
 #include "texel_visit.hpp"
 
 namespace luxel::testing {
 
 inline scene::Scene load_prepared(const std::string& name) {
-    return scene::load_gltf(std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" / "levels" /
-                            "prepared" / (name + ".glb"));
+    return scene::load_gltf(luxel::test::source_dir() / "assets" / "levels" / "prepared" /
+                            (name + ".glb"));
 }
 
 /// A level in a registry with its LightingSystem.

@@ -9,12 +9,13 @@
 
 #include "luxel/scene/gltf.hpp"
 #include "luxel/scene/scene.hpp"
+#include "test_paths.hpp"
 
 namespace luxel::testing {
 
 [[nodiscard]] inline scene::Scene prepared_cornell() {
-    return scene::load_gltf(std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" / "levels" /
-                            "prepared" / "cornell.glb");
+    return scene::load_gltf(luxel::test::source_dir() / "assets" / "levels" / "prepared" /
+                            "cornell.glb");
 }
 
 /// No punctual light, and no material emits.

@@ -14,6 +14,7 @@
 
 #include "run_command.hpp"
 #include "temp_dir.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
@@ -22,16 +23,16 @@ using luxel::testing::run_command;
 
 struct Tool {
     const char* name;
-    const char* executable;
+    std::string executable;
 };
 
-const Tool kSandbox{"luxel-sandbox", LUXEL_SANDBOX_EXECUTABLE};
-const Tool kPrep{"luxel-prep", LUXEL_PREP_EXECUTABLE};
-const Tool kRef{"luxel-ref", LUXEL_REF_EXECUTABLE};
-const Tool kBench{"luxel-bench", LUXEL_BENCH_EXECUTABLE};
-const Tool kMakeLevels{"luxel-make-levels", LUXEL_MAKE_LEVELS_EXECUTABLE};
+const Tool kSandbox{"luxel-sandbox", luxel::test::program("luxel-sandbox")};
+const Tool kPrep{"luxel-prep", luxel::test::program("luxel-prep")};
+const Tool kRef{"luxel-ref", luxel::test::program("luxel-ref")};
+const Tool kBench{"luxel-bench", luxel::test::program("luxel-bench")};
+const Tool kMakeLevels{"luxel-make-levels", luxel::test::program("luxel-make-levels")};
 
-const std::string kCornell = std::string(LUXEL_TEST_SOURCE_DIR) + "/assets/levels/cornell.glb";
+const std::string kCornell = (luxel::test::source_dir() / "assets/levels/cornell.glb").string();
 
 struct Case {
     Tool tool;

@@ -9,13 +9,14 @@
 
 #include "luxel/runtime/image.hpp"
 #include "run_command.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
 using luxel::testing::quoted;
 using luxel::testing::run_command;
 
-const std::string kTool = LUXEL_FRAME_ERROR_EXECUTABLE;
+const std::string kTool = luxel::test::program("luxel-frame-error");
 
 struct Frames {
     std::filesystem::path dir;

@@ -11,14 +11,15 @@
 
 #include "run_command.hpp"
 #include "temp_dir.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
 using luxel::testing::CommandResult;
 using luxel::testing::quoted;
 
-const std::filesystem::path kSource = LUXEL_TEST_SOURCE_DIR;
-const std::filesystem::path kBuild = LUXEL_TEST_BINARY_DIR;
+const std::filesystem::path kSource = luxel::test::source_dir();
+const std::filesystem::path kBuild = luxel::test::binary_dir();
 
 // A header GLFW's native-access header reads on X11; Debian's libxrandr-dev owns it. It went
 // missing from scripts/packages.txt once, and only a new machine noticed.

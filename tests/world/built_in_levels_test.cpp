@@ -23,14 +23,14 @@
 #include "luxel/world/scene_instance.hpp"
 #include "luxel/world/skinning.hpp"
 #include "luxel/world/sky.hpp"
+#include "test_paths.hpp"
 #include "validator.hpp"
 
 namespace {
 
 using namespace luxel;
 
-const std::filesystem::path kLevels =
-    std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "assets" / "levels";
+const std::filesystem::path kLevels = luxel::test::source_dir() / "assets" / "levels";
 
 std::vector<std::uint8_t> read_bytes(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);

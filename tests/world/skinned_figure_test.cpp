@@ -26,13 +26,14 @@
 #include "luxel/world/animation_system.hpp"
 #include "luxel/world/scene_instance.hpp"
 #include "luxel/world/skinning.hpp"
+#include "test_paths.hpp"
 
 namespace {
 
 using nlohmann::json;
 
-const std::filesystem::path kFigure = std::filesystem::path(LUXEL_TEST_SOURCE_DIR) / "tests" /
-                                      "levels" / "blender" / "skinned-figure.glb";
+const std::filesystem::path kFigure =
+    luxel::test::source_dir() / "tests" / "levels" / "blender" / "skinned-figure.glb";
 
 struct Box {
     glm::vec3 lo{1e30f};
