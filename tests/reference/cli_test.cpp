@@ -87,7 +87,7 @@ TEST(RefCli, ATinyRunWritesAFrameAndLightMaps) {
     const auto maps = dir / "furnace.json";
     const CommandResult run = luxel_ref(
         "--level furnace --camera 0,0,0:0,0,-1:70 --width 32 --height 24 --spp 2 "
-        "--passes 2 --threads 2 -o " +
+        "--passes 2 --threads 2 --indirect-photons 200000 -o " +
         quoted(frame) + " --lightmaps " + quoted(maps));
     ASSERT_EQ(run.exit_code, 0) << run.output;
     EXPECT_NE(run.output.find("pass 2/2"), std::string::npos) << run.output;
