@@ -98,6 +98,20 @@ glm::vec4 position_at(const Lit& lit, int x, int y) {
     return lit.positions[static_cast<std::size_t>((kSize - 1 - y) * kSize + x)];
 }
 
+/// Calls `visit(x, y, p, direct)` for every pixel of `lit` that shows a surface: its image
+/// coordinates (rows top first), the world position there and the direct term's green channel.
+template <typename Visit>
+void for_each_surface_pixel(const Lit& lit, Visit visit) {
+    for (int y = 0; y < kSize; ++y) {
+        for (int x = 0; x < kSize; ++x) {
+            const glm::vec4 p = position_at(lit, x, y);
+            if (p.w != 0.0f) {
+                visit(x, y, glm::vec3(p), lit.direct.pixel(x, y).g);
+            }
+        }
+    }
+}
+
 /// Every floor pixel of `lit` against `expected` (the unshadowed radiance at a point of the
 /// floor, or a negative value where the test does not judge the pixel); returns the worst
 /// relative error over the judged pixels and how many there were.
@@ -109,25 +123,21 @@ struct FloorError {
 template <typename Expected>
 FloorError floor_error(const Lit& lit, Expected expected) {
     FloorError error;
-    for (int y = 0; y < kSize; ++y) {
-        for (int x = 0; x < kSize; ++x) {
-            const glm::vec4 p = position_at(lit, x, y);
-            if (p.w == 0.0f || std::abs(p.y) > 1e-3f) {
-                continue;
-            }
-            const float want = expected(glm::vec3(p));
-            if (!(want > 0.0f)) {
-                continue;
-            }
-            const float got = lit.direct.pixel(x, y).g;
-            const float relative = std::abs(got - want) / want;
-            if (relative > error.worst) {
-                error.worst = relative;
-                error.worst_at = glm::vec3(p);
-            }
-            ++error.judged;
+    for_each_surface_pixel(lit, [&](int, int, const glm::vec3& p, float got) {
+        if (std::abs(p.y) > 1e-3f) {
+            return;
         }
-    }
+        const float want = expected(p);
+        if (!(want > 0.0f)) {
+            return;
+        }
+        const float relative = std::abs(got - want) / want;
+        if (relative > error.worst) {
+            error.worst = relative;
+            error.worst_at = p;
+        }
+        ++error.judged;
+    });
     return error;
 }
 
@@ -227,24 +237,21 @@ struct Umbra {
 };
 Umbra check_umbra(const Lit& lit, float unshadowed, float dark_beyond, const char* what) {
     Umbra umbra;
-    for (int y = 0; y < kSize; ++y) {
-        for (int x = 0; x < kSize; ++x) {
-            const glm::vec4 p = position_at(lit, x, y);
-            if (p.w == 0.0f || std::abs(p.y) > 1e-3f || p.z <= 0.0f || std::abs(p.x) > 1.0f) {
-                continue;  // the wall, nothing, or the floor behind the wall
-            }
-            ++umbra.floor_pixels;
-            umbra.near_wall += p.z < 0.01f ? 1 : 0;
-            const float lit_fraction = lit.direct.pixel(x, y).g / unshadowed;
-            if (lit_fraction > 0.05f) {
-                umbra.leak_reach = std::max(umbra.leak_reach, p.z);
-            }
-            if (p.z > dark_beyond) {
-                EXPECT_LT(lit_fraction, 0.01f) << what << ": floor pixel " << x << "," << y << " "
-                                               << p.z * 100.0f << " cm from the wall";
-            }
+    for_each_surface_pixel(lit, [&](int x, int y, const glm::vec3& p, float direct) {
+        if (std::abs(p.y) > 1e-3f || p.z <= 0.0f || std::abs(p.x) > 1.0f) {
+            return;  // the wall, or the floor behind the wall
         }
-    }
+        ++umbra.floor_pixels;
+        umbra.near_wall += p.z < 0.01f ? 1 : 0;
+        const float lit_fraction = direct / unshadowed;
+        if (lit_fraction > 0.05f) {
+            umbra.leak_reach = std::max(umbra.leak_reach, p.z);
+        }
+        if (p.z > dark_beyond) {
+            EXPECT_LT(lit_fraction, 0.01f) << what << ": floor pixel " << x << "," << y << " "
+                                           << p.z * 100.0f << " cm from the wall";
+        }
+    });
     EXPECT_GT(umbra.floor_pixels, kSize * kSize / 3) << what;
     EXPECT_GT(umbra.near_wall, kSize)
         << what << ": the corner should be in view at a few mm a pixel";
@@ -283,18 +290,14 @@ TEST_P(ShadowContact, WallStandingOnTheFloorShadowsItToTheCorner) {
     int sunny_pixels = 0;
     float darkest = 1.0f;
     float darkest_near = 1.0f;
-    for (int y = 0; y < kSize; ++y) {
-        for (int x = 0; x < kSize; ++x) {
-            const glm::vec4 p = position_at(sunny, x, y);
-            if (p.w == 0.0f || std::abs(p.y) > 1e-3f || p.z >= 0.0f || std::abs(p.x) > 1.0f) {
-                continue;
-            }
-            ++sunny_pixels;
-            const float lit_fraction = sunny.direct.pixel(x, y).g / unshadowed;
-            float& worst = p.z < -lit_beyond ? darkest : darkest_near;
-            worst = std::min(worst, lit_fraction);
+    for_each_surface_pixel(sunny, [&](int, int, const glm::vec3& p, float direct) {
+        if (std::abs(p.y) > 1e-3f || p.z >= 0.0f || std::abs(p.x) > 1.0f) {
+            return;
         }
-    }
+        ++sunny_pixels;
+        float& worst = p.z < -lit_beyond ? darkest : darkest_near;
+        worst = std::min(worst, direct / unshadowed);
+    });
     EXPECT_GT(sunny_pixels, kSize * kSize / 3);
     EXPECT_GT(darkest, 0.98f) << "filtered " << filtered;
     std::printf(
@@ -390,19 +393,15 @@ TEST_P(ShadowContact, CeilingMeetingTheWallLeavesNoLitNotchesAlongTheEdge) {
         int strip = 0;
         int notches = 0;
         float brightest = 0.0f;
-        for (int y = 0; y < kSize; ++y) {
-            for (int x = 0; x < kSize; ++x) {
-                const glm::vec4 p = position_at(lit, x, y);
-                if (p.w == 0.0f || std::abs(p.z) > 1e-3f || p.y < kCeiling - 0.3f ||
-                    std::abs(p.x) > 0.9f) {
-                    continue;  // nothing, the ceiling, or the wall away from the edge
-                }
-                ++strip;
-                const float lit_fraction = lit.direct.pixel(x, y).g / unshadowed;
-                brightest = std::max(brightest, lit_fraction);
-                notches += lit_fraction > 0.01f ? 1 : 0;
+        for_each_surface_pixel(lit, [&](int, int, const glm::vec3& p, float direct) {
+            if (std::abs(p.z) > 1e-3f || p.y < kCeiling - 0.3f || std::abs(p.x) > 0.9f) {
+                return;  // the ceiling, or the wall away from the edge
             }
-        }
+            ++strip;
+            const float lit_fraction = direct / unshadowed;
+            brightest = std::max(brightest, lit_fraction);
+            notches += lit_fraction > 0.01f ? 1 : 0;
+        });
         EXPECT_GT(strip, kSize * kSize / 4) << c.name;
         EXPECT_EQ(notches, 0) << c.name << ", filtered " << filtered << ": the brightest pixel "
                               << brightest << " of the unshadowed radiance";
