@@ -238,8 +238,17 @@ TEST_P(SoftShadows, APenumbraMatchesTheReferencesSphericalLight) {
     const auto camera =
         lighting::reference::ReferenceCamera::look_at(kEye, kTarget, kFov, kSize, kSize);
     lighting::reference::ReferenceFrame reference(reference_scene, camera, reference_settings);
-    for (int pass = 0; pass < 4; ++pass) {
-        reference.run_pass(world.jobs);  // 1,024 samples a pixel
+    // 1,024 samples a pixel; 256 under the sanitizers, where the four passes took most of the
+    // test's 75-84 s: the reference's noise over the penumbra doubles to about 4% there (1.9%
+    // measured at 1,024), within the 10% goal with the frame's 4-5.5%. The plain build judges
+    // at full count.
+#ifdef LUXEL_SANITIZE
+    constexpr int kReferencePasses = 1;
+#else
+    constexpr int kReferencePasses = 4;
+#endif
+    for (int pass = 0; pass < kReferencePasses; ++pass) {
+        reference.run_pass(world.jobs);
     }
     const Image reference_image = reference.image();
     if (const char* dump = std::getenv("LUXEL_RENDER_OUT")) {
