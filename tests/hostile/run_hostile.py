@@ -205,12 +205,12 @@ def sanitizer_environment(environ, memory_mb, strace):
     than the limit returns null (so operator new throws bad_alloc, as it would under RLIMIT_AS),
     and a resident set larger than the limit ends the run with a report read as OOM.
     LeakSanitizer cannot run under ptrace (strace), so leaks are left to the test suite then.
-    Allocations are traced with the fast unwinder: the test suite's fast_unwind_on_malloc=0
-    deadlocks when llvmpipe compiles a shader (LLVM registers the JIT's unwind tables, libgcc
-    takes its object lock to sort them and allocates under it, and ASan's slow unwinder inside
-    that malloc waits for the same lock). Every sanitized sandbox run of the corpus that drew a
-    frame hung; the suite's own sandbox tests, with the same option, have not (why their timing
-    escapes it is not known).
+    Allocations are traced with the fast unwinder: fast_unwind_on_malloc=0 deadlocks when
+    llvmpipe compiles a shader (LLVM registers the JIT's unwind tables, libgcc takes its object
+    lock to sort them and allocates under it, and ASan's slow unwinder inside that malloc waits
+    for the same lock). Every sanitized sandbox run of the corpus that drew a frame hung; the
+    test suite, which used it too, now also uses the fast unwinder (tests/CMakeLists.txt). Set
+    here all the same, since a caller's environment may ask for the slow one.
     The options are appended to the caller's: later options win."""
     asan = ["allocator_may_return_null=1", "max_allocation_size_mb=%d" % memory_mb,
             "hard_rss_limit_mb=%d" % memory_mb, "fast_unwind_on_malloc=1"]
