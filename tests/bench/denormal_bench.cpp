@@ -78,8 +78,8 @@ struct PoweredLevel {
         options.play_animations = false;
         instance = world::instantiate(
             registry,
-            std::make_shared<scene::Scene>(scene::load_gltf(luxel::test::source_dir() / "assets" /
-                                                            "levels" / "prepared" / "cornell.glb")),
+            std::make_shared<scene::Scene>(scene::load_gltf(
+                luxel::testing::source_dir() / "assets" / "levels" / "prepared" / "cornell.glb")),
             options);
         for (auto [entity, light] : registry.view<PointLight>()) {
             light.power = glm::vec3(light_power);

@@ -41,7 +41,7 @@ using namespace luxel;
 
 std::shared_ptr<const scene::Scene> prepared_cornell() {
     static const auto loaded = std::make_shared<scene::Scene>(scene::load_gltf(
-        luxel::test::source_dir() / "assets" / "levels" / "prepared" / "cornell.glb"));
+        luxel::testing::source_dir() / "assets" / "levels" / "prepared" / "cornell.glb"));
     return loaded;
 }
 
@@ -176,7 +176,7 @@ BENCHMARK(Unbudgeted)->Iterations(1)->Unit(benchmark::kMillisecond);
 /// The sandbox level's warm-up, posed at t = 0 as luxel-sandbox poses it, in ms.
 double sandbox_warm_up_ms(bool unmapped_radiance) {
     static const auto level = std::make_shared<scene::Scene>(scene::load_gltf(
-        luxel::test::source_dir() / "assets" / "levels" / "prepared" / "sandbox.glb"));
+        luxel::testing::source_dir() / "assets" / "levels" / "prepared" / "sandbox.glb"));
     ecs::Registry registry;
     world::instantiate(registry, level);
     world::update_animations(registry, 0.0);

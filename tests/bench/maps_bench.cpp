@@ -199,7 +199,7 @@ BENCHMARK(KdQuery)->Arg(300)->Arg(500)->Arg(1000)->Arg(2000)->UseManualTime()->U
 // --- Scenes for the gather ----------------------------------------------------------------------
 
 std::filesystem::path prepared(const std::string& name) {
-    return luxel::test::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb");
+    return luxel::testing::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb");
 }
 
 /// A prepared level as a game holds it: photons traced once (frame 0, every group) and every

@@ -58,7 +58,7 @@ using namespace luxel;
 
 std::shared_ptr<const scene::Scene> cornell_13k() {
     static const auto loaded = std::make_shared<scene::Scene>(
-        scene::load_gltf(luxel::test::source_dir() / "assets" / "levels" / "cornell-13k.glb"));
+        scene::load_gltf(luxel::testing::source_dir() / "assets" / "levels" / "cornell-13k.glb"));
     return loaded;
 }
 

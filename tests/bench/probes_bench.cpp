@@ -46,7 +46,7 @@ struct LitCornell {
     std::unique_ptr<LightingSystem> lighting;
     LitCornell() {
         auto level = std::make_shared<scene::Scene>(
-            scene::load_gltf(luxel::test::source_dir() / "assets/levels/prepared/cornell.glb"));
+            scene::load_gltf(luxel::testing::source_dir() / "assets/levels/prepared/cornell.glb"));
         world::instantiate(registry, level);
         ecs::TransformSystem(registry).update();
         lighting = std::make_unique<LightingSystem>(registry, jobs);

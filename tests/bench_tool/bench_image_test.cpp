@@ -216,7 +216,7 @@ TEST(BenchImage, PixelsWithoutALightMapAreMeasuredOnTheirOwn) {
     luxel::testing::TempDir dir("luxel-bench-unmapped");
     const std::filesystem::path out = dir / "out";
     const std::filesystem::path level =
-        luxel::test::source_dir() / "assets/levels/prepared/skinned-figure.glb";
+        luxel::testing::source_dir() / "assets/levels/prepared/skinned-figure.glb";
     const CommandResult run = luxel_bench(
         "--level " + quoted(level) +
         " --budgets 100000 --frames 20 --checkpoint 20 --change none --ref-photons 200000 "
@@ -295,7 +295,7 @@ TEST(BenchImage, ATexturedLevelBlenderWroteMatchesTheReferenceWithinEightPercent
     luxel::testing::TempDir dir("luxel-bench-textured");
     const std::filesystem::path out = dir / "out";
     const std::filesystem::path level =
-        luxel::test::source_dir() / "assets/levels/prepared/emissive-sign.glb";
+        luxel::testing::source_dir() / "assets/levels/prepared/emissive-sign.glb";
     const CommandResult run = luxel_bench(
         "--level " + quoted(level) +
         " --budgets 100000 --frames 30 --checkpoint 30 --change none --ref-photons 1000000 "
@@ -333,7 +333,7 @@ TEST(BenchImage, GlassBlenderWroteMatchesTheReferenceWithinFivePercent) {
     luxel::testing::TempDir dir("luxel-bench-glass");
     const std::filesystem::path out = dir / "out";
     const std::filesystem::path level =
-        luxel::test::source_dir() / "assets/levels/prepared/tinted-glass.glb";
+        luxel::testing::source_dir() / "assets/levels/prepared/tinted-glass.glb";
     // 120 frames: the light maps' refinement passes fade in over the first hundred.
     const CommandResult run = luxel_bench(
         "--level " + quoted(level) +

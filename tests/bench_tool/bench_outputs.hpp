@@ -16,7 +16,7 @@
 namespace luxel::testing {
 
 inline CommandResult luxel_bench(const std::string& arguments) {
-    return run_command(luxel::test::program("luxel-bench"), arguments);
+    return run_command(luxel::testing::program("luxel-bench"), arguments);
 }
 
 using CsvRows = std::vector<std::vector<std::string>>;

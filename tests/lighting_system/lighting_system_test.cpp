@@ -25,7 +25,7 @@ constexpr double kUnlimited = 1e9;  // milliseconds: everything queued runs
 
 std::shared_ptr<const scene::Scene> prepared(const std::string& name) {
     return std::make_shared<scene::Scene>(scene::load_gltf(
-        luxel::test::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb")));
+        luxel::testing::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb")));
 }
 
 LightingConfig small_config() {

@@ -35,7 +35,7 @@ struct Furnace {
     double time = 0.0;
 
     Furnace() {
-        scene::Scene scene = scene::load_gltf(luxel::test::source_dir() / "assets" / "levels" /
+        scene::Scene scene = scene::load_gltf(luxel::testing::source_dir() / "assets" / "levels" /
                                               "prepared" / "furnace.glb");
         scene.materials.at(0).base_color = glm::vec4(glm::vec3(kAlbedo), 1.0f);
         world::InstantiateOptions options;

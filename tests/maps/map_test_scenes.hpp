@@ -158,7 +158,7 @@ struct TracedLevel {
 
     explicit TracedLevel(const std::string& name) {
         const std::filesystem::path file =
-            luxel::test::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb");
+            luxel::testing::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb");
         world::InstantiateOptions options;
         options.play_animations = false;
         world::instantiate(registry, std::make_shared<scene::Scene>(scene::load_gltf(file)),

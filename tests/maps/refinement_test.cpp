@@ -37,8 +37,8 @@ struct Cornell {
         options.play_animations = false;
         instance = world::instantiate(
             registry,
-            std::make_shared<scene::Scene>(scene::load_gltf(luxel::test::source_dir() / "assets" /
-                                                            "levels" / "prepared" / "cornell.glb")),
+            std::make_shared<scene::Scene>(scene::load_gltf(
+                luxel::testing::source_dir() / "assets" / "levels" / "prepared" / "cornell.glb")),
             options);
         transforms.update();
         lighting::LightingConfig config;

@@ -28,7 +28,7 @@ using namespace luxel;
 
 std::shared_ptr<const scene::Scene> sky_window() {
     return std::make_shared<scene::Scene>(scene::load_gltf(
-        luxel::test::source_dir() / "assets" / "levels" / "prepared" / "sky-window.glb"));
+        luxel::testing::source_dir() / "assets" / "levels" / "prepared" / "sky-window.glb"));
 }
 
 /// A pane filling the window's 1.2 x 1.0 m opening edge to edge, in the wall's plane, facing out

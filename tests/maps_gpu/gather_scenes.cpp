@@ -73,7 +73,7 @@ glm::vec3 synthetic_radiance(int x, int y) {
 }
 
 std::filesystem::path level_path(const std::string& name) {
-    return luxel::test::source_dir() / "assets" / "levels" / (name + ".glb");
+    return luxel::testing::source_dir() / "assets" / "levels" / (name + ".glb");
 }
 
 GatherLevel::GatherLevel(const std::string& name) {

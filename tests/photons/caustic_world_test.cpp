@@ -42,8 +42,8 @@ struct CausticLevel {
         options.play_animations = false;
         instance = world::instantiate(
             registry,
-            std::make_shared<scene::Scene>(scene::load_gltf(luxel::test::source_dir() / "assets" /
-                                                            "levels" / (name + ".glb"))),
+            std::make_shared<scene::Scene>(scene::load_gltf(luxel::testing::source_dir() /
+                                                            "assets" / "levels" / (name + ".glb"))),
             options);
         transforms.update();
         lighting::PhotonWorldSettings settings;

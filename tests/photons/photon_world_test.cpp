@@ -24,7 +24,7 @@ using namespace luxel;
 
 std::shared_ptr<const scene::Scene> load_level(const std::string& name) {
     return std::make_shared<scene::Scene>(
-        scene::load_gltf(luxel::test::source_dir() / "assets" / "levels" / (name + ".glb")));
+        scene::load_gltf(luxel::testing::source_dir() / "assets" / "levels" / (name + ".glb")));
 }
 
 /// A 0.4 m diffuse cube as a one-mesh scene, for adding a moving object to a level.

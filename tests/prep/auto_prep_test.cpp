@@ -155,7 +155,7 @@ TEST(AutoPrep, APreparedLevelIsLoadedAsItIs) {
     settings.prep.cache_dir = dir / "cache";
     settings.prep.enabled = false;  // never needed
     const std::filesystem::path file =
-        luxel::test::source_dir() / "assets" / "levels" / "prepared" / "cornell.glb";
+        luxel::testing::source_dir() / "assets" / "levels" / "prepared" / "cornell.glb";
     JobSystem jobs(2);
     ::testing::internal::CaptureStderr();
     const auto level = prep::load_playable(file, settings, jobs);

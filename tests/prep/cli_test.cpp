@@ -23,7 +23,7 @@ using luxel::testing::CommandResult;
 using luxel::testing::quoted;
 
 CommandResult luxel_prep(const std::string& arguments) {
-    return luxel::testing::run_command(luxel::test::program("luxel-prep"), arguments);
+    return luxel::testing::run_command(luxel::testing::program("luxel-prep"), arguments);
 }
 
 std::vector<char> read_bytes(const std::filesystem::path& file) {

@@ -24,7 +24,7 @@ namespace {
 using namespace luxel;
 
 std::filesystem::path corpus_dir() {
-    return luxel::test::source_dir() / "tests" / "prep" / "corpus";
+    return luxel::testing::source_dir() / "tests" / "prep" / "corpus";
 }
 
 struct CorpusFile {
@@ -148,7 +148,7 @@ TEST(PrepCorpus, RefusesALightBeyondWhatFloatsHoldWithAClearError) {
     luxel::testing::TempDir dir("luxel-prep-corpus");
     const auto output = dir / "out.glb";
     const luxel::testing::CommandResult run =
-        luxel::testing::run_command(luxel::test::program("luxel-prep"),
+        luxel::testing::run_command(luxel::testing::program("luxel-prep"),
                                     luxel::testing::quoted(corpus_dir() / "hand-bright-light.glb") +
                                         " -o " + luxel::testing::quoted(output));
     EXPECT_EQ(run.exit_code, 1) << run.output;

@@ -118,13 +118,13 @@ std::vector<std::string> blender_level_names() {
 std::filesystem::path level_file(const std::string& name) {
     const std::vector<std::string> blender = blender_level_names();
     if (std::find(blender.begin(), blender.end(), name) != blender.end()) {
-        return luxel::test::source_dir() / "tests" / "levels" / "blender" / (name + ".glb");
+        return luxel::testing::source_dir() / "tests" / "levels" / "blender" / (name + ".glb");
     }
-    return luxel::test::source_dir() / "assets" / "levels" / (name + ".glb");
+    return luxel::testing::source_dir() / "assets" / "levels" / (name + ".glb");
 }
 
 std::filesystem::path prepared_level_file(const std::string& name) {
-    return luxel::test::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb");
+    return luxel::testing::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb");
 }
 
 scene::Material diffuse_material(const std::string& name) {

@@ -22,7 +22,7 @@ using luxel::testing::CommandResult;
 using luxel::testing::quoted;
 
 CommandResult luxel_ref(const std::string& arguments) {
-    return luxel::testing::run_command(luxel::test::program("luxel-ref"), arguments);
+    return luxel::testing::run_command(luxel::testing::program("luxel-ref"), arguments);
 }
 
 TEST(RefCli, ABadFlagIsRejectedByName) {

@@ -17,7 +17,7 @@
 namespace luxel::testing {
 
 inline std::filesystem::path prepared_level(const std::string& name) {
-    return luxel::test::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb");
+    return luxel::testing::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb");
 }
 
 /// A level instantiated (no animation), its PhotonWorld and IlluminationMaps synced, and the

@@ -131,13 +131,13 @@ void RenderWorld::update(double budget_ms, double dt) {
 }
 
 std::filesystem::path prepared_level(const std::string& name) {
-    return luxel::test::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb");
+    return luxel::testing::source_dir() / "assets" / "levels" / "prepared" / (name + ".glb");
 }
 
 std::vector<std::string> prepared_levels() {
     std::vector<std::string> names;
     for (const auto& entry : std::filesystem::directory_iterator(
-             luxel::test::source_dir() / "assets" / "levels" / "prepared")) {
+             luxel::testing::source_dir() / "assets" / "levels" / "prepared")) {
         if (entry.path().extension() == ".glb") {
             names.push_back(entry.path().stem().string());
         }

@@ -11,7 +11,7 @@ using SandboxResult = CommandResult;
 
 /// Runs build/bin/luxel-sandbox with `arguments` and collects what it printed.
 inline SandboxResult run_sandbox(const std::string& arguments) {
-    return run_command(luxel::test::program("luxel-sandbox"), arguments);
+    return run_command(luxel::testing::program("luxel-sandbox"), arguments);
 }
 
 }  // namespace luxel::testing

@@ -57,7 +57,7 @@ int differing_pixels(const Image& a, const Image& b) {
 
 TEST(SoftShadowLevel, ALampWithARadiusCastsSoftShadowsInTheMainJob) {
     const std::filesystem::path file =
-        luxel::test::source_dir() / "assets/levels/prepared/cornell.glb";
+        luxel::testing::source_dir() / "assets/levels/prepared/cornell.glb";
     scene::Scene level = scene::load_gltf(file);
     int lamps = 0;
     for (scene::Node& node : level.nodes) {

@@ -92,7 +92,7 @@ class StartPose : public ::testing::TestWithParam<std::string> {};
 TEST_P(StartPose, FrameZeroIsTheFrameOfTheStartPoseBakedIntoTheFile) {
     const std::string level = GetParam();
     const std::filesystem::path file =
-        luxel::test::source_dir() / "assets/levels/prepared" / (level + ".glb");
+        luxel::testing::source_dir() / "assets/levels/prepared" / (level + ".glb");
     const scene::Scene source = scene::load_gltf(file);
     ASSERT_FALSE(source.animations.empty()) << level << " must move something at t = 0";
     luxel::testing::TempDir out("luxel-start-pose");

@@ -44,7 +44,7 @@ std::vector<std::uint8_t> read_bytes(const std::filesystem::path& file) {
 
 /// Directories whose .glb/.gltf files join the inputs when they exist: the built-in levels.
 std::vector<std::filesystem::path> level_directories() {
-    const std::filesystem::path root = luxel::test::source_dir();
+    const std::filesystem::path root = luxel::testing::source_dir();
     return {root / "assets" / "levels", root / "tests" / "assets" / "levels"};
 }
 

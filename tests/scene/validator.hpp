@@ -25,7 +25,8 @@ struct ValidatorResult {
 };
 
 inline ValidatorResult run_gltf_validator(const std::vector<std::filesystem::path>& files) {
-    const std::filesystem::path script = luxel::test::source_dir() / "tools" / "validate-gltf.cjs";
+    const std::filesystem::path script =
+        luxel::testing::source_dir() / "tools" / "validate-gltf.cjs";
     std::string command = "node '" + script.string() + "'";
     for (const auto& file : files) {
         command += " '" + file.string() + "'";

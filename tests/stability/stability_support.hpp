@@ -23,7 +23,7 @@
 namespace luxel::testing {
 
 inline scene::Scene load_prepared(const std::string& name) {
-    return scene::load_gltf(luxel::test::source_dir() / "assets" / "levels" / "prepared" /
+    return scene::load_gltf(luxel::testing::source_dir() / "assets" / "levels" / "prepared" /
                             (name + ".glb"));
 }
 

@@ -14,7 +14,7 @@
 namespace luxel::testing {
 
 [[nodiscard]] inline scene::Scene prepared_cornell() {
-    return scene::load_gltf(luxel::test::source_dir() / "assets" / "levels" / "prepared" /
+    return scene::load_gltf(luxel::testing::source_dir() / "assets" / "levels" / "prepared" /
                             "cornell.glb");
 }
 

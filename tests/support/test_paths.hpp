@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-namespace luxel::test {
+namespace luxel::testing {
 
 /// The source checkout the tests and benchmarks read levels, corpora and scripts from.
 ///
@@ -22,4 +22,4 @@ namespace luxel::test {
 /// on its target, so it is built first.
 [[nodiscard]] std::string program(std::string_view name);
 
-}  // namespace luxel::test
+}  // namespace luxel::testing

@@ -26,13 +26,13 @@ struct Tool {
     std::string executable;
 };
 
-const Tool kSandbox{"luxel-sandbox", luxel::test::program("luxel-sandbox")};
-const Tool kPrep{"luxel-prep", luxel::test::program("luxel-prep")};
-const Tool kRef{"luxel-ref", luxel::test::program("luxel-ref")};
-const Tool kBench{"luxel-bench", luxel::test::program("luxel-bench")};
-const Tool kMakeLevels{"luxel-make-levels", luxel::test::program("luxel-make-levels")};
+const Tool kSandbox{"luxel-sandbox", luxel::testing::program("luxel-sandbox")};
+const Tool kPrep{"luxel-prep", luxel::testing::program("luxel-prep")};
+const Tool kRef{"luxel-ref", luxel::testing::program("luxel-ref")};
+const Tool kBench{"luxel-bench", luxel::testing::program("luxel-bench")};
+const Tool kMakeLevels{"luxel-make-levels", luxel::testing::program("luxel-make-levels")};
 
-const std::string kCornell = (luxel::test::source_dir() / "assets/levels/cornell.glb").string();
+const std::string kCornell = (luxel::testing::source_dir() / "assets/levels/cornell.glb").string();
 
 struct Case {
     Tool tool;

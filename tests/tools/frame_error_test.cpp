@@ -16,7 +16,7 @@ namespace {
 using luxel::testing::quoted;
 using luxel::testing::run_command;
 
-const std::string kTool = luxel::test::program("luxel-frame-error");
+const std::string kTool = luxel::testing::program("luxel-frame-error");
 
 struct Frames {
     std::filesystem::path dir;

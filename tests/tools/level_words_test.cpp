@@ -47,13 +47,13 @@ struct LackingLevel {
 };
 
 CommandResult sandbox(const LackingLevel& lacking, const std::string& more = "") {
-    return run_command(luxel::test::program("luxel-sandbox"),
+    return run_command(luxel::testing::program("luxel-sandbox"),
                        "--gl egl --frames 2 --size 64x36 --threads 2 --level " +
                            quoted(lacking.file) + " --out " + quoted(lacking.dir / "out") + more);
 }
 
 CommandResult ref(const LackingLevel& lacking, const std::string& more = "") {
-    return run_command(luxel::test::program("luxel-ref"),
+    return run_command(luxel::testing::program("luxel-ref"),
                        "--spp 1 --passes 1 --width 16 --height 12 --photons 1000 "
                        "--indirect-photons 1000 --threads 2 --level " +
                            quoted(lacking.file) + " -o " + quoted(lacking.dir / "ref.exr") + more);
@@ -94,7 +94,7 @@ TEST(LevelWords, ALevelWithoutACameraIsShownFromTheDefaultViewItNames) {
     EXPECT_TRUE(std::filesystem::exists(open.dir / "ref.exr"));
     // So does luxel-bench's image error.
     const CommandResult bench = run_command(
-        luxel::test::program("luxel-bench"),
+        luxel::testing::program("luxel-bench"),
         "--budgets 8 --frames 2 --change none --ref-photons 100000 --ref-caustic-photons 50000 "
         "--ref-spp 1 --image 16x12 --image-spp 1 --threads 2 --level " +
             quoted(open.file) + " --out " + quoted(open.dir / "bench"));
@@ -140,9 +140,9 @@ TEST(LevelWords, AnUnpreparedLevelIsPreparedAtLoadOrRefusedWithTheCommand) {
     run = ref(exported, " --no-auto-prep");
     EXPECT_EQ(run.exit_code, 1) << run.output;
     EXPECT_EQ(count(run.output, "luxel-ref: error: " + refused), 1u) << run.output;
-    run = run_command(luxel::test::program("luxel-bench"), "--no-auto-prep --no-image --level " +
-                                                               quoted(exported.file) + " --out " +
-                                                               quoted(exported.dir / "bench"));
+    run = run_command(luxel::testing::program("luxel-bench"),
+                      "--no-auto-prep --no-image --level " + quoted(exported.file) + " --out " +
+                          quoted(exported.dir / "bench"));
     EXPECT_EQ(run.exit_code, 1) << run.output;
     EXPECT_EQ(count(run.output, "luxel-bench: error: " + refused), 1u) << run.output;
 }

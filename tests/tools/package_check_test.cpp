@@ -18,8 +18,8 @@ namespace {
 using luxel::testing::CommandResult;
 using luxel::testing::quoted;
 
-const std::filesystem::path kSource = luxel::test::source_dir();
-const std::filesystem::path kBuild = luxel::test::binary_dir();
+const std::filesystem::path kSource = luxel::testing::source_dir();
+const std::filesystem::path kBuild = luxel::testing::binary_dir();
 
 // A header GLFW's native-access header reads on X11; Debian's libxrandr-dev owns it. It went
 // missing from scripts/packages.txt once, and only a new machine noticed.

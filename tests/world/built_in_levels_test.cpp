@@ -30,7 +30,7 @@ namespace {
 
 using namespace luxel;
 
-const std::filesystem::path kLevels = luxel::test::source_dir() / "assets" / "levels";
+const std::filesystem::path kLevels = luxel::testing::source_dir() / "assets" / "levels";
 
 std::vector<std::uint8_t> read_bytes(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);

@@ -33,7 +33,7 @@ namespace {
 using nlohmann::json;
 
 const std::filesystem::path kFigure =
-    luxel::test::source_dir() / "tests" / "levels" / "blender" / "skinned-figure.glb";
+    luxel::testing::source_dir() / "tests" / "levels" / "blender" / "skinned-figure.glb";
 
 struct Box {
     glm::vec3 lo{1e30f};
