@@ -106,7 +106,8 @@ struct PlainPhoton {
 /// The baseline build: what PhotonDensity does before the tree, copying the hits out.
 std::vector<PlainPhoton> copy_photons(const PhotonMap& map) {
     std::vector<PlainPhoton> photons;
-    for (const StoredHit& hit : map.surface(0).hits) {
+    for (std::size_t i = 0; i < map.surface(0).hit_count(); ++i) {
+        const StoredHit hit = map.hit(0, i);
         photons.push_back({hit.position, hit.power});
     }
     return photons;
@@ -548,7 +549,7 @@ void AimRebuild(benchmark::State& state) {
         if (!maps.surfaces()[s].texels.texels.empty()) {
             surfaces.push_back(s);
             texels += maps.surfaces()[s].texels.texels.size();
-            photons += map.surface(s).hits.size();
+            photons += map.surface(s).hit_count();
         }
     }
     double total = 0.0;

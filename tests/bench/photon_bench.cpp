@@ -10,6 +10,9 @@
 //   FullTrace          PhotonWorld sync + update of the whole level (every group traced and
 //        stored); counter `bytes_per_hit` = PhotonMap::bytes_used() / stored_hit_count()
 //        (goal 32), and the same for the caustic photons once all 8 slices are traced.
+//   RetraceStore/per_group  two groups retraced on one thread and stored with replace_groups in
+//        a map of the whole light (77 groups of 40 or 400 photons); counter `store_share` =
+//        store / (trace + store), median.
 //   PaperFrame/threads the paper's configuration with the level's animations playing (cube
 //        sliding, glass sphere orbiting): 77 groups x 40 photons, 10,000 caustic photons over 8
 //        frames. Each iteration is one 1/30 s frame; the time is PhotonWorld's work only (sync,
@@ -280,7 +283,7 @@ void FullTrace(benchmark::State& state) {
     JobSystem jobs(2);
     std::size_t bytes = 0;
     std::size_t hits = 0;
-    std::size_t hops = 0;
+    std::size_t paths = 0;
     for (auto _ : state) {
         state.PauseTiming();
         level.photons.reset();
@@ -291,17 +294,20 @@ void FullTrace(benchmark::State& state) {
         level.photons->retrace_pending(jobs);
         bytes = level.photons->photon_map().bytes_used();
         hits = level.photons->photon_map().stored_hit_count();
-        hops = level.photons->photon_map().hop_count();
+        paths = level.photons->photon_map().path_count();
     }
     state.counters["stored_hits"] = static_cast<double>(hits);
-    state.counters["hops"] = static_cast<double>(hops);
+    state.counters["paths"] = static_cast<double>(paths);
     state.counters["bytes_per_hit"] = static_cast<double>(bytes) / static_cast<double>(hits);
-    // Where the bytes go: the per-surface hit arrays (StoredHit, with their growth slack)
-    // against everything else (per-hop records, per-photon path starts, the vectors).
+    // Where the bytes go: the per-surface hit arrays (22 bytes a hit, with their growth slack)
+    // against everything else (per-photon path fingerprints, each group's surfaces, the vectors).
     const lighting::PhotonMap& map = level.photons->photon_map();
     std::size_t hit_array_bytes = 0;
     for (std::uint32_t s = 0; s < map.surface_count(); ++s) {
-        hit_array_bytes += map.surface(s).hits.capacity() * sizeof(lighting::StoredHit);
+        const lighting::SurfacePhotons& photons = map.surface(s);
+        hit_array_bytes += photons.positions.capacity() * sizeof(glm::vec3) +
+                           photons.powers.capacity() * sizeof(lighting::HalfPower) +
+                           photons.owners.capacity() * sizeof(std::uint32_t);
     }
     state.counters["hit_array_bytes_per_hit"] =
         static_cast<double>(hit_array_bytes) / static_cast<double>(hits);
@@ -316,6 +322,61 @@ void FullTrace(benchmark::State& state) {
         static_cast<double>(caustics.bytes) / static_cast<double>(caustics.stored);
 }
 BENCHMARK(FullTrace)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// What storing costs beside tracing: the level's light with `per_group` photons in each of its
+/// 77 groups, all stored in a PhotonMap; each iteration retraces two groups on one thread (a
+/// retrace unit) and stores them with replace_groups, which passes once over every surface the
+/// groups' old hits lay on. Counters: `store_share` (store / (trace + store), median), the
+/// median `store_us` and `trace_us`, and the map's `stored_hits`.
+void RetraceStore(benchmark::State& state) {
+    lighting::PhotonWorldSettings settings;
+    settings.selective.per_group = static_cast<std::uint32_t>(state.range(0));
+    Level level(false, settings);
+    const auto lights = level.photons->active_lights();
+    if (lights.size() != 1) {
+        state.SkipWithError("expected the level's one light");
+        return;
+    }
+    const lighting::LightPhotons& light = *lights.front();
+    const lighting::RayScene& scene = level.photons->ray_scene();
+    const auto& materials = level.photons->materials();
+    lighting::PhotonMap map(level.photons->photon_map().surface_count(),
+                            light.first_group() + light.group_count(),
+                            settings.selective.tolerance);
+    lighting::TraceCounters counters;
+    for (std::uint32_t g = 0; g < light.group_count(); ++g) {
+        map.replace_group(light.first_group() + g,
+                          light.trace_group(scene, materials, g, counters));
+    }
+    std::vector<double> store_us;
+    std::vector<double> trace_us;
+    std::vector<double> shares;
+    std::uint32_t next = 0;
+    for (auto _ : state) {
+        const std::uint32_t groups[] = {light.first_group() + next,
+                                        light.first_group() + (next + 1) % light.group_count()};
+        next = (next + 2) % light.group_count();
+        Stopwatch trace_clock;
+        const lighting::TracedGroup traced[] = {
+            light.trace_group(scene, materials, groups[0] - light.first_group(), counters),
+            light.trace_group(scene, materials, groups[1] - light.first_group(), counters)};
+        const double trace = to_seconds(trace_clock.elapsed());
+        Stopwatch store_clock;
+        map.replace_groups(groups, traced);
+        const double store = to_seconds(store_clock.elapsed());
+        trace_us.push_back(1e6 * trace);
+        store_us.push_back(1e6 * store);
+        shares.push_back(store / std::max(trace + store, 1e-12));
+    }
+    std::sort(shares.begin(), shares.end());
+    std::sort(store_us.begin(), store_us.end());
+    std::sort(trace_us.begin(), trace_us.end());
+    state.counters["store_share"] = shares[shares.size() / 2];
+    state.counters["store_us"] = store_us[store_us.size() / 2];
+    state.counters["trace_us"] = trace_us[trace_us.size() / 2];
+    state.counters["stored_hits"] = static_cast<double>(map.stored_hit_count());
+}
+BENCHMARK(RetraceStore)->Arg(40)->Arg(400)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 double percentile(std::vector<double> values, double fraction) {
     std::sort(values.begin(), values.end());

@@ -160,11 +160,12 @@ TEST(PhotonWorldSync, MovingAnObjectQueuesFirstExactlyTheGroupsWhosePathsCrossWh
     // The index holds the stored paths: every stored hit ends a segment of its own group.
     std::size_t hits = 0;
     for (std::uint32_t s = 0; s < map.surface_count(); ++s) {
-        for (const lighting::StoredHit& hit : map.surface(s).hits) {
-            const auto segments = paths.segments(hit.group_index());
+        for (std::size_t i = 0; i < map.surface(s).hit_count(); ++i) {
+            const lighting::StoredHit hit = map.hit(s, i);
+            const auto segments = paths.segments(hit.group);
             EXPECT_TRUE(std::any_of(segments.begin(), segments.end(),
                                     [&](const auto& g) { return g.to == hit.position; }))
-                << "hit of group " << hit.group_index();
+                << "hit of group " << hit.group;
             ++hits;
         }
     }

@@ -132,7 +132,7 @@ TEST(Geometry, CoplanarOverlappingFacesStayFinite) {
     const auto overlay_surface = static_cast<std::uint32_t>(map.surface_count() - 1);
     std::printf(
         "[ figures  ] coplanar overlay on the back wall: %zu of %zu stored hits landed on it\n",
-        map.surface(overlay_surface).hits.size(), map.stored_hit_count());
+        map.surface(overlay_surface).hit_count(), map.stored_hit_count());
     EXPECT_GT(lit, 0.0);
 }
 

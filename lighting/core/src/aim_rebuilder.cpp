@@ -412,8 +412,8 @@ void AimRebuilder::start(std::uint32_t surface) {
         full_turn_ = false;
         rebuild_->texels = registry_.world_texels(surface);
         glm::dvec3 power(0.0);
-        for (const StoredHit& hit : map.surface(surface).hits) {
-            power += glm::dvec3(hit.power);
+        for (std::size_t i = 0; i < map.surface(surface).hit_count(); ++i) {
+            power += glm::dvec3(map.hit(surface, i).power);
         }
         rebuild_->photon_power = power.x + power.y + power.z;
         // Photons that change from now on need another rebuild; this one sees the tree's

@@ -105,18 +105,23 @@ void LightGroups::refresh(ecs::Entity entity, const BoundingSphere& scene) {
     record.scene = scene;
     const LightPhotons& photons = *record.photons;
     // A moved, changed or switched light invalidates all its groups.
-    for (std::uint32_t g = 0; g < photons.group_count(); ++g) {
-        const std::uint32_t global = photons.first_group() + g;
-        if (enabled) {
-            add_pending(global);
-        } else {
-            map_.clear_group(global);
-            paths_.clear_group(global);
+    if (enabled) {
+        for (std::uint32_t g = 0; g < photons.group_count(); ++g) {
+            add_pending(photons.first_group() + g);
         }
+    } else {
+        clear_photons(photons);
     }
-    if (!enabled) {
-        drop_pending(photons);
+}
+
+void LightGroups::clear_photons(const LightPhotons& photons) {
+    std::vector<std::uint32_t> groups(photons.group_count());
+    for (std::uint32_t g = 0; g < photons.group_count(); ++g) {
+        groups[g] = photons.first_group() + g;
+        paths_.clear_group(groups[g]);
     }
+    map_.clear_groups(groups);
+    drop_pending(photons);
 }
 
 const LightGroups::PiecesCache& LightGroups::emission_pieces(ecs::Entity entity,
@@ -151,12 +156,7 @@ void LightGroups::remove(ecs::Entity entity) {
     if (found == lights_.end()) {
         return;
     }
-    const LightPhotons& photons = *found->second.photons;
-    for (std::uint32_t g = 0; g < photons.group_count(); ++g) {
-        map_.clear_group(photons.first_group() + g);
-        paths_.clear_group(photons.first_group() + g);
-    }
-    drop_pending(photons);
+    clear_photons(*found->second.photons);
     lights_.erase(found);
 }
 
@@ -258,8 +258,7 @@ EmissionStats LightGroups::probe(std::uint64_t frame, const RayScene& scene,
     std::vector<std::uint32_t> invalid;
     // Groups already waiting need no probe verdict; probing them anyway keeps this simple and
     // costs one photon each.
-    EmissionStats stats =
-        run_probes(scene, materials, lights, map_, frame, settings_.tolerance, jobs, invalid);
+    EmissionStats stats = run_probes(scene, materials, lights, map_, frame, jobs, invalid);
     for (std::uint32_t group : invalid) {
         add_pending(group);
     }

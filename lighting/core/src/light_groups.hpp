@@ -86,6 +86,8 @@ class LightGroups {
     [[nodiscard]] static glm::vec3 mean_radiance(const LightSource& light);
     void add_pending(std::uint32_t group);
     void drop_pending(const LightPhotons& photons);
+    /// Removes every stored hit and path of the light's groups (switched off or gone).
+    void clear_photons(const LightPhotons& photons);
 
     const ecs::Registry& registry_;
     PhotonMap& map_;

@@ -34,8 +34,9 @@ PhotonDensity::PhotonDensity(const PhotonMap& map, std::span<const std::uint32_t
                              PhotonSelection selection)
     : tree_(std::make_unique<Tree>()) {
     for (std::uint32_t surface : surfaces) {
-        for (const StoredHit& hit : map.surface(surface).hits) {
-            if (selection == PhotonSelection::IndirectOnly && hit.bounces() == 0) {
+        for (std::size_t i = 0; i < map.surface(surface).hit_count(); ++i) {
+            const StoredHit hit = map.hit(surface, i);
+            if (selection == PhotonSelection::IndirectOnly && hit.bounces == 0) {
                 continue;
             }
             tree_->photons.push_back({hit.position, hit.power});

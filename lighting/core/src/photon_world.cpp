@@ -14,7 +14,7 @@ namespace luxel::lighting {
 PhotonWorld::PhotonWorld(ecs::Registry& registry, PhotonWorldSettings settings)
     : registry_(registry),
       settings_(settings),
-      map_(std::make_unique<PhotonMap>(0, 0)),
+      map_(std::make_unique<PhotonMap>(0, 0, settings.selective.tolerance)),
       geometry_(std::make_unique<PhotonGeometry>(registry, *map_, settings.implicit_surfaces)),
       lights_(std::make_unique<LightGroups>(registry, *map_, settings.selective)),
       caustics_(std::make_unique<CausticLists>(settings.caustics)),

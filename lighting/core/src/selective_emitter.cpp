@@ -129,7 +129,7 @@ TracedGroup LightPhotons::trace_group(const RayScene& scene,
 
 EmissionStats run_probes(const RayScene& scene, std::span<const TraceMaterial> materials,
                          std::span<const LightPhotons* const> lights, const PhotonMap& map,
-                         std::uint64_t frame, const DivergenceTolerance& tolerance, JobSystem& jobs,
+                         std::uint64_t frame, JobSystem& jobs,
                          std::vector<std::uint32_t>& invalid_groups) {
     const std::vector<GroupRef> refs = all_groups(lights);
     std::vector<std::uint8_t> diverged(refs.size(), 0);
@@ -141,7 +141,7 @@ EmissionStats run_probes(const RayScene& scene, std::span<const TraceMaterial> m
             const auto photon = static_cast<std::uint32_t>(frame % ref.light->photons_per_group());
             std::vector<TracedHop> hops;
             ref.light->trace(scene, materials, ref.local, photon, hops, counters[i]);
-            diverged[i] = map.diverges(ref.global, photon, hops, tolerance) ? 1 : 0;
+            diverged[i] = map.diverges(ref.global, photon, hops) ? 1 : 0;
         },
         8);
     EmissionStats stats;
@@ -179,9 +179,9 @@ EmissionStats retrace_groups(const RayScene& scene, std::span<const TraceMateria
             segments[i] = path_segments(traced[i]);
         }
     });
+    map.replace_groups(groups, traced);
     EmissionStats stats;
     for (std::size_t i = 0; i < groups.size(); ++i) {
-        map.replace_group(groups[i], traced[i]);
         if (index != nullptr) {
             index->set_group(groups[i], std::move(segments[i]));
         }

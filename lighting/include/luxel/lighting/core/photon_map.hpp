@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -10,20 +11,23 @@
 #include "luxel/lighting/core/ray_scene.hpp"
 
 /// Where photon hits live (docs/METHOD.md §4.3-4.4): per surface, in contiguous arrays, each hit
-/// knowing which path hop put it there so that invalidating a path removes its hits in O(1) each.
+/// knowing its group; each group knows the surfaces its hits lie on and a fingerprint of every
+/// photon's path, which is all that retracing and path comparison need.
 namespace luxel::lighting {
 
-/// One photon hit on a light-mapped surface: 32 bytes.
+/// One stored photon hit as a reader sees it (PhotonMap::hit).
 struct StoredHit {
     glm::vec3 position{0.0f};
     glm::vec3 power{0.0f};    ///< watts per channel carried by the photon when it arrived
-    std::uint32_t group = 0;  ///< the group whose path made this hit (bits 0-23), bounce (24-31)
-    std::uint32_t hop = 0;    ///< index of that hop in the group's hop array
-
-    [[nodiscard]] std::uint32_t group_index() const { return group & 0x00FFFFFFu; }
+    std::uint32_t group = 0;  ///< the group whose path made this hit
     /// Diffuse bounces before this hit (0: direct from the light), saturating at 255.
-    [[nodiscard]] std::uint32_t bounces() const { return group >> 24; }
+    std::uint32_t bounces = 0;
 };
+
+/// A stored hit's power: three IEEE half floats relative to its group's power scale (the
+/// largest channel of any hop the group stored), which holds each channel to 2^-11 of its own
+/// value down to 6e-5 of the group's brightest photon.
+using HalfPower = std::array<std::uint16_t, 3>;
 
 /// A hop of a traced photon path, as the tracer reports it.
 struct TracedHop {
@@ -43,18 +47,24 @@ struct TracedGroup {
     std::vector<glm::vec3> origins;
 };
 
-/// What a surface holds and how much has changed on it.
+/// What a surface holds and how much has changed on it. The hits are three parallel arrays,
+/// 22 bytes a hit: retracing a group finds its hits by reading the owners alone (4 bytes a hit).
 struct SurfacePhotons {
-    std::vector<StoredHit> hits;
-    CompensatedSum stored_energy;  ///< sum over hits of (r + g + b) power
+    std::vector<glm::vec3> positions;
+    std::vector<HalfPower> powers;
+    std::vector<std::uint32_t> owners;  ///< group (bits 0-23) and bounces (24-31, saturating)
+    CompensatedSum stored_energy;       ///< sum over hits of (r + g + b) power
     /// The energy of every hit ever stored on or removed from the surface, and the same for
     /// hits with at least one bounce (the indirect part). Never reset: delta_f and delta_i are
     /// these counts minus a reader's position in them (SurfaceDeltas).
     CompensatedSum changed_full;
     CompensatedSum changed_indirect;
+
+    [[nodiscard]] std::size_t hit_count() const { return owners.size(); }
 };
 
-/// Comparison tolerance for probe paths, in metres.
+/// Comparison tolerance for probe paths, in metres: a stored hop that moved farther always
+/// makes its path diverge (see PhotonMap::diverges for what a smaller move does).
 struct DivergenceTolerance {
     float distance = 1e-3f;
 };
@@ -62,7 +72,8 @@ struct DivergenceTolerance {
 class PhotonMap {
   public:
     /// Surfaces are numbered 0 .. surface_count - 1; groups 0 .. group_count - 1.
-    PhotonMap(std::size_t surface_count, std::size_t group_count);
+    PhotonMap(std::size_t surface_count, std::size_t group_count,
+              DivergenceTolerance tolerance = {});
 
     /// Adds empty surfaces or groups at the end; returns the first new index.
     std::uint32_t add_surfaces(std::size_t count);
@@ -70,16 +81,22 @@ class PhotonMap {
 
     /// Replaces every stored path of `group` with `traced` (removing the old hits first).
     void replace_group(std::uint32_t group, const TracedGroup& traced);
+    /// The same for several distinct groups at once (`traced[i]` replaces `groups[i]`, stored in
+    /// that order): the old hits go in one pass over the surfaces they lie on.
+    void replace_groups(std::span<const std::uint32_t> groups, std::span<const TracedGroup> traced);
     /// Removes every hit of `group` (its light went away or was disabled).
     void clear_group(std::uint32_t group);
+    void clear_groups(std::span<const std::uint32_t> groups);
 
-    /// Whether photon `photon` of `group`, traced anew as `hops`, differs from its stored path:
-    /// a different number of hops, a different surface or object at some hop, or a stored hop
-    /// that moved by more than the tolerance. Hops that were not stored (surface -1) compare by
-    /// object only.
+    /// Whether photon `photon` of `group`, traced anew as `hops`, differs from its stored path,
+    /// by the paths' fingerprints: the number of hops, each hop's surface (or, where nothing was
+    /// stored, its object) and each stored hop's position on a grid of cells tolerance / sqrt(3)
+    /// wide. A stored hop that moved by more than the tolerance always diverges; one that moved
+    /// less diverges only when it crossed a cell's face (a needless retrace, not a missed one).
+    /// Two different paths share a fingerprint with probability 2^-32, and the next probe of
+    /// the group, M frames on, tries another photon.
     [[nodiscard]] bool diverges(std::uint32_t group, std::uint32_t photon,
-                                std::span<const TracedHop> hops,
-                                const DivergenceTolerance& tolerance) const;
+                                std::span<const TracedHop> hops) const;
 
     [[nodiscard]] const SurfacePhotons& surface(std::uint32_t surface) const {
         return surfaces_[surface];
@@ -87,9 +104,12 @@ class PhotonMap {
     [[nodiscard]] std::size_t surface_count() const { return surfaces_.size(); }
     [[nodiscard]] std::size_t group_count() const { return groups_.size(); }
 
+    /// Hit `index` (< hit_count()) of `surface`, its power in watts.
+    [[nodiscard]] StoredHit hit(std::uint32_t surface, std::size_t index) const;
+
     [[nodiscard]] std::size_t stored_hit_count() const { return stored_hits_; }
-    /// Hops kept for path comparison (stored or not).
-    [[nodiscard]] std::size_t hop_count() const;
+    /// Photons whose paths are kept for comparison.
+    [[nodiscard]] std::size_t path_count() const;
     /// Bytes held for stored hits and path bookkeeping (capacity, not just size).
     [[nodiscard]] std::size_t bytes_used() const;
 
@@ -98,21 +118,23 @@ class PhotonMap {
     [[nodiscard]] double recount_energy(std::uint32_t surface) const;
 
   private:
-    /// A hop's place: the surface and slot of its stored hit, or (-1, object) when not stored.
-    struct HopRecord {
-        std::int32_t surface = -1;
-        std::uint32_t slot_or_object = 0;
-    };
     struct GroupPaths {
-        std::vector<HopRecord> hops;
-        std::vector<std::uint32_t> starts;
+        std::vector<std::uint32_t> fingerprints;  ///< one per photon
+        std::vector<std::uint32_t> surfaces;      ///< where its hits lie, each once
+        float power_scale = 0.0f;                 ///< what a half-float power of 1 means
     };
 
-    void remove_hit(std::uint32_t surface, std::uint32_t slot);
+    [[nodiscard]] std::uint32_t fingerprint(std::span<const TracedHop> hops) const;
+    [[nodiscard]] glm::vec3 power(std::uint32_t owner, const HalfPower& power) const;
+    void store_group(std::uint32_t group, const TracedGroup& traced);
 
     std::vector<SurfacePhotons> surfaces_;
     std::vector<GroupPaths> groups_;
     std::size_t stored_hits_ = 0;
+    double inverse_cell_ = 0.0;  ///< 1 / the fingerprints' grid spacing, per metre
+    /// Scratch of clear_groups: 1 for a group being cleared, 1 for a surface to compact.
+    std::vector<std::uint8_t> clearing_;
+    std::vector<std::uint8_t> touched_;
 };
 
 }  // namespace luxel::lighting

@@ -22,9 +22,9 @@ namespace luxel::lighting {
     std::uint32_t groups, std::uint32_t per_group);
 
 struct SelectiveSettings {
-    std::uint32_t groups = 77;     ///< G (the paper's configuration)
-    std::uint32_t per_group = 40;  ///< M
-    DivergenceTolerance tolerance;
+    std::uint32_t groups = 77;      ///< G (the paper's configuration)
+    std::uint32_t per_group = 40;   ///< M
+    DivergenceTolerance tolerance;  ///< the PhotonMap's, given when it is made
     TraceLimits limits;
     /// When an object moves, appears or goes away, the groups whose stored paths cross where it
     /// was or where it is are retraced first, in the frame of the change (PathSegmentIndex);
@@ -80,7 +80,7 @@ class LightPhotons {
 /// diverged are appended to `invalid_groups` in ascending order. Nothing in `map` changes.
 EmissionStats run_probes(const RayScene& scene, std::span<const TraceMaterial> materials,
                          std::span<const LightPhotons* const> lights, const PhotonMap& map,
-                         std::uint64_t frame, const DivergenceTolerance& tolerance, JobSystem& jobs,
+                         std::uint64_t frame, JobSystem& jobs,
                          std::vector<std::uint32_t>& invalid_groups);
 
 /// Retraces the given groups (global indices) in parallel and stores them in `map` in group
