@@ -333,4 +333,74 @@ TEST(RaySceneStream, AnEmptySceneHitsNothing) {
     }
 }
 
+/// The moving objects (instances in a top level of their own, traced after the static BVH with
+/// the ray cut at the static hit) are found as the same objects added as static geometry (one
+/// flat BVH) are found. Rays aim at points inside flat squares, from all around, with 3 and 12
+/// moving objects, before and after they move; intersect, occluded and the streamed query alike.
+TEST(RaySceneMovingObjects, RaysFindThemAsAFlatStaticSceneDoes) {
+    for (const std::uint32_t count : {3u, 12u}) {
+        auto place = [&](std::uint32_t k, float shift) {
+            return glm::translate(glm::mat4(1.0f),
+                                  {-2.0f + 0.37f * float(k) + shift, 0.3f + 0.11f * float(k % 5),
+                                   -1.0f + 0.23f * float(k % 7)}) *
+                   glm::rotate(glm::mat4(1.0f), 0.4f * float(k), glm::vec3(1.0f, 0.3f, 0.2f));
+        };
+        RayScene moving;
+        moving.add_object(square(4.0f, 0, 0), glm::mat4(1.0f), false);
+        std::vector<ObjectId> ids;
+        for (std::uint32_t k = 0; k < count; ++k) {
+            ids.push_back(moving.add_object(square(0.15f, 0, k + 1), place(k, 0.0f), true));
+        }
+        moving.commit();
+        for (const float shift : {0.0f, 0.8f}) {
+            RayScene flat;
+            flat.add_object(square(4.0f, 0, 0), glm::mat4(1.0f), false);
+            for (std::uint32_t k = 0; k < count; ++k) {
+                flat.add_object(square(0.15f, 0, k + 1), place(k, shift), false);
+                moving.set_transform(ids[k], place(k, shift));
+            }
+            flat.commit();
+            moving.commit();
+            std::size_t compared = 0;
+            std::size_t met = 0;
+            for (std::uint32_t k = 0; k < count; ++k) {
+                for (std::uint64_t i = 1; i <= 40; ++i) {
+                    // A point inside the square (corners kept 2% in), from a point 3 m away.
+                    const glm::vec2 uv(-0.147f + 0.294f * float(radical_inverse(2, i)),
+                                       -0.147f + 0.294f * float(radical_inverse(3, i)));
+                    const glm::vec3 target =
+                        glm::vec3(place(k, shift) * glm::vec4(uv.x, 0.0f, uv.y, 1.0f));
+                    const double z = 1.0 - 2.0 * radical_inverse(5, i + 100 * k);
+                    const double phi = glm::two_pi<double>() * radical_inverse(7, i + 100 * k);
+                    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+                    const glm::vec3 origin =
+                        target + 3.0f * glm::vec3(float(r * std::cos(phi)), float(z),
+                                                  float(r * std::sin(phi)));
+                    const glm::vec3 direction = glm::normalize(target - origin);
+                    const auto expected = flat.intersect(origin, direction, 10.0f);
+                    const auto found = moving.intersect(origin, direction, 10.0f);
+                    ASSERT_EQ(expected.has_value(), found.has_value());
+                    if (expected) {
+                        EXPECT_EQ(found->material, expected->material);
+                        EXPECT_NEAR(found->distance, expected->distance, 1e-4f);
+                        met += found->material == k + 1 ? 1 : 0;
+                    }
+                    EXPECT_EQ(moving.occluded(origin, direction, 10.0f),
+                              flat.occluded(origin, direction, 10.0f));
+                    std::optional<RayHit> streamed;
+                    moving.intersect_from(origin, std::span<const glm::vec3>(&direction, 1), 10.0f,
+                                          std::span<std::optional<RayHit>>(&streamed, 1));
+                    ASSERT_EQ(streamed.has_value(), expected.has_value());
+                    if (expected) {
+                        EXPECT_EQ(streamed->material, expected->material);
+                    }
+                    ++compared;
+                }
+            }
+            // Most rays reach the square they aim at (the rest meet another square first).
+            EXPECT_GT(met, compared / 2) << count << " objects, shift " << shift;
+        }
+    }
+}
+
 }  // namespace
