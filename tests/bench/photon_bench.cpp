@@ -182,15 +182,24 @@ std::vector<Ray> photon_rays(const lighting::LightPhotons& light, const lighting
     return rays;
 }
 
-void SegmentsVsRawRays(benchmark::State& state) {
-    Level level(false);
-    JobSystem jobs(static_cast<int>(state.range(0)));
+/// The level's one light, or null with the benchmark skipped.
+const lighting::LightPhotons* the_light(const Level& level, benchmark::State& state) {
     const auto lights = level.photons->active_lights();
     if (lights.size() != 1) {
         state.SkipWithError("expected the level's one light");
+        return nullptr;
+    }
+    return lights.front();
+}
+
+void SegmentsVsRawRays(benchmark::State& state) {
+    Level level(false);
+    JobSystem jobs(static_cast<int>(state.range(0)));
+    const lighting::LightPhotons* found = the_light(level, state);
+    if (found == nullptr) {
         return;
     }
-    const lighting::LightPhotons& light = *lights.front();
+    const lighting::LightPhotons& light = *found;
     const lighting::RayScene& scene = level.photons->ray_scene();
     const auto& materials = level.photons->materials();
     const RawEmbreeScene raw(*cornell_13k());
@@ -332,12 +341,11 @@ void RetraceStore(benchmark::State& state) {
     lighting::PhotonWorldSettings settings;
     settings.selective.per_group = static_cast<std::uint32_t>(state.range(0));
     Level level(false, settings);
-    const auto lights = level.photons->active_lights();
-    if (lights.size() != 1) {
-        state.SkipWithError("expected the level's one light");
+    const lighting::LightPhotons* found = the_light(level, state);
+    if (found == nullptr) {
         return;
     }
-    const lighting::LightPhotons& light = *lights.front();
+    const lighting::LightPhotons& light = *found;
     const lighting::RayScene& scene = level.photons->ray_scene();
     const auto& materials = level.photons->materials();
     lighting::PhotonMap map(level.photons->photon_map().surface_count(),

@@ -234,6 +234,12 @@ TEST(PhotonMapStorage, GroupsReplacedTogetherHoldWhatReplacingThemOneByOneHolds)
     EXPECT_THROW(together.replace_groups(twice, pair), Error);
     const std::uint32_t missing[] = {6};
     EXPECT_THROW(together.clear_groups(missing), Error);
+    // A path that claims more hops than were traced is refused before anything changes.
+    TracedGroup broken = group(1, 7);
+    broken.starts.back() += 1;
+    const std::size_t held = together.stored_hit_count();
+    EXPECT_THROW(together.replace_group(1, broken), Error);
+    EXPECT_EQ(together.stored_hit_count(), held);
     EXPECT_THROW(PhotonMap(1, 1, DivergenceTolerance{0.0f}), Error);
 }
 

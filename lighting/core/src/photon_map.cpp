@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "luxel/runtime/error.hpp"
 
@@ -51,7 +52,8 @@ float half_to_float(std::uint16_t half) {
     return std::bit_cast<float>((static_cast<std::uint32_t>(half) << 13) + kHalfExponentShift);
 }
 
-/// One step of a 64-bit mix (the finaliser of splitmix64) folding `value` into `state`.
+/// Folds `value` into `state`: a hash-combine step, then splitmix64's finaliser, so that a
+/// one-bit change anywhere moves about half of the result's bits.
 std::uint64_t mix(std::uint64_t state, std::uint64_t value) {
     std::uint64_t z = state ^ (value + 0x9E3779B97F4A7C15ull + (state << 6) + (state >> 2));
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
@@ -84,22 +86,32 @@ std::uint32_t bounces_of(std::uint32_t owner) {
 
 }  // namespace
 
-PhotonMap::PhotonMap(std::size_t surface_count, std::size_t group_count,
-                     DivergenceTolerance tolerance)
-    : surfaces_(surface_count),
-      groups_(group_count),
-      clearing_(group_count, 0),
-      touched_(surface_count, 0) {
+namespace {
+
+/// `surface_count`, once the map's arguments are known to be sound (before anything is
+/// allocated for them).
+std::size_t checked_surface_count(std::size_t surface_count, std::size_t group_count,
+                                  const DivergenceTolerance& tolerance) {
     if (!(tolerance.distance > 0.0f) || !std::isfinite(tolerance.distance)) {
         throw Error("PhotonMap: the divergence tolerance must be a positive distance");
     }
     if (surface_count >= kMaxIndex || group_count > kMaxGroups) {
         throw Error("PhotonMap: at most 2^32 - 1 surfaces and 2^24 - 1 photon groups");
     }
-    // Cells this wide put a point that moved farther than the tolerance in another cell along
-    // at least one axis.
-    inverse_cell_ = std::sqrt(3.0) / static_cast<double>(tolerance.distance);
+    return surface_count;
 }
+
+}  // namespace
+
+PhotonMap::PhotonMap(std::size_t surface_count, std::size_t group_count,
+                     DivergenceTolerance tolerance)
+    : surfaces_(checked_surface_count(surface_count, group_count, tolerance)),
+      groups_(group_count),
+      // Cells this wide put a point that moved farther than the tolerance in another cell along
+      // at least one axis.
+      inverse_cell_(std::sqrt(3.0) / static_cast<double>(tolerance.distance)),
+      clearing_(group_count, 0),
+      touched_(surface_count, 0) {}
 
 std::uint32_t PhotonMap::add_surfaces(std::size_t count) {
     if (surfaces_.size() + count >= kMaxIndex) {
@@ -210,6 +222,18 @@ void PhotonMap::replace_groups(std::span<const std::uint32_t> groups,
     std::sort(sorted.begin(), sorted.end());
     if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
         throw Error("PhotonMap::replace_groups: a group is listed twice");
+    }
+    // Checked before anything changes: a bad path leaves the map as it was.
+    for (std::size_t i = 0; i < groups.size(); ++i) {
+        const std::vector<std::uint32_t>& starts = traced[i].starts;
+        for (std::size_t k = 0; k + 1 < starts.size(); ++k) {
+            if (starts[k] > starts[k + 1] || starts[k + 1] > traced[i].hops.size()) {
+                throw Error("PhotonMap: photon " + std::to_string(k) + " of group " +
+                            std::to_string(groups[i]) + " has hops " + std::to_string(starts[k]) +
+                            ".." + std::to_string(starts[k + 1]) + " of " +
+                            std::to_string(traced[i].hops.size()));
+            }
+        }
     }
     clear_groups(groups);
     for (std::size_t i = 0; i < groups.size(); ++i) {
