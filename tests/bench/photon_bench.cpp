@@ -182,26 +182,33 @@ std::vector<Ray> photon_rays(const lighting::LightPhotons& light, const lighting
     return rays;
 }
 
-/// The level's one light, or null with the benchmark skipped.
-const lighting::LightPhotons* the_light(const Level& level, benchmark::State& state) {
+/// What tracing the level's one light takes; `light` is null when the level has another number
+/// of lights (the benchmark is then skipped).
+struct LightToTrace {
+    const lighting::LightPhotons* light = nullptr;
+    const lighting::RayScene* scene = nullptr;
+    std::span<const lighting::TraceMaterial> materials;
+};
+
+LightToTrace the_light(const Level& level, benchmark::State& state) {
     const auto lights = level.photons->active_lights();
     if (lights.size() != 1) {
         state.SkipWithError("expected the level's one light");
-        return nullptr;
+        return {};
     }
-    return lights.front();
+    return {lights.front(), &level.photons->ray_scene(), level.photons->materials()};
 }
 
 void SegmentsVsRawRays(benchmark::State& state) {
     Level level(false);
     JobSystem jobs(static_cast<int>(state.range(0)));
-    const lighting::LightPhotons* found = the_light(level, state);
-    if (found == nullptr) {
+    const LightToTrace found = the_light(level, state);
+    if (found.light == nullptr) {
         return;
     }
-    const lighting::LightPhotons& light = *found;
-    const lighting::RayScene& scene = level.photons->ray_scene();
-    const auto& materials = level.photons->materials();
+    const lighting::LightPhotons& light = *found.light;
+    const lighting::RayScene& scene = *found.scene;
+    const auto materials = found.materials;
     const RawEmbreeScene raw(*cornell_13k());
     const std::vector<Ray> rays = photon_rays(light, scene, materials);
 
@@ -341,20 +348,18 @@ void RetraceStore(benchmark::State& state) {
     lighting::PhotonWorldSettings settings;
     settings.selective.per_group = static_cast<std::uint32_t>(state.range(0));
     Level level(false, settings);
-    const lighting::LightPhotons* found = the_light(level, state);
-    if (found == nullptr) {
+    const LightToTrace found = the_light(level, state);
+    if (found.light == nullptr) {
         return;
     }
-    const lighting::LightPhotons& light = *found;
-    const lighting::RayScene& scene = level.photons->ray_scene();
-    const auto& materials = level.photons->materials();
+    const lighting::LightPhotons& light = *found.light;
     lighting::PhotonMap map(level.photons->photon_map().surface_count(),
                             light.first_group() + light.group_count(),
                             settings.selective.tolerance);
     lighting::TraceCounters counters;
     for (std::uint32_t g = 0; g < light.group_count(); ++g) {
         map.replace_group(light.first_group() + g,
-                          light.trace_group(scene, materials, g, counters));
+                          light.trace_group(*found.scene, found.materials, g, counters));
     }
     std::vector<double> store_us;
     std::vector<double> trace_us;
@@ -366,8 +371,10 @@ void RetraceStore(benchmark::State& state) {
         next = (next + 2) % light.group_count();
         Stopwatch trace_clock;
         const lighting::TracedGroup traced[] = {
-            light.trace_group(scene, materials, groups[0] - light.first_group(), counters),
-            light.trace_group(scene, materials, groups[1] - light.first_group(), counters)};
+            light.trace_group(*found.scene, found.materials, groups[0] - light.first_group(),
+                              counters),
+            light.trace_group(*found.scene, found.materials, groups[1] - light.first_group(),
+                              counters)};
         const double trace = to_seconds(trace_clock.elapsed());
         Stopwatch store_clock;
         map.replace_groups(groups, traced);
