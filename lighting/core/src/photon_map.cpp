@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "luxel/lighting/core/splitmix.hpp"
 #include "luxel/runtime/error.hpp"
 
 namespace luxel::lighting {
@@ -52,13 +53,11 @@ float half_to_float(std::uint16_t half) {
     return std::bit_cast<float>((static_cast<std::uint32_t>(half) << 13) + kHalfExponentShift);
 }
 
-/// Folds `value` into `state`: a hash-combine step, then splitmix64's finaliser, so that a
-/// one-bit change anywhere moves about half of the result's bits.
+/// Folds `value` into `state`: a hash-combine step, then a step of splitmix64, so that a one-bit
+/// change anywhere moves about half of the result's bits.
 std::uint64_t mix(std::uint64_t state, std::uint64_t value) {
-    std::uint64_t z = state ^ (value + 0x9E3779B97F4A7C15ull + (state << 6) + (state >> 2));
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
+    std::uint64_t combined = state ^ (value + (state << 6) + (state >> 2));
+    return splitmix64(combined);
 }
 
 /// The index of the grid cell holding `x`, for a finite coordinate; far or non-finite values
